@@ -1,0 +1,24 @@
+//! Thin PyO3 layer over the `pipelay` engine: conversions, error mapping, GIL release.
+mod convert;
+mod errors;
+mod model;
+mod structure;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("InputError", py.get_type::<errors::InputError>())?;
+    m.add(
+        "ConvergenceError",
+        py.get_type::<errors::ConvergenceError>(),
+    )?;
+    m.add_class::<structure::Section>()?;
+    m.add_class::<structure::Rod>()?;
+    m.add_class::<structure::Current>()?;
+    m.add_class::<structure::Sea>()?;
+    m.add_class::<model::Model>()?;
+    m.add_class::<model::State>()?;
+    Ok(())
+}

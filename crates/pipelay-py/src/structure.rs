@@ -1,0 +1,320 @@
+//! Python classes for what a model is built from: Section, Rod, Current, Sea.
+use crate::convert::{array, points, points_to_numpy, scalar_or_array, vector, vector3};
+use crate::errors::to_py;
+use numpy::PyArray2;
+use pipelay::hydro::{self, CurrentProfile};
+use pipelay::section::{self, SectionExtras};
+use pyo3::prelude::*;
+
+/// Cross-section properties (SI units). GA, EI: one number (both principal axes) or a pair (axis 2, axis 3).
+#[pyclass(module = "pipelay", name = "Section", frozen)]
+#[derive(Clone)]
+pub struct Section(pub section::Section);
+
+#[pymethods]
+impl Section {
+    #[new]
+    #[pyo3(signature = (EA, GA, GJ, EI, mass, inertia=None, outer_diameter=0.0, displaced_area=None, drag=None, added_mass=None, rotational_damping=None))]
+    #[allow(non_snake_case, clippy::too_many_arguments)]
+    fn new(
+        EA: f64,
+        GA: &Bound<'_, PyAny>,
+        GJ: f64,
+        EI: &Bound<'_, PyAny>,
+        mass: f64,
+        inertia: Option<&Bound<'_, PyAny>>,
+        outer_diameter: f64,
+        displaced_area: Option<f64>,
+        drag: Option<&Bound<'_, PyAny>>,
+        added_mass: Option<&Bound<'_, PyAny>>,
+        rotational_damping: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let extras = SectionExtras {
+            inertia: inertia
+                .map(|v| array::<3>(v, "inertia"))
+                .transpose()?
+                .unwrap_or([0.0; 3]),
+            outer_diameter,
+            displaced_area,
+            drag: drag
+                .map(|v| array::<2>(v, "drag"))
+                .transpose()?
+                .unwrap_or([0.0; 2]),
+            added_mass: added_mass
+                .map(|v| array::<2>(v, "added_mass"))
+                .transpose()?
+                .unwrap_or([0.0; 2]),
+            rotational_damping: rotational_damping
+                .map(|v| scalar_or_array::<3>(v, "rotational_damping"))
+                .transpose()?
+                .unwrap_or([0.0; 3]),
+        };
+        let ga = scalar_or_array::<2>(GA, "GA")?;
+        let ei = scalar_or_array::<2>(EI, "EI")?;
+        section::Section::new(EA, ga, GJ, ei, mass, extras)
+            .map(Section)
+            .map_err(to_py)
+    }
+
+    /// A pipe from its geometry (m) and material: density (kg/m³), Young's modulus (Pa), Poisson's ratio,
+    /// contents density (kg/m³, adds to the mass), Morison drag and added-mass coefficients (axial, normal).
+    #[staticmethod]
+    #[pyo3(signature = (outer_diameter, wall_thickness, density=7850.0, youngs_modulus=207e9, poisson_ratio=0.3, contents_density=0.0, drag=None, added_mass=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn pipe(
+        outer_diameter: f64,
+        wall_thickness: f64,
+        density: f64,
+        youngs_modulus: f64,
+        poisson_ratio: f64,
+        contents_density: f64,
+        drag: Option<&Bound<'_, PyAny>>,
+        added_mass: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let drag = drag
+            .map(|v| array::<2>(v, "drag"))
+            .transpose()?
+            .unwrap_or([0.0, 1.0]);
+        let added_mass = added_mass
+            .map(|v| array::<2>(v, "added_mass"))
+            .transpose()?
+            .unwrap_or([0.0, 1.0]);
+        section::Section::pipe(
+            outer_diameter,
+            wall_thickness,
+            density,
+            youngs_modulus,
+            poisson_ratio,
+            contents_density,
+            drag,
+            added_mass,
+        )
+        .map(Section)
+        .map_err(to_py)
+    }
+
+    /// Axial stiffness EA (N).
+    #[getter(EA)]
+    fn ea(&self) -> f64 {
+        self.0.translational_stiffness.x
+    }
+    /// Shear stiffnesses (GA2, GA3) (N).
+    #[getter(GA)]
+    fn ga(&self) -> (f64, f64) {
+        (
+            self.0.translational_stiffness.y,
+            self.0.translational_stiffness.z,
+        )
+    }
+    /// Torsional stiffness GJ (N·m²).
+    #[getter(GJ)]
+    fn gj(&self) -> f64 {
+        self.0.rotational_stiffness.x
+    }
+    /// Bending stiffnesses (EI2, EI3) (N·m²).
+    #[getter(EI)]
+    fn ei(&self) -> (f64, f64) {
+        (self.0.rotational_stiffness.y, self.0.rotational_stiffness.z)
+    }
+    /// Mass per unit length, contents included (kg/m).
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.0.mass
+    }
+    /// Rotational inertia per unit length (J1, J2, J3) (kg·m).
+    #[getter]
+    fn inertia(&self) -> (f64, f64, f64) {
+        (self.0.inertia.x, self.0.inertia.y, self.0.inertia.z)
+    }
+    /// Outer diameter (m).
+    #[getter]
+    fn outer_diameter(&self) -> f64 {
+        self.0.outer_diameter
+    }
+    /// Buoyancy area per unit length (m²).
+    #[getter]
+    fn displaced_area(&self) -> f64 {
+        self.0.displaced_area
+    }
+    /// Morison drag coefficients (axial, normal).
+    #[getter]
+    fn drag(&self) -> (f64, f64) {
+        (self.0.drag[0], self.0.drag[1])
+    }
+    /// Added-mass coefficients (axial, normal).
+    #[getter]
+    fn added_mass(&self) -> (f64, f64) {
+        (self.0.added_mass[0], self.0.added_mass[1])
+    }
+    /// Rotational damping (N·m·s per m) about t1, t2, t3.
+    #[getter]
+    fn rotational_damping(&self) -> (f64, f64, f64) {
+        let d = self.0.rotational_damping;
+        (d.x, d.y, d.z)
+    }
+
+    fn __repr__(&self) -> String {
+        let s = &self.0;
+        format!(
+            "Section(EA={:.4e}, GA={:?}, GJ={:.4e}, EI={:?}, mass={:.4})",
+            s.translational_stiffness.x,
+            (s.translational_stiffness.y, s.translational_stiffness.z),
+            s.rotational_stiffness.x,
+            (s.rotational_stiffness.y, s.rotational_stiffness.z),
+            s.mass
+        )
+    }
+}
+
+/// A rod in its stress-free reference configuration: nodes (n + 1, 3) in m and a section.
+#[pyclass(module = "pipelay", name = "Rod", frozen)]
+#[derive(Clone)]
+pub struct Rod(pub pipelay::rod::Rod);
+
+#[pymethods]
+impl Rod {
+    #[new]
+    fn new(nodes: &Bound<'_, PyAny>, section: &Section) -> PyResult<Self> {
+        let nodes = points(nodes, "nodes")?;
+        pipelay::rod::Rod::new(nodes, section.0.clone())
+            .map(Rod)
+            .map_err(to_py)
+    }
+
+    /// A straight rod of `elements` equal elements from `start` to `end` (m).
+    #[staticmethod]
+    fn straight(
+        start: &Bound<'_, PyAny>,
+        end: &Bound<'_, PyAny>,
+        elements: i64,
+        section: &Section,
+    ) -> PyResult<Self> {
+        let start = vector3(start, "start")?;
+        let end = vector3(end, "end")?;
+        if elements < 1 {
+            return Err(crate::errors::input(
+                "elements",
+                elements,
+                "must be an integer >= 1",
+            ));
+        }
+        pipelay::rod::Rod::straight(start, end, elements as usize, section.0.clone())
+            .map(Rod)
+            .map_err(to_py)
+    }
+
+    /// Reference node positions (n + 1, 3) (m).
+    #[getter]
+    fn nodes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_to_numpy(py, &self.0.nodes)
+    }
+    /// Number of elements n.
+    #[getter]
+    fn elements(&self) -> usize {
+        self.0.element_count()
+    }
+    /// Total reference length (m).
+    #[getter]
+    fn length(&self) -> f64 {
+        self.0.length()
+    }
+    /// The cross-section.
+    #[getter]
+    fn section(&self) -> Section {
+        Section(self.0.section.clone())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Rod(elements={}, length={:.6} m)",
+            self.0.element_count(),
+            self.0.length()
+        )
+    }
+}
+
+/// A steady current; build it with `Current.uniform`, `Current.linear` or `Current.profile`.
+#[pyclass(module = "pipelay", name = "Current", frozen)]
+#[derive(Clone)]
+pub struct Current(pub hydro::Current);
+
+#[pymethods]
+impl Current {
+    /// The same velocity (3,) (m/s, in e) at every depth, from time `start` (s).
+    #[staticmethod]
+    #[pyo3(signature = (velocity, start=0.0))]
+    fn uniform(velocity: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
+        let v = vector3(velocity, "velocity")?;
+        hydro::Current::new(CurrentProfile::Uniform(v), start)
+            .map(Current)
+            .map_err(to_py)
+    }
+
+    /// Linear shear: `surface_velocity` (3,) (m/s) at the surface, zero at the seabed end's depth.
+    #[staticmethod]
+    #[pyo3(signature = (surface_velocity, start=0.0))]
+    fn linear(surface_velocity: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
+        let surface = vector3(surface_velocity, "surface_velocity")?;
+        hydro::Current::new(CurrentProfile::Linear { surface }, start)
+            .map(Current)
+            .map_err(to_py)
+    }
+
+    /// A table: `depths` (k,) below the surface (m, increasing) and `velocities` (k, 3) (m/s), interpolated linearly.
+    #[staticmethod]
+    #[pyo3(signature = (depths, velocities, start=0.0))]
+    fn profile(
+        depths: &Bound<'_, PyAny>,
+        velocities: &Bound<'_, PyAny>,
+        start: f64,
+    ) -> PyResult<Self> {
+        let depths = vector(depths, "depths")?;
+        let velocities = points(velocities, "velocities")?;
+        hydro::Current::new(CurrentProfile::Table { depths, velocities }, start)
+            .map(Current)
+            .map_err(to_py)
+    }
+
+    /// Velocity (3,) (m/s) at elevation z (m, e3 down) in a sea of the given depth, at time t (s).
+    fn velocity(&self, z: f64, depth: f64, t: f64) -> (f64, f64, f64) {
+        let v = self.0.velocity_and_gradient(z, depth, t).0;
+        (v.x, v.y, v.z)
+    }
+
+    /// Start time (s).
+    #[getter]
+    fn start(&self) -> f64 {
+        self.0.start
+    }
+}
+
+/// Water: depth (m; the surface is z = −depth), density (kg/m³) and an optional current.
+#[pyclass(module = "pipelay", name = "Sea", frozen)]
+#[derive(Clone)]
+pub struct Sea(pub hydro::Sea);
+
+#[pymethods]
+impl Sea {
+    #[new]
+    #[pyo3(signature = (depth, density=1025.0, current=None))]
+    fn new(depth: f64, density: f64, current: Option<&Current>) -> PyResult<Self> {
+        hydro::Sea::new(depth, density, current.map(|c| c.0.clone()))
+            .map(Sea)
+            .map_err(to_py)
+    }
+    /// Water depth (m).
+    #[getter]
+    fn depth(&self) -> f64 {
+        self.0.depth
+    }
+    /// Water density (kg/m³).
+    #[getter]
+    fn density(&self) -> f64 {
+        self.0.density
+    }
+    /// The current, if any.
+    #[getter]
+    fn current(&self) -> Option<Current> {
+        self.0.current.clone().map(Current)
+    }
+}

@@ -1,0 +1,65 @@
+//! What users read off a configuration: section forces, tension, support reactions and energy.
+use crate::assembly::{Assembler, Configuration, NODE_DOFS};
+use crate::model::Model;
+use crate::rod::element::evaluate;
+use nalgebra::Vector6;
+
+/// Derived quantities of a configuration at full load.
+#[derive(Debug, Clone)]
+pub struct Response {
+    /// Material force N and moment M at each element midpoint: [N1, N2, N3, M1, M2, M3].
+    pub section_forces: Vec<Vector6<f64>>,
+    /// Force and moment the rod exerts on each node's support, in e: −(f_int − f_ext) at that node.
+    pub nodal_reactions: Vec<Vector6<f64>>,
+    /// Strain energy (J).
+    pub strain_energy: f64,
+    /// Potential of the submerged weight (J), zero at z = 0.
+    pub gravity_energy: f64,
+}
+
+impl Response {
+    /// Evaluates `config` of `model` at full load.
+    pub fn new(model: &Model, config: &Configuration) -> Self {
+        let section = &model.rod.section;
+        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let section_forces = model
+            .rod
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(e, reference)| {
+                let r = evaluate(
+                    &config.positions[e],
+                    &config.positions[e + 1],
+                    &config.rotations[e],
+                    &config.rotations[e + 1],
+                    reference,
+                    &c_t,
+                    &c_r,
+                    None,
+                );
+                Vector6::new(
+                    r.material_force.x,
+                    r.material_force.y,
+                    r.material_force.z,
+                    r.material_moment.x,
+                    r.material_moment.y,
+                    r.material_moment.z,
+                )
+            })
+            .collect();
+        let mut assembler = Assembler::new(model);
+        let summary = assembler.assemble(model, config, 1.0, false);
+        let nodal_reactions = assembler
+            .residual
+            .chunks_exact(NODE_DOFS)
+            .map(|r| -Vector6::from_column_slice(r))
+            .collect();
+        Response {
+            section_forces,
+            nodal_reactions,
+            strain_energy: summary.strain_energy,
+            gravity_energy: Assembler::gravity_potential(model, config),
+        }
+    }
+}

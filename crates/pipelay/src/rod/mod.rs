@@ -1,0 +1,138 @@
+//! The rod: its stress-free reference (nodes, nodal frames, elements) and the element it is made of.
+pub mod element;
+
+use crate::error::{finite, Error, Result};
+use crate::section::Section;
+use crate::so3::{minimal_rotation, quat_from_matrix};
+use element::ElementReference;
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// A rod in its stress-free reference configuration.
+#[derive(Debug, Clone)]
+pub struct Rod {
+    /// Reference node positions X_a (m), `elements + 1` of them.
+    pub nodes: Vec<Vector3<f64>>,
+    /// Reference nodal frames R_a⁰ (t1 along the centreline).
+    pub frames: Vec<UnitQuaternion<f64>>,
+    /// Per-element reference data.
+    pub elements: Vec<ElementReference>,
+    /// The cross-section, the same along the rod.
+    pub section: Section,
+}
+
+impl Rod {
+    /// A rod through `nodes` (a polyline). Nodal frames: t1 along the average of the adjacent chords;
+    /// the first frame is the smallest rotation of e1 onto t1, the others follow by parallel transport.
+    pub fn new(nodes: Vec<Vector3<f64>>, section: Section) -> Result<Self> {
+        if nodes.len() < 2 {
+            return Err(Error::input(
+                "nodes",
+                format!("{} node(s)", nodes.len()),
+                "need at least 2 nodes (1 element)",
+            ));
+        }
+        for node in &nodes {
+            finite("nodes", node.as_slice())?;
+        }
+        let mut chords = Vec::with_capacity(nodes.len() - 1);
+        for (i, pair) in nodes.windows(2).enumerate() {
+            let chord = pair[1] - pair[0];
+            let length = chord.norm();
+            let scale = pair[0].norm().max(pair[1].norm()).max(1.0);
+            if length <= 1e-12 * scale {
+                return Err(Error::input(
+                    "nodes",
+                    format!(
+                        "nodes {i} and {} coincide at {:?}",
+                        i + 1,
+                        pair[0].as_slice()
+                    ),
+                    "consecutive nodes must be distinct",
+                ));
+            }
+            chords.push(chord / length);
+        }
+        let tangents: Vec<Vector3<f64>> = (0..nodes.len())
+            .map(|a| {
+                let before = if a > 0 { chords[a - 1] } else { chords[0] };
+                let after = chords.get(a).copied().unwrap_or(before);
+                let sum = before + after;
+                // A reversal of direction (sum ≈ 0) keeps the incoming chord.
+                if sum.norm() > 1e-8 {
+                    sum.normalize()
+                } else {
+                    before
+                }
+            })
+            .collect();
+        let mut frames = Vec::with_capacity(nodes.len());
+        let mut frame = minimal_rotation(&Vector3::x(), &tangents[0]);
+        frames.push(quat_from_matrix(&frame));
+        for pair in tangents.windows(2) {
+            frame = minimal_rotation(&pair[0], &pair[1]) * frame;
+            frames.push(quat_from_matrix(&frame));
+        }
+        Ok(Self::with_frames(nodes, frames, section))
+    }
+
+    /// A straight rod of `elements` equal elements from `start` to `end`.
+    pub fn straight(
+        start: Vector3<f64>,
+        end: Vector3<f64>,
+        elements: usize,
+        section: Section,
+    ) -> Result<Self> {
+        if elements == 0 {
+            return Err(Error::input(
+                "elements",
+                elements,
+                "must be an integer >= 1",
+            ));
+        }
+        finite("start", start.as_slice())?;
+        finite("end", end.as_slice())?;
+        let nodes = (0..=elements)
+            .map(|i| start + (end - start) * (i as f64 / elements as f64))
+            .collect();
+        Self::new(nodes, section)
+    }
+
+    fn with_frames(
+        nodes: Vec<Vector3<f64>>,
+        frames: Vec<UnitQuaternion<f64>>,
+        section: Section,
+    ) -> Self {
+        let elements = (0..nodes.len() - 1)
+            .map(|e| {
+                ElementReference::new(
+                    &nodes[e],
+                    &nodes[e + 1],
+                    &frames[e],
+                    &frames[e + 1],
+                    (nodes[e + 1] - nodes[e]).norm(),
+                )
+            })
+            .collect();
+        Rod {
+            nodes,
+            frames,
+            elements,
+            section,
+        }
+    }
+
+    /// Number of elements n.
+    pub fn element_count(&self) -> usize {
+        self.elements.len()
+    }
+
+    /// Number of nodes n + 1.
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Total reference length (m).
+    pub fn length(&self) -> f64 {
+        self.elements.iter().map(|e| e.length).sum()
+    }
+}

@@ -1,0 +1,339 @@
+//! Static equilibrium: Newton–Raphson with adaptive load stepping, optionally started from Irvine's
+//! elastic catenary.
+//!
+//! The path from the stress-free reference has two stages along one parameter s ∈ [0, 2]: first the
+//! loads grow (λ = s) with the supports at the reference, so that a hanging line is in tension before
+//! its ends move; then the supports move to their prescribed positions and rotations (μ = s − 1).
+use crate::assembly::{Assembler, Configuration, NODE_DOFS};
+use crate::catenary::Catenary;
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::so3::{exp_quat, log_quat, minimal_rotation, quat_from_matrix};
+use nalgebra::Vector3;
+
+/// Where Newton starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Start {
+    /// The catenary when it applies (both ends held in position, positive submerged weight), else the reference.
+    Auto,
+    /// The stress-free reference, with load stepping.
+    Reference,
+    /// Irvine's elastic catenary through the two held ends, at full load.
+    Catenary,
+}
+
+/// Solver settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticOptions {
+    /// Initial number of equal load steps (halved on failure, grown on easy convergence).
+    pub initial_steps: usize,
+    pub start: Start,
+    /// Relative residual tolerance ‖r_free‖ ≤ tol · force scale.
+    pub tolerance: f64,
+    /// Newton iterations allowed per load step.
+    pub max_iterations: usize,
+    /// Smallest load step before giving up.
+    pub min_step: f64,
+    /// Largest nodal rotation increment per Newton iteration (rad); larger corrections are scaled down.
+    pub max_rotation_increment: f64,
+}
+
+impl Default for StaticOptions {
+    fn default() -> Self {
+        StaticOptions {
+            initial_steps: 1,
+            start: Start::Auto,
+            tolerance: 1e-9,
+            max_iterations: 30,
+            min_step: 1e-6,
+            max_rotation_increment: 0.5,
+        }
+    }
+}
+
+/// A converged static solution and how it was reached.
+#[derive(Debug, Clone)]
+pub struct StaticSolution {
+    pub configuration: Configuration,
+    /// Total Newton iterations.
+    pub iterations: usize,
+    /// Accepted load steps (1 when solved at full load directly).
+    pub steps: usize,
+    /// Final residual norm over the free DOFs.
+    pub residual: f64,
+    /// Whether Newton started from the elastic catenary.
+    pub from_catenary: bool,
+}
+
+/// Outcome of Newton at one load factor.
+enum Newton {
+    Converged { iterations: usize, residual: f64 },
+    Failed { iterations: usize, residual: f64 },
+}
+
+/// A point of the loading path: load factor λ and support motion μ, both in [0, 1].
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PathPoint {
+    load: f64,
+    support: f64,
+}
+
+impl PathPoint {
+    /// Stage 1 (s ≤ 1): loads; stage 2: support motion.
+    fn at(s: f64) -> Self {
+        PathPoint {
+            load: s.min(1.0),
+            support: (s - 1.0).clamp(0.0, 1.0),
+        }
+    }
+}
+
+/// Largest relative rotation between the nodes of one element that Newton may accept (rad): beyond it
+/// the element's logarithm is near its branch cut at π and the iterate has jumped to a spurious state.
+const MAX_ELEMENT_ROTATION: f64 = 2.5;
+
+/// Sets the prescribed DOFs to their values at support motion μ: x = X + μ(p − X), R = exp(μ log(R_p R_Xᵀ)) R_X.
+fn apply_supports(model: &Model, config: &mut Configuration, load_factor: f64) {
+    for support in &model.supports {
+        let node = support.node;
+        let reference = model.rod.nodes[node];
+        config.positions[node] = reference + (support.position() - reference) * load_factor;
+        if let Some(target) = support.rotation() {
+            let frame = model.rod.frames[node];
+            let rotation = log_quat(&(target * frame.inverse()));
+            config.rotations[node] = exp_quat(&(rotation * load_factor)) * frame;
+        }
+    }
+}
+
+fn newton(
+    model: &Model,
+    assembler: &mut Assembler,
+    config: &mut Configuration,
+    load_factor: f64,
+    options: &StaticOptions,
+) -> Newton {
+    let mut delta = vec![0.0; assembler.dofs.free];
+    // Round-off floor of the residual: internal forces carry errors of about 1e-16·EA per element.
+    let round_off = 1e-13
+        * model.rod.section.translational_stiffness.max()
+        * (model.rod.element_count() as f64).sqrt();
+    let length_scale = model.rod.length();
+    let mut residual = f64::INFINITY;
+    for iteration in 0..=options.max_iterations {
+        let summary = assembler.assemble(model, config, load_factor, true);
+        if summary.max_element_rotation > MAX_ELEMENT_ROTATION {
+            break;
+        }
+        let mut free_norm2 = 0.0;
+        let mut fixed_norm2 = 0.0;
+        for (r, eq) in assembler.residual.iter().zip(&assembler.dofs.equation) {
+            match eq {
+                Some(_) => free_norm2 += r * r,
+                None => fixed_norm2 += r * r,
+            }
+        }
+        residual = free_norm2.sqrt();
+        let scale = summary.external_norm.max(fixed_norm2.sqrt());
+        if !residual.is_finite() {
+            return Newton::Failed {
+                iterations: iteration,
+                residual,
+            };
+        }
+        if residual <= options.tolerance * scale + round_off {
+            return Newton::Converged {
+                iterations: iteration,
+                residual,
+            };
+        }
+        if iteration == options.max_iterations || assembler.lu.factorise(&assembler.values).is_err()
+        {
+            break;
+        }
+        for (r, eq) in assembler.residual.iter().zip(&assembler.dofs.equation) {
+            if let Some(i) = eq {
+                delta[*i] = -r;
+            }
+        }
+        if assembler.lu.solve_in_place(&mut delta).is_err() || delta.iter().any(|d| !d.is_finite())
+        {
+            break;
+        }
+        // Scale the whole correction if a node would turn by more than the allowed increment.
+        let mut largest_rotation: f64 = 0.0;
+        let mut largest_translation: f64 = 0.0;
+        for node in 0..model.rod.node_count() {
+            let mut spin = Vector3::zeros();
+            for k in 0..3 {
+                if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + 3 + k] {
+                    spin[k] = delta[i];
+                }
+                if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + k] {
+                    largest_translation = largest_translation.max(delta[i].abs());
+                }
+            }
+            largest_rotation = largest_rotation.max(spin.norm());
+        }
+        let factor = (options.max_rotation_increment / largest_rotation).min(1.0);
+        for node in 0..model.rod.node_count() {
+            let mut spin = Vector3::zeros();
+            for k in 0..3 {
+                if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + k] {
+                    config.positions[node][k] += factor * delta[i];
+                }
+                if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + 3 + k] {
+                    spin[k] = factor * delta[i];
+                }
+            }
+            if spin != Vector3::zeros() {
+                config.rotations[node] = exp_quat(&spin) * config.rotations[node];
+            }
+        }
+        // Stagnation at round-off with a residual already small is convergence too.
+        if factor == 1.0
+            && largest_translation <= 1e-13 * length_scale
+            && largest_rotation <= 1e-13
+            && residual <= 1e-6 * scale
+        {
+            return Newton::Converged {
+                iterations: iteration + 1,
+                residual,
+            };
+        }
+    }
+    Newton::Failed {
+        iterations: options.max_iterations,
+        residual,
+    }
+}
+
+/// The catenary initial guess: nodes placed along Irvine's elastic catenary through the two held ends
+/// at their reference arc lengths, frames turned by the smallest rotation onto its tangent.
+fn catenary_guess(model: &Model) -> Option<Configuration> {
+    let last = model.rod.element_count();
+    let held = |node: usize| model.supports.iter().find(|s| s.node == node);
+    let (a, b) = (held(0)?, held(last)?);
+    let weight = model.submerged_weight();
+    if model.supports.len() != 2 || weight <= 0.0 {
+        return None;
+    }
+    let length = model.rod.length();
+    let catenary = Catenary::solve(
+        a.position(),
+        b.position(),
+        length,
+        weight,
+        model.rod.section.translational_stiffness.x,
+    )
+    .ok()?;
+    let mut config = Configuration::reference(model);
+    let mut arc = 0.0;
+    for node in 0..=last {
+        if node > 0 {
+            arc += model.rod.elements[node - 1].length;
+        }
+        config.positions[node] = catenary.position(arc.min(length));
+        let frame = config.rotations[node].to_rotation_matrix().into_inner();
+        let turn = minimal_rotation(
+            &frame.column(0).into_owned(),
+            &catenary.tangent(arc.min(length)),
+        );
+        config.rotations[node] = quat_from_matrix(&(turn * frame));
+    }
+    apply_supports(model, &mut config, 1.0);
+    Some(config)
+}
+
+/// Solves for static equilibrium at full load.
+pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
+    if options.initial_steps == 0 {
+        return Err(Error::input("steps", 0, "must be an integer >= 1"));
+    }
+    let mut assembler = Assembler::new(model);
+    let mut iterations = 0;
+    let catenary = match options.start {
+        Start::Reference => None,
+        Start::Auto => catenary_guess(model),
+        Start::Catenary => Some(catenary_guess(model).ok_or_else(|| {
+            Error::input(
+                "start",
+                "\"catenary\"",
+                "needs exactly two supports, at ends A and B, and a positive submerged weight",
+            )
+        })?),
+    };
+    if let Some(mut config) = catenary {
+        match newton(model, &mut assembler, &mut config, 1.0, options) {
+            Newton::Converged {
+                iterations: its,
+                residual,
+            } => {
+                return Ok(StaticSolution {
+                    configuration: config,
+                    iterations: its,
+                    steps: 1,
+                    residual,
+                    from_catenary: true,
+                })
+            }
+            Newton::Failed {
+                iterations: its, ..
+            } => iterations += its,
+        }
+    }
+
+    let mut config = Configuration::reference(model);
+    let mut path = 0.0;
+    let mut step = 1.0 / options.initial_steps as f64;
+    let mut steps = 0;
+    loop {
+        let target = (path + step).min(2.0);
+        let point = PathPoint::at(target);
+        let mut trial = config.clone();
+        apply_supports(model, &mut trial, point.support);
+        match newton(model, &mut assembler, &mut trial, point.load, options) {
+            Newton::Converged {
+                iterations: its,
+                residual,
+            } => {
+                iterations += its;
+                steps += 1;
+                config = trial;
+                path = target;
+                if path >= 2.0 {
+                    return Ok(StaticSolution {
+                        configuration: config,
+                        iterations,
+                        steps,
+                        residual,
+                        from_catenary: false,
+                    });
+                }
+                if its <= 5 {
+                    step *= 2.0;
+                }
+            }
+            Newton::Failed {
+                iterations: its,
+                residual,
+            } => {
+                iterations += its;
+                step *= 0.5;
+                if step < options.min_step {
+                    let reached = PathPoint::at(path);
+                    return Err(Error::Convergence {
+                        context: "static solve".into(),
+                        reached: reached.load,
+                        iterations: its,
+                        residual,
+                        reason: format!(
+                            "load step fell below {:.0e} at load factor {:.6} with the supports moved {:.6} of the way",
+                            options.min_step, reached.load, reached.support
+                        ),
+                    });
+                }
+            }
+        }
+    }
+}

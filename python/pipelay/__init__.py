@@ -1,0 +1,29 @@
+"""pipelay: offshore pipelay simulation with a geometrically exact pipe model.
+
+SI units throughout; the inertial frame e has its origin at the pipe's seabed end, e1 along the lay
+direction and e3 pointing down (gravity is +g·e3); the sea surface is the plane z = −depth.
+Rod end "A" is node 0 (seabed end), "B" is node n (top end).
+"""
+
+from pipelay._core import (
+    ConvergenceError,
+    Current,
+    InputError,
+    Model,
+    Rod,
+    Sea,
+    Section,
+    State,
+)
+
+__all__ = [
+    "ConvergenceError",
+    "Current",
+    "InputError",
+    "Model",
+    "Rod",
+    "Sea",
+    "Section",
+    "State",
+]
+__version__ = "0.1.0"
