@@ -79,6 +79,8 @@ pub struct Assembler {
     pub values: Vec<f64>,
     /// Residual over all DOFs.
     pub residual: Vec<f64>,
+    /// K_fc Δu_c: the tangent's prescribed columns times the prescribed increments (all DOFs).
+    pub support_coupling: Vec<f64>,
     external: Vec<f64>,
     /// For each element, the value position of each of its 12×12 entries (FIXED when not free).
     scatter: Vec<[u32; 144]>,
@@ -131,20 +133,24 @@ impl Assembler {
             dofs,
             lu,
             residual: vec![0.0; total],
+            support_coupling: vec![0.0; total],
             external: vec![0.0; total],
             scatter,
         }
     }
 
     /// Residual r = f_int − λ f_ext (all DOFs) and, if `with_tangent`, the free-DOF tangent at `config`.
-    /// Statics: drag from the current at t = 0 on the rod held still.
+    /// With `support_increment` (prescribed increments on all DOFs, zero where free) and a tangent, also
+    /// K_fc Δu_c into `support_coupling`. Statics: drag from the current at t = 0 on the rod held still.
     pub fn assemble(
         &mut self,
         model: &Model,
         config: &Configuration,
         load_factor: f64,
         with_tangent: bool,
+        support_increment: Option<&[f64]>,
     ) -> AssemblySummary {
+        self.support_coupling.iter_mut().for_each(|r| *r = 0.0);
         self.residual.iter_mut().for_each(|r| *r = 0.0);
         self.external.iter_mut().for_each(|r| *r = 0.0);
         if with_tangent {
@@ -202,6 +208,16 @@ impl Assembler {
                                     }
                                 }
                             }
+                        }
+                    }
+                }
+            }
+            if let (true, Some(increment)) = (with_tangent, support_increment) {
+                for j in 0..12 {
+                    let du = increment[base + j];
+                    if du != 0.0 && self.dofs.equation[base + j].is_none() {
+                        for i in 0..12 {
+                            self.support_coupling[base + i] += k[(i, j)] * du;
                         }
                     }
                 }

@@ -49,7 +49,7 @@ impl Response {
             })
             .collect();
         let mut assembler = Assembler::new(model);
-        let summary = assembler.assemble(model, config, 1.0, false);
+        let summary = assembler.assemble(model, config, 1.0, false, None);
         let nodal_reactions = assembler
             .residual
             .chunks_exact(NODE_DOFS)

@@ -106,11 +106,15 @@ fn apply_supports(model: &Model, config: &mut Configuration, load_factor: f64) {
     }
 }
 
+/// Newton at load factor λ. With `support_increment`, the first iteration is the linearised Dirichlet
+/// predictor: it moves the supports by their increments and the free DOFs by −K_ff⁻¹(r_f + K_fc Δu_c),
+/// so that a support's motion spreads along the rod instead of straining one element.
 fn newton(
     model: &Model,
     assembler: &mut Assembler,
     config: &mut Configuration,
     load_factor: f64,
+    mut support_increment: Option<&[f64]>,
     options: &StaticOptions,
 ) -> Newton {
     let mut delta = vec![0.0; assembler.dofs.free];
@@ -121,7 +125,7 @@ fn newton(
     let length_scale = model.rod.length();
     let mut residual = f64::INFINITY;
     for iteration in 0..=options.max_iterations {
-        let summary = assembler.assemble(model, config, load_factor, true);
+        let summary = assembler.assemble(model, config, load_factor, true, support_increment);
         if summary.max_element_rotation > MAX_ELEMENT_ROTATION {
             break;
         }
@@ -141,7 +145,7 @@ fn newton(
                 residual,
             };
         }
-        if residual <= options.tolerance * scale + round_off {
+        if support_increment.is_none() && residual <= options.tolerance * scale + round_off {
             return Newton::Converged {
                 iterations: iteration,
                 residual,
@@ -151,9 +155,14 @@ fn newton(
         {
             break;
         }
-        for (r, eq) in assembler.residual.iter().zip(&assembler.dofs.equation) {
+        for ((r, c), eq) in assembler
+            .residual
+            .iter()
+            .zip(&assembler.support_coupling)
+            .zip(&assembler.dofs.equation)
+        {
             if let Some(i) = eq {
-                delta[*i] = -r;
+                delta[*i] = -(r + c);
             }
         }
         if assembler.lu.solve_in_place(&mut delta).is_err() || delta.iter().any(|d| !d.is_finite())
@@ -175,7 +184,13 @@ fn newton(
             }
             largest_rotation = largest_rotation.max(spin.norm());
         }
-        let factor = (options.max_rotation_increment / largest_rotation).min(1.0);
+        let factor = match support_increment.take() {
+            Some(increment) => {
+                apply_increment(config, increment);
+                1.0
+            }
+            None => (options.max_rotation_increment / largest_rotation).min(1.0),
+        };
         for node in 0..model.rod.node_count() {
             let mut spin = Vector3::zeros();
             for k in 0..3 {
@@ -206,6 +221,34 @@ fn newton(
         iterations: options.max_iterations,
         residual,
     }
+}
+
+/// Adds an increment given on all DOFs (positions and spatial spins) to a configuration.
+fn apply_increment(config: &mut Configuration, increment: &[f64]) {
+    for (node, du) in increment.chunks_exact(NODE_DOFS).enumerate() {
+        config.positions[node] += Vector3::new(du[0], du[1], du[2]);
+        let spin = Vector3::new(du[3], du[4], du[5]);
+        if spin != Vector3::zeros() {
+            config.rotations[node] = exp_quat(&spin) * config.rotations[node];
+        }
+    }
+}
+
+/// Increments that take the supports of `config` to their values at support motion μ (all DOFs, zero where free).
+fn support_increment(model: &Model, config: &Configuration, support_motion: f64) -> Vec<f64> {
+    let mut target = config.clone();
+    apply_supports(model, &mut target, support_motion);
+    let mut increment = vec![0.0; NODE_DOFS * model.rod.node_count()];
+    for support in &model.supports {
+        let node = support.node;
+        let du = &mut increment[NODE_DOFS * node..NODE_DOFS * (node + 1)];
+        du[..3].copy_from_slice((target.positions[node] - config.positions[node]).as_slice());
+        if support.rotation().is_some() {
+            let spin = log_quat(&(target.rotations[node] * config.rotations[node].inverse()));
+            du[3..].copy_from_slice(spin.as_slice());
+        }
+    }
+    increment
 }
 
 /// The catenary initial guess: nodes placed along Irvine's elastic catenary through the two held ends
@@ -264,7 +307,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         })?),
     };
     if let Some(mut config) = catenary {
-        match newton(model, &mut assembler, &mut config, 1.0, options) {
+        match newton(model, &mut assembler, &mut config, 1.0, None, options) {
             Newton::Converged {
                 iterations: its,
                 residual,
@@ -291,8 +334,17 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         let target = (path + step).min(2.0);
         let point = PathPoint::at(target);
         let mut trial = config.clone();
-        apply_supports(model, &mut trial, point.support);
-        match newton(model, &mut assembler, &mut trial, point.load, options) {
+        let increment = support_increment(model, &trial, point.support);
+        let moves = increment.iter().any(|&du| du != 0.0);
+        let outcome = newton(
+            model,
+            &mut assembler,
+            &mut trial,
+            point.load,
+            moves.then_some(&increment[..]),
+            options,
+        );
+        match outcome {
             Newton::Converged {
                 iterations: its,
                 residual,
@@ -310,7 +362,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
                         from_catenary: false,
                     });
                 }
-                if its <= 5 {
+                if its <= 8 {
                     step *= 2.0;
                 }
             }
