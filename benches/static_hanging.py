@@ -55,8 +55,10 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
 
     sizes = [10, 100, 1000] if args.quick else [10, 100, 1000, 10000]
-    print(f"static hanging pipe, pipelay {getattr(pl, '__version__', '?')}, Python {platform.python_version()}, "
-          f"{platform.machine()}")
+    print(
+        f"static hanging pipe, pipelay {getattr(pl, '__version__', '?')}, Python {platform.python_version()}, "
+        f"{platform.machine()}"
+    )
     print()
     print("| n | wall time (s) | Newton iterations | load steps | top tension (kN) |")
     print("| ---: | ---: | ---: | ---: | ---: |")

@@ -140,6 +140,4 @@ def irvine_catenary(length: float, span: float, rise: float, weight: float, ea: 
         hi *= 2.0
     h = _bisect(span_misfit, lo, hi)
     va = vertical_a_for(h)
-    return Catenary(
-        horizontal=h, vertical_a=va, vertical_b=va + w * length, weight=w, length=length, ea=ea
-    )
+    return Catenary(horizontal=h, vertical_a=va, vertical_b=va + w * length, weight=w, length=length, ea=ea)

@@ -136,8 +136,12 @@ CASES = [
         "nodes",
         id="nodes-coincident",
     ),
-    pytest.param(lambda: rod_from(np.array([[0.0, 0, 0], [NAN, 0, 0], [2.0, 0, 0]])), "nodes", id="nodes-nan"),
-    pytest.param(lambda: rod_from(np.array([[0.0, 0, 0], [1.0, 0, 0], [2.0, 0, -INF]])), "nodes", id="nodes-inf"),
+    pytest.param(
+        lambda: rod_from(np.array([[0.0, 0, 0], [NAN, 0, 0], [2.0, 0, 0]])), "nodes", id="nodes-nan"
+    ),
+    pytest.param(
+        lambda: rod_from(np.array([[0.0, 0, 0], [1.0, 0, 0], [2.0, 0, -INF]])), "nodes", id="nodes-inf"
+    ),
     pytest.param(lambda: rod_from(np.array([[0.0, 0.0], [1.0, 0.0]])), "nodes", id="nodes-wrong-shape"),
     # Sea and current
     pytest.param(lambda: pl.Sea(NAN), "depth", id="sea-depth-nan"),
@@ -156,7 +160,9 @@ CASES = [
     pytest.param(lambda: clamped_b(position=(NAN, 0.0, 0.0)), "position", id="clamp-position-nan"),
     pytest.param(lambda: clamped_b(position=(1.0, 2.0)), "position", id="clamp-position-short"),
     pytest.param(lambda: clamped_b(rotation=2.0 * np.eye(3)), "rotation", id="clamp-rotation-not-orthogonal"),
-    pytest.param(lambda: clamped_b(rotation=np.diag([1.0, 1.0, -1.0])), "rotation", id="clamp-rotation-reflection"),
+    pytest.param(
+        lambda: clamped_b(rotation=np.diag([1.0, 1.0, -1.0])), "rotation", id="clamp-rotation-reflection"
+    ),
     pytest.param(lambda: clamped_b(rotation=np.full((3, 3), NAN)), "rotation", id="clamp-rotation-nan"),
     pytest.param(lambda: pinned_b(position=(0.0, INF, 0.0)), "position", id="pin-position-inf"),
     # Point loads

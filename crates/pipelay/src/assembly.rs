@@ -84,7 +84,15 @@ pub struct Assembler {
     external: Vec<f64>,
     /// For each element, the value position of each of its 12×12 entries (FIXED when not free).
     scatter: Vec<[u32; 144]>,
+    /// Value positions of the diagonal entries of free rotational DOFs.
+    rotation_diagonal: Vec<usize>,
 }
+
+/// Relative size of the shift added to the rotational diagonal of the tangent. It removes the exact
+/// singularity of zero-stiffness rotation modes (a straight rod pinned at both ends spins freely about its
+/// chord) and changes Newton's steps by about this relative amount; the residual, hence the solution, is
+/// untouched.
+const ROTATION_SHIFT: f64 = 1e-12;
 
 impl Assembler {
     /// Builds the pattern and its symbolic factorisation for `model`.
@@ -128,7 +136,15 @@ impl Assembler {
             })
             .collect();
         let total = NODE_DOFS * model.rod.node_count();
+        let rotation_diagonal = dofs
+            .equation
+            .iter()
+            .enumerate()
+            .filter(|(dof, _)| dof % NODE_DOFS >= 3)
+            .filter_map(|(_, eq)| eq.and_then(|i| lu.position(i, i)))
+            .collect();
         Assembler {
+            rotation_diagonal,
             values: vec![0.0; lu.nnz()],
             dofs,
             lu,
@@ -235,6 +251,12 @@ impl Assembler {
             for i in 0..3 {
                 self.external[base + i] += load.force[i];
                 self.external[base + 3 + i] += load.moment[i];
+            }
+        }
+        if with_tangent {
+            let largest = self.values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            for &p in &self.rotation_diagonal {
+                self.values[p] += ROTATION_SHIFT * largest;
             }
         }
         let mut external_norm2 = 0.0;

@@ -14,7 +14,7 @@ use nalgebra::Vector3;
 /// Where Newton starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Start {
-    /// The catenary when it applies (both ends held in position, positive submerged weight), else the reference.
+    /// The catenary when it applies (both ends held in position, non-zero submerged weight), else the reference.
     Auto,
     /// The stress-free reference, with load stepping.
     Reference,
@@ -252,21 +252,29 @@ fn support_increment(model: &Model, config: &Configuration, support_motion: f64)
 }
 
 /// The catenary initial guess: nodes placed along Irvine's elastic catenary through the two held ends
-/// at their reference arc lengths, frames turned by the smallest rotation onto its tangent.
+/// at their reference arc lengths, frames turned by the smallest rotation onto its tangent. A buoyant
+/// line (negative submerged weight) is the mirror image, in z, of a heavy one.
 fn catenary_guess(model: &Model) -> Option<Configuration> {
     let last = model.rod.element_count();
     let held = |node: usize| model.supports.iter().find(|s| s.node == node);
     let (a, b) = (held(0)?, held(last)?);
     let weight = model.submerged_weight();
-    if model.supports.len() != 2 || weight <= 0.0 {
+    if model.supports.len() != 2 || weight == 0.0 {
         return None;
     }
+    let mirror = |v: Vector3<f64>| {
+        if weight > 0.0 {
+            v
+        } else {
+            Vector3::new(v.x, v.y, -v.z)
+        }
+    };
     let length = model.rod.length();
     let catenary = Catenary::solve(
-        a.position(),
-        b.position(),
+        mirror(a.position()),
+        mirror(b.position()),
         length,
-        weight,
+        weight.abs(),
         model.rod.section.translational_stiffness.x,
     )
     .ok()?;
@@ -276,12 +284,10 @@ fn catenary_guess(model: &Model) -> Option<Configuration> {
         if node > 0 {
             arc += model.rod.elements[node - 1].length;
         }
-        config.positions[node] = catenary.position(arc.min(length));
+        config.positions[node] = mirror(catenary.position(arc.min(length)));
         let frame = config.rotations[node].to_rotation_matrix().into_inner();
-        let turn = minimal_rotation(
-            &frame.column(0).into_owned(),
-            &catenary.tangent(arc.min(length)),
-        );
+        let tangent = mirror(catenary.tangent(arc.min(length)));
+        let turn = minimal_rotation(&frame.column(0).into_owned(), &tangent);
         config.rotations[node] = quat_from_matrix(&(turn * frame));
     }
     apply_supports(model, &mut config, 1.0);
@@ -302,7 +308,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
             Error::input(
                 "start",
                 "\"catenary\"",
-                "needs exactly two supports, at ends A and B, and a positive submerged weight",
+                "needs exactly two supports, at ends A and B, and a non-zero submerged weight",
             )
         })?),
     };

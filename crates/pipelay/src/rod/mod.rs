@@ -91,6 +91,13 @@ impl Rod {
         }
         finite("start", start.as_slice())?;
         finite("end", end.as_slice())?;
+        if (end - start).norm() <= 1e-12 * start.norm().max(end.norm()).max(1.0) {
+            return Err(Error::input(
+                "end",
+                format!("{:?}, the same point as start", end.as_slice()),
+                "must differ from start",
+            ));
+        }
         let nodes = (0..=elements)
             .map(|i| start + (end - start) * (i as f64 / elements as f64))
             .collect();
