@@ -92,6 +92,9 @@ impl PathPoint {
 /// the element's logarithm is near its branch cut at π and the iterate has jumped to a spurious state.
 const MAX_ELEMENT_ROTATION: f64 = 2.5;
 
+/// Newton iteration after which a residual larger than the first one counts as divergence.
+const DIVERGENCE_CHECK: usize = 8;
+
 /// Sets the prescribed DOFs to their values at support motion μ: x = X + μ(p − X), R = exp(μ log(R_p R_Xᵀ)) R_X.
 fn apply_supports(model: &Model, config: &mut Configuration, load_factor: f64) {
     for support in &model.supports {
@@ -124,6 +127,7 @@ fn newton(
         * (model.rod.element_count() as f64).sqrt();
     let length_scale = model.rod.length();
     let mut residual = f64::INFINITY;
+    let mut first_residual = f64::INFINITY;
     for iteration in 0..=options.max_iterations {
         let summary = assembler.assemble(model, config, load_factor, true, support_increment);
         if summary.max_element_rotation > MAX_ELEMENT_ROTATION {
@@ -139,7 +143,13 @@ fn newton(
         }
         residual = free_norm2.sqrt();
         let scale = summary.external_norm.max(fixed_norm2.sqrt());
-        if !residual.is_finite() {
+        // After the predictor, measure progress from the first true Newton residual.
+        if iteration <= 1 {
+            first_residual = residual;
+        }
+        // Divergence: no progress after several iterations means a smaller load step is cheaper.
+        let diverging = iteration >= DIVERGENCE_CHECK && residual > first_residual;
+        if !residual.is_finite() || diverging {
             return Newton::Failed {
                 iterations: iteration,
                 residual,
