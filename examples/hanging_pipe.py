@@ -5,7 +5,8 @@ origin A = (0, 0, 0), and at the top B = (850, 0, −800) m at the sea surface; 
 is the plane z = −800 m. It is flooded (contents: sea water, 1025 kg/m³), so its submerged weight is the paper's
 (m_P − ρ_w A) g = 1845.7 N/m: an *empty* pipe of these dimensions floats (its submerged weight is −720 N/m).
 
-The solver starts from the straight, horizontal, stress-free reference and moves B to its place.
+The rod's stress-free reference is straight and horizontal, along e1; the solver starts Newton from Irvine's
+elastic catenary through A and B (``model.static()``'s default for a line held at both ends).
 
 Prints the top tension |F_B| (kN), the horizontal tension (kN) and the touchdown angle (deg, of the pipe axis
 at A above the seabed), and writes a side view to ``hanging_pipe.png`` in the directory given by ``--out``.

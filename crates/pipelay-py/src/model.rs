@@ -112,18 +112,13 @@ impl Model {
             ..StaticOptions::default()
         };
         let model = &self.0;
-        let (solution, response) = py
-            .detach(|| {
-                statics::solve(model, &options).map(|solution| {
-                    let response = Response::new(model, &solution.configuration);
-                    (solution, response)
-                })
-            })
+        let solution = py
+            .detach(|| statics::solve(model, &options))
             .map_err(to_py)?;
         Ok(State::new(
             model,
             solution.configuration,
-            response,
+            solution.response,
             1.0,
             solution.iterations,
             solution.steps,

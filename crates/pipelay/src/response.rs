@@ -20,6 +20,15 @@ pub struct Response {
 impl Response {
     /// Evaluates `config` of `model` at full load.
     pub fn new(model: &Model, config: &Configuration) -> Self {
+        Self::with_assembler(model, config, &mut Assembler::new(model))
+    }
+
+    /// Same, reusing an assembler built for `model`.
+    pub fn with_assembler(
+        model: &Model,
+        config: &Configuration,
+        assembler: &mut Assembler,
+    ) -> Self {
         let section = &model.rod.section;
         let (c_t, c_r) = (section.c_t(), section.c_r());
         let section_forces = model
@@ -48,7 +57,6 @@ impl Response {
                 )
             })
             .collect();
-        let mut assembler = Assembler::new(model);
         let summary = assembler.assemble(model, config, 1.0, false, None);
         let nodal_reactions = assembler
             .residual

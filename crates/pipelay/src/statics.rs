@@ -8,6 +8,7 @@ use crate::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::catenary::Catenary;
 use crate::error::{Error, Result};
 use crate::model::Model;
+use crate::response::Response;
 use crate::so3::{exp_quat, log_quat, minimal_rotation, quat_from_matrix};
 use nalgebra::Vector3;
 
@@ -63,6 +64,8 @@ pub struct StaticSolution {
     pub residual: f64,
     /// Whether Newton started from the elastic catenary.
     pub from_catenary: bool,
+    /// Section forces, reactions and energy of the solution.
+    pub response: Response,
 }
 
 /// Outcome of Newton at one load factor.
@@ -329,12 +332,13 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
                 residual,
             } => {
                 return Ok(StaticSolution {
+                    response: Response::with_assembler(model, &config, &mut assembler),
                     configuration: config,
                     iterations: its,
                     steps: 1,
                     residual,
                     from_catenary: true,
-                })
+                });
             }
             Newton::Failed {
                 iterations: its, ..
@@ -371,6 +375,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
                 path = target;
                 if path >= 2.0 {
                     return Ok(StaticSolution {
+                        response: Response::with_assembler(model, &config, &mut assembler),
                         configuration: config,
                         iterations,
                         steps,

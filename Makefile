@@ -1,0 +1,34 @@
+# The README's two commands: `make run` (set up, run the main job) and `make test` (set up, run every test).
+# Setup is a virtual environment in .venv with pipelay built by maturin (release) and its dependencies.
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed
+OUT ?= output
+SOURCES := $(shell find crates python -name '*.rs' -o -name '*.py' -o -name '*.pyi' -o -name Cargo.toml) \
+	Cargo.toml Cargo.lock pyproject.toml
+
+.PHONY: run test lint bench
+
+$(STAMP): $(SOURCES)
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet --disable-pip-version-check "maturin>=1.7,<2"
+	VIRTUAL_ENV=$(abspath $(VENV)) $(BIN)/maturin develop --release --extras test
+	touch $@
+
+run: $(STAMP)
+	$(BIN)/python examples/hanging_pipe.py --out $(OUT)
+
+test: $(STAMP)
+	cargo test --workspace --release
+	$(BIN)/python -m pytest
+
+lint: $(STAMP)
+	cargo fmt --all --check
+	cargo clippy --workspace --all-targets --release -- -D warnings
+	$(BIN)/ruff check python tests examples benches
+	$(BIN)/ruff format --check python tests examples benches
+	$(BIN)/python -m mypy.stubtest pipelay._core --ignore-disjoint-bases
+
+bench: $(STAMP)
+	$(BIN)/python benches/static_hanging.py

@@ -1,0 +1,221 @@
+"""Type stubs of the compiled engine module (SI units; frame e with e3 pointing down)."""
+
+from collections.abc import Callable, Sequence
+from typing import Literal, TypeAlias, final
+
+import numpy as np
+import numpy.typing as npt
+
+_ArrayLike = npt.ArrayLike
+_FloatArray: TypeAlias = npt.NDArray[np.float64]
+_End: TypeAlias = Literal["A", "B"]
+
+__all__ = ["ConvergenceError", "Current", "InputError", "Model", "Rod", "Sea", "Section", "State"]
+
+class InputError(ValueError):
+    """Bad input: the message names the argument (or scenario key), the value and what is allowed."""
+
+class ConvergenceError(RuntimeError):
+    """Newton failed: the message gives the load factor or time reached, iterations and residual."""
+
+@final
+class Section:
+    """Cross-section properties. GA, EI: one number (both principal axes) or a pair (axis 2, axis 3)."""
+
+    def __new__(
+        cls,
+        EA: float,
+        GA: float | Sequence[float],
+        GJ: float,
+        EI: float | Sequence[float],
+        mass: float,
+        inertia: Sequence[float] | None = None,
+        outer_diameter: float = 0.0,
+        displaced_area: float | None = None,
+        drag: Sequence[float] | None = None,
+        added_mass: Sequence[float] | None = None,
+        rotational_damping: float | Sequence[float] | None = None,
+    ) -> Section: ...
+    @staticmethod
+    def pipe(
+        outer_diameter: float,
+        wall_thickness: float,
+        density: float = 7850.0,
+        youngs_modulus: float = 207e9,
+        poisson_ratio: float = 0.3,
+        contents_density: float = 0.0,
+        drag: Sequence[float] | None = None,
+        added_mass: Sequence[float] | None = None,
+    ) -> Section:
+        """A pipe from its geometry (m) and material; drag and added mass default to (0, 1)."""
+    @property
+    def EA(self) -> float:
+        """Axial stiffness (N)."""
+    @property
+    def GA(self) -> tuple[float, float]:
+        """Shear stiffnesses (N)."""
+    @property
+    def GJ(self) -> float:
+        """Torsional stiffness (N·m²)."""
+    @property
+    def EI(self) -> tuple[float, float]:
+        """Bending stiffnesses (N·m²)."""
+    @property
+    def mass(self) -> float:
+        """Mass per unit length, contents included (kg/m)."""
+    @property
+    def inertia(self) -> tuple[float, float, float]:
+        """Rotational inertia per unit length about t1, t2, t3 (kg·m)."""
+    @property
+    def outer_diameter(self) -> float:
+        """Outer diameter (m)."""
+    @property
+    def displaced_area(self) -> float:
+        """Buoyancy area per unit length (m²)."""
+    @property
+    def drag(self) -> tuple[float, float]:
+        """Morison drag coefficients (axial, normal)."""
+    @property
+    def added_mass(self) -> tuple[float, float]:
+        """Added-mass coefficients (axial, normal)."""
+    @property
+    def rotational_damping(self) -> tuple[float, float, float]:
+        """Rotational damping about t1, t2, t3 (N·m·s per m)."""
+
+@final
+class Rod:
+    """A rod in its stress-free reference configuration: nodes (n + 1, 3) in m and a section."""
+
+    def __new__(cls, nodes: _ArrayLike, section: Section) -> Rod: ...
+    @staticmethod
+    def straight(start: _ArrayLike, end: _ArrayLike, elements: int, section: Section) -> Rod:
+        """A straight rod of `elements` equal elements from `start` to `end` (m)."""
+    @property
+    def nodes(self) -> _FloatArray:
+        """Reference node positions (n + 1, 3) (m)."""
+    @property
+    def elements(self) -> int:
+        """Number of elements n."""
+    @property
+    def length(self) -> float:
+        """Total reference length (m)."""
+    @property
+    def section(self) -> Section:
+        """The cross-section."""
+
+@final
+class Current:
+    """A steady current; build it with `uniform`, `linear` or `profile`."""
+
+    @staticmethod
+    def uniform(velocity: _ArrayLike, start: float = 0.0) -> Current:
+        """The same velocity (3,) (m/s, in e) at every depth, from time `start` (s)."""
+    @staticmethod
+    def linear(surface_velocity: _ArrayLike, start: float = 0.0) -> Current:
+        """Linear shear: `surface_velocity` at the surface, zero at the seabed end's depth."""
+    @staticmethod
+    def profile(depths: _ArrayLike, velocities: _ArrayLike, start: float = 0.0) -> Current:
+        """A table of depths below the surface (m, increasing) and velocities (k, 3) (m/s)."""
+    def velocity(self, z: float, depth: float, t: float) -> tuple[float, float, float]:
+        """Velocity (m/s) at elevation z (m) in a sea of the given depth at time t (s)."""
+    @property
+    def start(self) -> float:
+        """Start time (s)."""
+
+@final
+class Sea:
+    """Water: depth (m; the surface is z = −depth), density (kg/m³) and an optional current."""
+
+    def __new__(cls, depth: float, density: float = 1025.0, current: Current | None = None) -> Sea: ...
+    @property
+    def depth(self) -> float:
+        """Water depth (m)."""
+    @property
+    def density(self) -> float:
+        """Water density (kg/m³)."""
+    @property
+    def current(self) -> Current | None:
+        """The current, if any."""
+
+@final
+class State:
+    """A configuration of the model and what follows from it (SI units, frame e)."""
+
+    @property
+    def positions(self) -> _FloatArray:
+        """Node positions (n + 1, 3) (m)."""
+    @property
+    def rotations(self) -> _FloatArray:
+        """Nodal rotations R_t^e (n + 1, 3, 3)."""
+    @property
+    def velocities(self) -> _FloatArray:
+        """Nodal velocities (n + 1, 3) (m/s)."""
+    @property
+    def angular_velocities(self) -> _FloatArray:
+        """Spatial angular velocities (n + 1, 3) (rad/s)."""
+    @property
+    def section_forces(self) -> _FloatArray:
+        """Material force (N) and moment (N·m) at element midpoints (n, 6)."""
+    @property
+    def tension(self) -> _FloatArray:
+        """Axial force at element midpoints (n,) (N)."""
+    @property
+    def eta(self) -> list[float] | None:
+        """Vessel position η (6,), None without a vessel."""
+    @property
+    def nu(self) -> list[float] | None:
+        """Vessel velocity ν (6,), None without a vessel."""
+    @property
+    def tau(self) -> list[float] | None:
+        """Thrust τ (6,), None without a vessel."""
+    @property
+    def load_factor(self) -> float:
+        """Load factor reached (1.0 when converged, 0.0 for Model.rest())."""
+    @property
+    def iterations(self) -> int:
+        """Newton iterations spent over all load steps."""
+    @property
+    def steps(self) -> int:
+        """Accepted load steps."""
+    def reaction(self, end: _End) -> _FloatArray:
+        """Force (N) and moment (N·m) (6,) the rod exerts on the support at `end`, in e."""
+    def energy(self) -> dict[str, float]:
+        """Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total."""
+
+@final
+class Model:
+    """A rod with its sea, gravity (m/s², along +e3), supports and loads."""
+
+    def __new__(cls, rod: Rod, sea: Sea | None = None, gravity: float = 9.81) -> Model: ...
+    def clamp(
+        self, end: _End, position: _ArrayLike | None = None, rotation: _ArrayLike | None = None
+    ) -> None:
+        """Clamp an end: position (3,) (m) and rotation (3, 3) held (defaults: the reference)."""
+    def pin(self, end: _End, position: _ArrayLike | None = None) -> None:
+        """Pin an end: position (3,) (m) held, rotation free (default: the reference node)."""
+    def point_load(
+        self,
+        node: int | _End,
+        force: _ArrayLike | None = None,
+        moment: _ArrayLike | None = None,
+        scale: Callable[[float], float] | None = None,
+    ) -> None:
+        """A fixed-direction force (N) and moment (N·m) in e at a node."""
+    def static(
+        self, steps: int | None = None, start: Literal["auto", "reference", "catenary"] = "auto"
+    ) -> State:
+        """Static equilibrium; raises ConvergenceError with the load factor reached."""
+    def rest(self) -> State:
+        """The reference configuration at rest, without solving."""
+    @property
+    def rod(self) -> Rod:
+        """The rod."""
+    @property
+    def sea(self) -> Sea | None:
+        """The sea, if any."""
+    @property
+    def gravity(self) -> float:
+        """Gravitational acceleration (m/s²)."""
+    @property
+    def submerged_weight(self) -> float:
+        """Submerged weight per unit length (N/m)."""
