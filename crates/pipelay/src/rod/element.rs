@@ -88,6 +88,19 @@ impl Kinematics {
     }
 }
 
+/// Midpoint triad R_m and strains (Γ, K) of the objective element for a configuration (formulary §1).
+pub fn midpoint_frame_and_strains(
+    x1: &Vector3<f64>,
+    x2: &Vector3<f64>,
+    r1: &UnitQuaternion<f64>,
+    r2: &UnitQuaternion<f64>,
+    reference: &ElementReference,
+) -> (Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
+    let kin = Kinematics::new(x1, x2, r1, r2, reference);
+    let (strain, curvature) = kin.strains();
+    (kin.midpoint_rotation, strain, curvature)
+}
+
 /// Everything the solver needs from one element evaluation.
 #[derive(Debug, Clone)]
 pub struct ElementResponse {

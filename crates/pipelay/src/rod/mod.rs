@@ -1,4 +1,5 @@
 //! The rod: its stress-free reference (nodes, nodal frames, elements) and the element it is made of.
+pub mod dynamic_element;
 pub mod element;
 
 use crate::error::{finite, Error, Result};

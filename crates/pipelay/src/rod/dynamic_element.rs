@@ -1,0 +1,360 @@
+//! One energy–momentum time step of the element (Simo, Tarnow & Doblaré 1995), formulary
+//! `numerics/rod-dynamics.md` §1–§2 with our axis t1 = E1.
+//!
+//! The rotation Λ and the strains live at the Gauss point and are updated by the Cayley map of the
+//! interpolated nodal increments θ_g = ½(θ1 + θ2): Λ_{n+1} = cay(θ_g)Λ_n. With Λ̄ = ½(Λ_n + Λ_{n+1}):
+//! ΔΓ = Λ̄ᵀ(Δφ′ − θ_g × φ′_{n+½}) and ΔK = cof(Λ̄)ᵀθ′ exactly, so the average-of-strains resultants
+//! N = C_T(Γ̄ − Γ0), M = C_R(K̄ − K0), pushed forward as n = Λ̄N, m = cof(Λ̄)M, do work equal to the
+//! change of stored energy: the scheme conserves energy, and (being a weak form tested with rigid motions)
+//! linear and angular momentum.
+use super::element::{midpoint_frame_and_strains, ElementMatrix, ElementReference, ElementVector};
+use crate::so3::{cayley, cayley_tangent, skew};
+use nalgebra::{Matrix3, SMatrix, UnitQuaternion, Vector3};
+
+type Block3x12 = SMatrix<f64, 3, 12>;
+
+/// Stored state of an element's Gauss point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GaussPoint {
+    /// Λ at the Gauss point.
+    pub rotation: Matrix3<f64>,
+    /// Γ = Λᵀφ′ − E1.
+    pub strain: Vector3<f64>,
+    /// K (updated incrementally).
+    pub curvature: Vector3<f64>,
+}
+
+impl GaussPoint {
+    /// The Gauss point of a configuration, from the objective (static) element: Λ = R_m, Γ, K.
+    pub fn from_configuration(
+        x1: &Vector3<f64>,
+        x2: &Vector3<f64>,
+        r1: &UnitQuaternion<f64>,
+        r2: &UnitQuaternion<f64>,
+        reference: &ElementReference,
+    ) -> Self {
+        let (rotation, strain, curvature) = midpoint_frame_and_strains(x1, x2, r1, r2, reference);
+        GaussPoint {
+            rotation,
+            strain,
+            curvature,
+        }
+    }
+
+    /// Stored energy ½L0[(Γ−Γ0)·C_T(Γ−Γ0) + (K−K0)·C_R(K−K0)] (J).
+    pub fn energy(
+        &self,
+        reference: &ElementReference,
+        c_t: &Matrix3<f64>,
+        c_r: &Matrix3<f64>,
+    ) -> f64 {
+        let g = self.strain - reference.strain;
+        let k = self.curvature - reference.curvature;
+        0.5 * reference.length * (g.dot(&(c_t * g)) + k.dot(&(c_r * k)))
+    }
+}
+
+/// How the stresses of a step are evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StressRule {
+    /// Average of the strains at n and n+1 (energy–momentum conserving).
+    AverageStrain,
+    /// Strains of the midpoint configuration (a plain midpoint rule: conserves momentum, not energy).
+    MidpointConfiguration,
+}
+
+/// One element's contribution to a time step.
+#[derive(Debug, Clone)]
+pub struct ElementStep {
+    /// Algorithmic internal nodal forces [f_x1, m_1, f_x2, m_2] (work-conjugate to [Δφ1, θ1, Δφ2, θ2]).
+    pub forces: ElementVector,
+    /// The Gauss point at n+1.
+    pub next: GaussPoint,
+}
+
+/// Internal forces of one step and, if asked, their tangent with respect to [Δφ1, θ1, Δφ2, θ2].
+/// `chord` is φ2 − φ1 at step n; `increments` the unknowns [Δφ1, θ1, Δφ2, θ2].
+pub fn step(
+    chord: &Vector3<f64>,
+    increments: &ElementVector,
+    gauss: &GaussPoint,
+    reference: &ElementReference,
+    c_t: &Matrix3<f64>,
+    c_r: &Matrix3<f64>,
+    rule: StressRule,
+    tangent: Option<&mut ElementMatrix>,
+) -> ElementStep {
+    let l0 = reference.length;
+    let identity = Matrix3::identity();
+    let dphi1 = increments.fixed_rows::<3>(0).into_owned();
+    let theta1 = increments.fixed_rows::<3>(3).into_owned();
+    let dphi2 = increments.fixed_rows::<3>(6).into_owned();
+    let theta2 = increments.fixed_rows::<3>(9).into_owned();
+    let theta_g = 0.5 * (theta1 + theta2);
+    let theta_prime = (theta2 - theta1) / l0;
+    let q = cayley(&theta_g);
+    let rotation_next = q * gauss.rotation;
+    // Λ̄ = ½(I + Q)Λ_n = (I − ½θ̂_g)⁻¹Λ_n, so Λ̄⁻¹ = Λ_nᵀ(I − ½θ̂_g) and det Λ̄ = 1/(1 + |θ_g|²/4).
+    let half_theta_hat = 0.5 * skew(&theta_g);
+    let mean_inverse = gauss.rotation.transpose() * (identity - half_theta_hat);
+    let mean = 0.5 * (gauss.rotation + rotation_next);
+    let det = 1.0 / (1.0 + 0.25 * theta_g.norm_squared());
+    let cofactor = det * mean_inverse.transpose();
+    let tangent_n = chord / l0;
+    let tangent_next = tangent_n + (dphi2 - dphi1) / l0;
+    let tangent_mid = 0.5 * (tangent_n + tangent_next);
+    let strain_next = rotation_next.transpose() * tangent_next - Vector3::x();
+    let curvature_next = gauss.curvature + cofactor.transpose() * theta_prime;
+    let (strain_alg, curvature_alg) = match rule {
+        StressRule::AverageStrain => (
+            0.5 * (gauss.strain + strain_next),
+            0.5 * (gauss.curvature + curvature_next),
+        ),
+        StressRule::MidpointConfiguration => {
+            let rotation_mid = cayley(&(0.5 * theta_g)) * gauss.rotation;
+            (
+                rotation_mid.transpose() * tangent_mid - Vector3::x(),
+                gauss.curvature + 0.5 * cofactor.transpose() * theta_prime,
+            )
+        }
+    };
+    let material_force = c_t * (strain_alg - reference.strain);
+    let material_moment = c_r * (curvature_alg - reference.curvature);
+    let n = mean * material_force;
+    let m = cofactor * material_moment;
+    let lever = 0.5 * l0 * n.cross(&tangent_mid);
+    let mut forces = ElementVector::zeros();
+    forces.fixed_rows_mut::<3>(0).copy_from(&(-n));
+    forces.fixed_rows_mut::<3>(3).copy_from(&(-m + lever));
+    forces.fixed_rows_mut::<3>(6).copy_from(&n);
+    forces.fixed_rows_mut::<3>(9).copy_from(&(m + lever));
+
+    if let Some(k) = tangent {
+        // Linearisation (exact for the average-strain rule; the midpoint rule reuses it).
+        let mut d_tangent = Block3x12::zeros();
+        d_tangent
+            .fixed_view_mut::<3, 3>(0, 0)
+            .copy_from(&(-identity / l0));
+        d_tangent
+            .fixed_view_mut::<3, 3>(0, 6)
+            .copy_from(&(identity / l0));
+        let mut d_theta_prime = Block3x12::zeros();
+        d_theta_prime
+            .fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&(-identity / l0));
+        d_theta_prime
+            .fixed_view_mut::<3, 3>(0, 9)
+            .copy_from(&(identity / l0));
+        // w = T_c dθ_g with dΛ_{n+1} = ŵΛ_{n+1}.
+        let t_c = 0.5 * cayley_tangent(&theta_g);
+        let mut d_w = Block3x12::zeros();
+        d_w.fixed_view_mut::<3, 3>(0, 3).copy_from(&t_c);
+        d_w.fixed_view_mut::<3, 3>(0, 9).copy_from(&t_c);
+        // dΓ_{n+1} = Λ_{n+1}ᵀ(dφ′ + φ̂′_{n+1} w).
+        let d_strain = rotation_next.transpose() * (d_tangent + skew(&tangent_next) * d_w);
+        // d(trace Λ̄⁻¹dΛ̄) = ½ c(Λ_{n+1}Λ̄⁻¹)·w with c(B) = (B23−B32, B31−B13, B12−B21).
+        let b = rotation_next * mean_inverse;
+        let trace_row = 0.5
+            * Vector3::new(
+                b[(1, 2)] - b[(2, 1)],
+                b[(2, 0)] - b[(0, 2)],
+                b[(0, 1)] - b[(1, 0)],
+            );
+        // d(cof(Λ̄)ᵀu) = det[(Λ̄⁻¹u)(½c)ᵀ + ½Λ̄⁻¹(Λ_{n+1}Λ̄⁻¹u)^] w.
+        let cofactor_t_derivative = |u: &Vector3<f64>| -> Matrix3<f64> {
+            let a_inv_u = mean_inverse * u;
+            det * (a_inv_u * trace_row.transpose()
+                + 0.5 * mean_inverse * skew(&(rotation_next * a_inv_u)))
+        };
+        // d(cof(Λ̄)v) = det[(Λ̄⁻ᵀv)(½c)ᵀ − ½Λ̄⁻ᵀΛ_{n+1}ᵀ(Λ̄⁻ᵀv)^] w.
+        let cofactor_derivative = |v: &Vector3<f64>| -> Matrix3<f64> {
+            let a_inv_t_v = mean_inverse.transpose() * v;
+            det * (a_inv_t_v * trace_row.transpose()
+                - 0.5 * mean_inverse.transpose() * rotation_next.transpose() * skew(&a_inv_t_v))
+        };
+        let d_curvature_next =
+            cofactor.transpose() * d_theta_prime + cofactor_t_derivative(&theta_prime) * d_w;
+        let (d_strain_alg, d_curvature_alg) = match rule {
+            StressRule::AverageStrain => (0.5 * d_strain, 0.5 * d_curvature_next),
+            StressRule::MidpointConfiguration => (0.5 * d_strain, 0.5 * d_curvature_next),
+        };
+        let d_n = -skew(&(0.5 * rotation_next * material_force)) * d_w + mean * c_t * d_strain_alg;
+        let d_m = cofactor_derivative(&material_moment) * d_w + cofactor * c_r * d_curvature_alg;
+        let d_lever = 0.5 * l0 * (-skew(&tangent_mid) * d_n + 0.5 * skew(&n) * d_tangent);
+        k.fixed_rows_mut::<3>(0).copy_from(&(-d_n));
+        k.fixed_rows_mut::<3>(3).copy_from(&(-d_m + d_lever));
+        k.fixed_rows_mut::<3>(6).copy_from(&d_n);
+        k.fixed_rows_mut::<3>(9).copy_from(&(d_m + d_lever));
+    }
+
+    ElementStep {
+        forces,
+        next: GaussPoint {
+            rotation: rotation_next,
+            strain: strain_next,
+            curvature: curvature_next,
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::so3::exp_quat;
+
+    fn case() -> (
+        Vector3<f64>,
+        GaussPoint,
+        ElementReference,
+        Matrix3<f64>,
+        Matrix3<f64>,
+    ) {
+        let reference = ElementReference::new(
+            &Vector3::zeros(),
+            &Vector3::new(2.0, 0.1, 0.0),
+            &exp_quat(&Vector3::new(0.0, 0.0, 0.05)),
+            &exp_quat(&Vector3::new(0.1, 0.0, 0.05)),
+            2.0,
+        );
+        let chord = Vector3::new(1.2, 1.5, -0.4);
+        let rotation = exp_quat(&Vector3::new(0.3, -0.5, 0.9))
+            .to_rotation_matrix()
+            .into_inner();
+        // The stored strain is that of the stored rotation and the current chord, as in the integrator.
+        let gauss = GaussPoint {
+            rotation,
+            strain: rotation.transpose() * chord / 2.0 - Vector3::x(),
+            curvature: Vector3::new(0.2, -0.1, 0.3),
+        };
+        let c_t = Matrix3::from_diagonal(&Vector3::new(5.0, 2.0, 1.5));
+        let c_r = Matrix3::new(2.0, 0.1, 0.0, 0.1, 1.5, 0.2, 0.0, 0.2, 1.1);
+        (chord, gauss, reference, c_t, c_r)
+    }
+
+    fn increments(scale: f64) -> ElementVector {
+        ElementVector::from_column_slice(&[
+            0.1, -0.2, 0.05, 0.3, -0.2, 0.4, -0.1, 0.15, 0.2, -0.5, 0.6, 0.1,
+        ]) * scale
+    }
+
+    #[test]
+    fn tangent_matches_finite_differences() {
+        let (chord, gauss, reference, c_t, c_r) = case();
+        for scale in [0.0, 0.5, 2.0] {
+            let u = increments(scale);
+            let mut k = ElementMatrix::zeros();
+            step(
+                &chord,
+                &u,
+                &gauss,
+                &reference,
+                &c_t,
+                &c_r,
+                StressRule::AverageStrain,
+                Some(&mut k),
+            );
+            let h = 1e-6;
+            let mut worst: f64 = 0.0;
+            for j in 0..12 {
+                let mut up = u;
+                up[j] += h;
+                let mut um = u;
+                um[j] -= h;
+                let fp = step(
+                    &chord,
+                    &up,
+                    &gauss,
+                    &reference,
+                    &c_t,
+                    &c_r,
+                    StressRule::AverageStrain,
+                    None,
+                )
+                .forces;
+                let fm = step(
+                    &chord,
+                    &um,
+                    &gauss,
+                    &reference,
+                    &c_t,
+                    &c_r,
+                    StressRule::AverageStrain,
+                    None,
+                )
+                .forces;
+                worst = worst.max(((fp - fm) / (2.0 * h) - k.column(j)).abs().max());
+            }
+            assert!(worst < 1e-7 * k.abs().max(), "scale {scale}: {worst:e}");
+        }
+    }
+
+    /// The work of the algorithmic forces over the step equals the change of stored energy.
+    #[test]
+    fn work_equals_the_change_of_stored_energy() {
+        let (chord, gauss, reference, c_t, c_r) = case();
+        for scale in [0.1, 1.0, 3.0] {
+            let u = increments(scale);
+            let s = step(
+                &chord,
+                &u,
+                &gauss,
+                &reference,
+                &c_t,
+                &c_r,
+                StressRule::AverageStrain,
+                None,
+            );
+            let work = s.forces.dot(&u);
+            let change =
+                s.next.energy(&reference, &c_t, &c_r) - gauss.energy(&reference, &c_t, &c_r);
+            assert!(
+                (work - change).abs() < 1e-13 * change.abs().max(1.0),
+                "{work} vs {change}"
+            );
+            let mid = step(
+                &chord,
+                &u,
+                &gauss,
+                &reference,
+                &c_t,
+                &c_r,
+                StressRule::MidpointConfiguration,
+                None,
+            );
+            if scale >= 1.0 {
+                assert!((mid.forces.dot(&u) - change).abs() > 1e-6 * change.abs());
+            }
+        }
+    }
+
+    /// Rigid increments (the same translation, or a rotation c about the origin) do no internal work
+    /// and the internal forces carry no net force or moment.
+    #[test]
+    fn internal_forces_are_balanced() {
+        let (chord, gauss, reference, c_t, c_r) = case();
+        let u = increments(1.0);
+        let s = step(
+            &chord,
+            &u,
+            &gauss,
+            &reference,
+            &c_t,
+            &c_r,
+            StressRule::AverageStrain,
+            None,
+        );
+        let f1 = s.forces.fixed_rows::<3>(0).into_owned();
+        let f2 = s.forces.fixed_rows::<3>(6).into_owned();
+        // Moment arms at the mid-step positions φ_{n+½}; node 1 at the origin at step n.
+        let x1 = 0.5 * u.fixed_rows::<3>(0).into_owned();
+        let x2 = chord + 0.5 * u.fixed_rows::<3>(6).into_owned();
+        let moment = s.forces.fixed_rows::<3>(3)
+            + s.forces.fixed_rows::<3>(9)
+            + x1.cross(&f1)
+            + x2.cross(&f2);
+        assert!(
+            (f1 + f2).norm() < 1e-14 && moment.norm() < 1e-13,
+            "{moment}"
+        );
+    }
+}
