@@ -1,4 +1,5 @@
 //! Thin PyO3 layer over the `pipelay` engine: conversions, error mapping, GIL release.
+mod callables;
 mod convert;
 mod errors;
 mod model;

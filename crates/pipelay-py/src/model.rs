@@ -1,4 +1,5 @@
 //! Python classes Model and State: supports, loads, the static solve and its results.
+use crate::callables::{matrix_function, scalar_function, vector_function};
 use crate::convert::{matrices_to_numpy, matrix3, points_to_numpy, to_numpy, vector3};
 use crate::errors::{input, to_py};
 use crate::structure::{Rod, Sea};
@@ -52,8 +53,30 @@ impl Model {
         self.0.pin(end, position).map_err(to_py)
     }
 
+    /// Drives end "A" or "B": `position(t)` (3,) (m), optional `velocity(t)` (3,) (m/s, the initial velocity
+    /// of the node; default zero) and `rotation(t)` (3, 3); without `rotation` the end turns freely.
+    #[pyo3(signature = (end, position, velocity=None, rotation=None))]
+    fn drive(
+        &mut self,
+        end: &str,
+        position: &Bound<'_, PyAny>,
+        velocity: Option<&Bound<'_, PyAny>>,
+        rotation: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let position = vector_function(position, "position")?;
+        let velocity = velocity
+            .map(|v| vector_function(v, "velocity"))
+            .transpose()?;
+        let rotation = rotation
+            .map(|r| matrix_function(r, "rotation"))
+            .transpose()?;
+        self.0
+            .drive(end, position, velocity, rotation)
+            .map_err(to_py)
+    }
+
     /// A fixed-direction force (3,) (N) and moment (3,) (N·m) in e at a node (index, negative from the end,
-    /// or "A"/"B"). `scale` (a callable of time) applies in simulations, which this version does not have yet.
+    /// or "A"/"B"), multiplied by `scale(t)` if given (statics uses `scale(0)`).
     #[pyo3(signature = (node, force=None, moment=None, scale=None))]
     fn point_load(
         &mut self,
@@ -62,13 +85,6 @@ impl Model {
         moment: Option<&Bound<'_, PyAny>>,
         scale: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        if scale.is_some() {
-            return Err(input(
-                "scale",
-                "a callable",
-                "time-dependent loads need simulations, not available yet: use None",
-            ));
-        }
         let index = match node.extract::<String>() {
             Ok(end) => self.0.end_node(&end).map_err(to_py)? as i64,
             Err(_) => node.extract::<i64>().map_err(|_| {
@@ -81,7 +97,10 @@ impl Model {
         };
         let force = optional_vector(force, "force")?.unwrap_or_else(Vector3::zeros);
         let moment = optional_vector(moment, "moment")?.unwrap_or_else(Vector3::zeros);
-        self.0.point_load(index, force, moment).map_err(to_py)
+        let scale = scale.map(|f| scalar_function(f, "scale")).transpose()?;
+        self.0
+            .point_load(index, force, moment, scale)
+            .map_err(to_py)
     }
 
     /// Static equilibrium. `steps`: initial number of load steps (adaptive; default 1); `start`: "auto" (the

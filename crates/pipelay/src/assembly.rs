@@ -42,7 +42,7 @@ impl DofMap {
         let mut fixed = vec![false; NODE_DOFS * model.rod.node_count()];
         for support in &model.supports {
             let base = NODE_DOFS * support.node;
-            let count = if support.rotation().is_some() { 6 } else { 3 };
+            let count = if support.holds_rotation() { 6 } else { 3 };
             fixed[base..base + count].iter_mut().for_each(|f| *f = true);
         }
         let mut free = 0;
@@ -86,6 +86,8 @@ pub struct Assembler {
     scatter: Vec<[u32; 144]>,
     /// Value positions of the diagonal entries of free rotational DOFs.
     rotation_diagonal: Vec<usize>,
+    /// Factor of each point load (its scale function at the time of the solve; 1 by default).
+    pub point_load_scales: Vec<f64>,
 }
 
 /// Relative size of the shift added to the rotational diagonal of the tangent. It removes the exact
@@ -145,6 +147,7 @@ impl Assembler {
             .collect();
         Assembler {
             rotation_diagonal,
+            point_load_scales: vec![1.0; model.point_loads.len()],
             values: vec![0.0; lu.nnz()],
             dofs,
             lu,
@@ -246,11 +249,11 @@ impl Assembler {
                 }
             }
         }
-        for load in &model.point_loads {
+        for (load, scale) in model.point_loads.iter().zip(&self.point_load_scales) {
             let base = NODE_DOFS * load.node;
             for i in 0..3 {
-                self.external[base + i] += load.force[i];
-                self.external[base + 3 + i] += load.moment[i];
+                self.external[base + i] += scale * load.force[i];
+                self.external[base + 3 + i] += scale * load.moment[i];
             }
         }
         if with_tangent {

@@ -4,9 +4,14 @@ use crate::hydro::Sea;
 use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use std::fmt;
+use std::sync::Arc;
+
+/// A user function of time t (s), e.g. a Python callable; its error is a message.
+pub type TimeFunction<T> = Arc<dyn Fn(f64) -> std::result::Result<T, String> + Send + Sync>;
 
 /// How a node is held.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Clone)]
 pub enum SupportKind {
     /// Position and rotation prescribed.
     Clamp {
@@ -15,38 +20,158 @@ pub enum SupportKind {
     },
     /// Position prescribed, rotation free.
     Pin { position: Vector3<f64> },
+    /// Position (and optionally rotation) prescribed as functions of time; `velocity` gives the initial
+    /// velocity of the node (default: zero).
+    Drive {
+        position: TimeFunction<Vector3<f64>>,
+        velocity: Option<TimeFunction<Vector3<f64>>>,
+        rotation: Option<TimeFunction<Matrix3<f64>>>,
+    },
+}
+
+impl fmt::Debug for SupportKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SupportKind::Clamp { position, rotation } => {
+                write!(f, "Clamp({position:?}, {rotation:?})")
+            }
+            SupportKind::Pin { position } => write!(f, "Pin({position:?})"),
+            SupportKind::Drive { rotation, .. } => {
+                write!(f, "Drive(rotation: {})", rotation.is_some())
+            }
+        }
+    }
 }
 
 /// A support at a node.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Support {
     pub node: usize,
     pub kind: SupportKind,
 }
 
+/// Where a support holds its node at one time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SupportTarget {
+    pub node: usize,
+    pub position: Vector3<f64>,
+    /// The prescribed rotation, `None` where rotation is free.
+    pub rotation: Option<UnitQuaternion<f64>>,
+}
+
+/// Checks that `r` is a rotation matrix.
+fn checked_rotation(argument: &str, r: &Matrix3<f64>) -> Result<UnitQuaternion<f64>> {
+    finite(argument, r.as_slice())?;
+    let error = (r.transpose() * r - Matrix3::identity()).abs().max();
+    if error > 1e-6 || r.determinant() <= 0.0 {
+        return Err(Error::input(
+            argument,
+            format!(
+                "a matrix with |RᵀR − I| = {error:.2e}, det = {:.4}",
+                r.determinant()
+            ),
+            "must be a rotation matrix (orthonormal to 1e-6, det = +1)",
+        ));
+    }
+    Ok(quat_from_matrix(r))
+}
+
+/// Calls a user function of time and checks that its result is finite.
+fn call_vector(
+    function: &TimeFunction<Vector3<f64>>,
+    argument: &str,
+    time: f64,
+) -> Result<Vector3<f64>> {
+    let value =
+        function(time).map_err(|message| Error::input(argument, format!("t = {time}"), message))?;
+    finite(argument, value.as_slice())?;
+    Ok(value)
+}
+
 impl Support {
-    /// Prescribed position.
-    pub fn position(&self) -> Vector3<f64> {
-        match self.kind {
-            SupportKind::Clamp { position, .. } | SupportKind::Pin { position } => position,
+    /// Whether the support holds the node's rotation.
+    pub fn holds_rotation(&self) -> bool {
+        match &self.kind {
+            SupportKind::Clamp { .. } => true,
+            SupportKind::Pin { .. } => false,
+            SupportKind::Drive { rotation, .. } => rotation.is_some(),
         }
     }
 
-    /// Prescribed rotation, if any.
-    pub fn rotation(&self) -> Option<UnitQuaternion<f64>> {
-        match self.kind {
-            SupportKind::Clamp { rotation, .. } => Some(rotation),
-            SupportKind::Pin { .. } => None,
+    /// Where the support holds its node at time t (s).
+    pub fn target(&self, time: f64) -> Result<SupportTarget> {
+        let (position, rotation) = match &self.kind {
+            SupportKind::Clamp { position, rotation } => (*position, Some(*rotation)),
+            SupportKind::Pin { position } => (*position, None),
+            SupportKind::Drive {
+                position, rotation, ..
+            } => {
+                let p = call_vector(position, "drive position", time)?;
+                let r = match rotation {
+                    Some(f) => {
+                        let m = f(time).map_err(|message| {
+                            Error::input("drive rotation", format!("t = {time}"), message)
+                        })?;
+                        Some(checked_rotation("drive rotation", &m)?)
+                    }
+                    None => None,
+                };
+                (p, r)
+            }
+        };
+        Ok(SupportTarget {
+            node: self.node,
+            position,
+            rotation,
+        })
+    }
+
+    /// Velocity of the supported node at time t (m/s): the drive's velocity function, else zero.
+    pub fn velocity(&self, time: f64) -> Result<Vector3<f64>> {
+        match &self.kind {
+            SupportKind::Drive {
+                velocity: Some(v), ..
+            } => call_vector(v, "drive velocity", time),
+            _ => Ok(Vector3::zeros()),
         }
     }
 }
 
-/// A fixed-direction (dead) force and moment at a node.
-#[derive(Debug, Clone, PartialEq)]
+/// A fixed-direction (dead) force and moment at a node, optionally scaled by a function of time.
+#[derive(Clone)]
 pub struct PointLoad {
     pub node: usize,
     pub force: Vector3<f64>,
     pub moment: Vector3<f64>,
+    pub scale: Option<TimeFunction<f64>>,
+}
+
+impl fmt::Debug for PointLoad {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "PointLoad(node {}, {:?}, {:?}, scaled: {})",
+            self.node,
+            self.force,
+            self.moment,
+            self.scale.is_some()
+        )
+    }
+}
+
+impl PointLoad {
+    /// The load's scale factor at time t (1 without a scale function).
+    pub fn scale_at(&self, time: f64) -> Result<f64> {
+        match &self.scale {
+            None => Ok(1.0),
+            Some(f) => {
+                let value = f(time)
+                    .map_err(|message| Error::input("scale", format!("t = {time}"), message))?;
+                finite("scale", &[value])?;
+                Ok(value)
+            }
+        }
+    }
 }
 
 /// The whole model.
@@ -159,21 +284,55 @@ impl Model {
         }
     }
 
-    /// Adds a fixed-direction force (N) and moment (N·m) at a node.
+    /// Drives an end: position (m) and optionally rotation as functions of time; `velocity` (m/s) gives the
+    /// node's initial velocity. Checked at t = 0.
+    pub fn drive(
+        &mut self,
+        end: &str,
+        position: TimeFunction<Vector3<f64>>,
+        velocity: Option<TimeFunction<Vector3<f64>>>,
+        rotation: Option<TimeFunction<Matrix3<f64>>>,
+    ) -> Result<()> {
+        let node = self.end_node(end)?;
+        let support = Support {
+            node,
+            kind: SupportKind::Drive {
+                position,
+                velocity,
+                rotation,
+            },
+        };
+        support.target(0.0)?;
+        support.velocity(0.0)?;
+        self.supports.retain(|s| s.node != node);
+        self.supports.push(support);
+        Ok(())
+    }
+
+    /// Where every support holds its node at time t (s).
+    pub fn support_targets(&self, time: f64) -> Result<Vec<SupportTarget>> {
+        self.supports.iter().map(|s| s.target(time)).collect()
+    }
+
+    /// Adds a fixed-direction force (N) and moment (N·m) at a node, scaled by `scale(t)` if given.
     pub fn point_load(
         &mut self,
         node: i64,
         force: Vector3<f64>,
         moment: Vector3<f64>,
+        scale: Option<TimeFunction<f64>>,
     ) -> Result<()> {
         let node = self.node_index(node)?;
         finite("force", force.as_slice())?;
         finite("moment", moment.as_slice())?;
-        self.point_loads.push(PointLoad {
+        let load = PointLoad {
             node,
             force,
             moment,
-        });
+            scale,
+        };
+        load.scale_at(0.0)?;
+        self.point_loads.push(load);
         Ok(())
     }
 

@@ -7,7 +7,7 @@
 use crate::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::catenary::Catenary;
 use crate::error::{Error, Result};
-use crate::model::Model;
+use crate::model::{Model, SupportTarget};
 use crate::response::Response;
 use crate::so3::{exp_quat, log_quat, minimal_rotation, quat_from_matrix};
 use nalgebra::Vector3;
@@ -99,12 +99,17 @@ const MAX_ELEMENT_ROTATION: f64 = 2.5;
 const DIVERGENCE_CHECK: usize = 8;
 
 /// Sets the prescribed DOFs to their values at support motion μ: x = X + μ(p − X), R = exp(μ log(R_p R_Xᵀ)) R_X.
-fn apply_supports(model: &Model, config: &mut Configuration, load_factor: f64) {
-    for support in &model.supports {
+fn apply_supports(
+    model: &Model,
+    targets: &[SupportTarget],
+    config: &mut Configuration,
+    load_factor: f64,
+) {
+    for support in targets {
         let node = support.node;
         let reference = model.rod.nodes[node];
-        config.positions[node] = reference + (support.position() - reference) * load_factor;
-        if let Some(target) = support.rotation() {
+        config.positions[node] = reference + (support.position - reference) * load_factor;
+        if let Some(target) = support.rotation {
             let frame = model.rod.frames[node];
             let rotation = log_quat(&(target * frame.inverse()));
             config.rotations[node] = exp_quat(&(rotation * load_factor)) * frame;
@@ -248,15 +253,20 @@ fn apply_increment(config: &mut Configuration, increment: &[f64]) {
 }
 
 /// Increments that take the supports of `config` to their values at support motion μ (all DOFs, zero where free).
-fn support_increment(model: &Model, config: &Configuration, support_motion: f64) -> Vec<f64> {
+fn support_increment(
+    model: &Model,
+    targets: &[SupportTarget],
+    config: &Configuration,
+    support_motion: f64,
+) -> Vec<f64> {
     let mut target = config.clone();
-    apply_supports(model, &mut target, support_motion);
+    apply_supports(model, targets, &mut target, support_motion);
     let mut increment = vec![0.0; NODE_DOFS * model.rod.node_count()];
-    for support in &model.supports {
+    for support in targets {
         let node = support.node;
         let du = &mut increment[NODE_DOFS * node..NODE_DOFS * (node + 1)];
         du[..3].copy_from_slice((target.positions[node] - config.positions[node]).as_slice());
-        if support.rotation().is_some() {
+        if support.rotation.is_some() {
             let spin = log_quat(&(target.rotations[node] * config.rotations[node].inverse()));
             du[3..].copy_from_slice(spin.as_slice());
         }
@@ -267,12 +277,12 @@ fn support_increment(model: &Model, config: &Configuration, support_motion: f64)
 /// The catenary initial guess: nodes placed along Irvine's elastic catenary through the two held ends
 /// at their reference arc lengths, frames turned by the smallest rotation onto its tangent. A buoyant
 /// line (negative submerged weight) is the mirror image, in z, of a heavy one.
-fn catenary_guess(model: &Model) -> Option<Configuration> {
+fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configuration> {
     let last = model.rod.element_count();
-    let held = |node: usize| model.supports.iter().find(|s| s.node == node);
+    let held = |node: usize| targets.iter().find(|s| s.node == node);
     let (a, b) = (held(0)?, held(last)?);
     let weight = model.submerged_weight();
-    if model.supports.len() != 2 || weight == 0.0 {
+    if targets.len() != 2 || weight == 0.0 {
         return None;
     }
     let mirror = |v: Vector3<f64>| {
@@ -284,8 +294,8 @@ fn catenary_guess(model: &Model) -> Option<Configuration> {
     };
     let length = model.rod.length();
     let catenary = Catenary::solve(
-        mirror(a.position()),
-        mirror(b.position()),
+        mirror(a.position),
+        mirror(b.position),
         length,
         weight.abs(),
         model.rod.section.translational_stiffness.x,
@@ -303,7 +313,7 @@ fn catenary_guess(model: &Model) -> Option<Configuration> {
         let turn = minimal_rotation(&frame.column(0).into_owned(), &tangent);
         config.rotations[node] = quat_from_matrix(&(turn * frame));
     }
-    apply_supports(model, &mut config, 1.0);
+    apply_supports(model, targets, &mut config, 1.0);
     Some(config)
 }
 
@@ -312,12 +322,19 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
     if options.initial_steps == 0 {
         return Err(Error::input("steps", 0, "must be an integer >= 1"));
     }
+    // Statics is the state at t = 0: supports (drives included) and load scales are taken there.
+    let targets = model.support_targets(0.0)?;
     let mut assembler = Assembler::new(model);
+    assembler.point_load_scales = model
+        .point_loads
+        .iter()
+        .map(|load| load.scale_at(0.0))
+        .collect::<Result<_>>()?;
     let mut iterations = 0;
     let catenary = match options.start {
         Start::Reference => None,
-        Start::Auto => catenary_guess(model),
-        Start::Catenary => Some(catenary_guess(model).ok_or_else(|| {
+        Start::Auto => catenary_guess(model, &targets),
+        Start::Catenary => Some(catenary_guess(model, &targets).ok_or_else(|| {
             Error::input(
                 "start",
                 "\"catenary\"",
@@ -354,7 +371,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         let target = (path + step).min(2.0);
         let point = PathPoint::at(target);
         let mut trial = config.clone();
-        let increment = support_increment(model, &trial, point.support);
+        let increment = support_increment(model, &targets, &trial, point.support);
         let moves = increment.iter().any(|&du| du != 0.0);
         let outcome = newton(
             model,

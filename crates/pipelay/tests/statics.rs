@@ -42,7 +42,7 @@ fn end_moment_rolls_the_cantilever_into_a_circle() {
         let mut model = cantilever(length, n, beam_section(ei, 1e9));
         let moment = PI * ei / length; // half circle
         model
-            .point_load(-1, Vector3::zeros(), Vector3::new(0.0, 0.0, moment))
+            .point_load(-1, Vector3::zeros(), Vector3::new(0.0, 0.0, moment), None)
             .expect("load");
         let (position, rotation) = tip(&model);
         let radius = ei / moment;
@@ -65,6 +65,7 @@ fn end_moment_rolls_the_cantilever_into_a_circle() {
             -1,
             Vector3::zeros(),
             Vector3::new(0.0, 0.0, 2.0 * PI * ei / length),
+            None,
         )
         .expect("load");
     let (position, rotation) = tip(&model);
@@ -81,7 +82,7 @@ fn small_tip_load_matches_timoshenko_beam_theory() {
     for n in [4, 8, 16, 32] {
         let mut model = cantilever(length, n, beam_section(ei, ga));
         model
-            .point_load(-1, Vector3::new(0.0, load, 0.0), Vector3::zeros())
+            .point_load(-1, Vector3::new(0.0, load, 0.0), Vector3::zeros(), None)
             .expect("load");
         let deflection = tip(&model).0.y;
         let predicted = exact - load * length.powi(3) / (12.0 * ei * (n * n) as f64);
@@ -346,6 +347,6 @@ fn bad_input_names_the_argument() {
         matches!(model.clamp("C", None, None), Err(Error::Input { argument, .. }) if argument == "end")
     );
     assert!(
-        matches!(model.point_load(3, Vector3::zeros(), Vector3::zeros()), Err(Error::Input { argument, .. }) if argument == "node")
+        matches!(model.point_load(3, Vector3::zeros(), Vector3::zeros(), None), Err(Error::Input { argument, .. }) if argument == "node")
     );
 }

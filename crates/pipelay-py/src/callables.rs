@@ -1,0 +1,72 @@
+//! Python callables of time as engine time functions: they take the GIL when the engine calls them.
+use crate::convert::{matrix3, vector3};
+use nalgebra::{Matrix3, Vector3};
+use pipelay::model::TimeFunction;
+use pyo3::prelude::*;
+use std::sync::Arc;
+
+/// Wraps `callable(t)`, converting its result with `convert`; a Python error becomes the message.
+fn wrap<T: 'static>(
+    callable: Py<PyAny>,
+    argument: &'static str,
+    convert: fn(&Bound<'_, PyAny>, &str) -> PyResult<T>,
+) -> TimeFunction<T> {
+    Arc::new(move |time| {
+        Python::attach(|py| {
+            let value = callable
+                .bind(py)
+                .call1((time,))
+                .map_err(|e| format!("{argument}({time}) raised {e}"))?;
+            convert(&value, argument).map_err(|e| e.to_string())
+        })
+    })
+}
+
+fn scalar(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<f64> {
+    value.extract::<f64>().map_err(|_| {
+        crate::errors::input(
+            argument,
+            value.repr().map_or("?".into(), |r| r.to_string()),
+            "must return a number",
+        )
+    })
+}
+
+/// A callable of t returning a (3,) vector.
+pub fn vector_function(
+    callable: &Bound<'_, PyAny>,
+    argument: &'static str,
+) -> PyResult<TimeFunction<Vector3<f64>>> {
+    check_callable(callable, argument)?;
+    Ok(wrap(callable.clone().unbind(), argument, vector3))
+}
+
+/// A callable of t returning a (3, 3) rotation matrix.
+pub fn matrix_function(
+    callable: &Bound<'_, PyAny>,
+    argument: &'static str,
+) -> PyResult<TimeFunction<Matrix3<f64>>> {
+    check_callable(callable, argument)?;
+    Ok(wrap(callable.clone().unbind(), argument, matrix3))
+}
+
+/// A callable of t returning a number.
+pub fn scalar_function(
+    callable: &Bound<'_, PyAny>,
+    argument: &'static str,
+) -> PyResult<TimeFunction<f64>> {
+    check_callable(callable, argument)?;
+    Ok(wrap(callable.clone().unbind(), argument, scalar))
+}
+
+fn check_callable(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<()> {
+    if value.is_callable() {
+        Ok(())
+    } else {
+        Err(crate::errors::input(
+            argument,
+            value.repr().map_or("?".into(), |r| r.to_string()),
+            "must be a callable of time t (s)",
+        ))
+    }
+}
