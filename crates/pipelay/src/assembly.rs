@@ -4,7 +4,7 @@ use crate::hydro::element_current_drag;
 use crate::linsolve::SparseLu;
 use crate::model::Model;
 use crate::rod::element::{evaluate, ElementMatrix};
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Matrix6, UnitQuaternion, Vector3};
 
 /// Degrees of freedom per node: position (3) and spatial spin (3).
 pub const NODE_DOFS: usize = 6;
@@ -88,6 +88,8 @@ pub struct Assembler {
     rotation_diagonal: Vec<usize>,
     /// Factor of each point load (its scale function at the time of the solve; 1 by default).
     pub point_load_scales: Vec<f64>,
+    /// For each node, the value position of each entry of its 6×6 diagonal block (FIXED when not free).
+    node_scatter: Vec<[u32; 36]>,
 }
 
 /// Relative size of the shift added to the rotational diagonal of the tangent. It removes the exact
@@ -145,7 +147,26 @@ impl Assembler {
             .filter(|(dof, _)| dof % NODE_DOFS >= 3)
             .filter_map(|(_, eq)| eq.and_then(|i| lu.position(i, i)))
             .collect();
+        let node_scatter = (0..model.rod.node_count())
+            .map(|node| {
+                let mut map = [FIXED; 36];
+                for j in 0..NODE_DOFS {
+                    for i in 0..NODE_DOFS {
+                        let (row, col) = (
+                            dofs.equation[NODE_DOFS * node + i],
+                            dofs.equation[NODE_DOFS * node + j],
+                        );
+                        if let (Some(row), Some(col)) = (row, col) {
+                            map[NODE_DOFS * j + i] =
+                                lu.position(row, col).expect("entry in the pattern") as u32;
+                        }
+                    }
+                }
+                map
+            })
+            .collect();
         Assembler {
+            node_scatter,
             rotation_diagonal,
             point_load_scales: vec![1.0; model.point_loads.len()],
             values: vec![0.0; lu.nnz()],
@@ -170,11 +191,8 @@ impl Assembler {
         support_increment: Option<&[f64]>,
     ) -> AssemblySummary {
         self.support_coupling.iter_mut().for_each(|r| *r = 0.0);
-        self.residual.iter_mut().for_each(|r| *r = 0.0);
         self.external.iter_mut().for_each(|r| *r = 0.0);
-        if with_tangent {
-            self.values.iter_mut().for_each(|v| *v = 0.0);
-        }
+        self.clear(with_tangent);
         let section = &model.rod.section;
         let (c_t, c_r) = (section.c_t(), section.c_r());
         let weight = model.submerged_weight();
@@ -242,11 +260,7 @@ impl Assembler {
                 }
             }
             if with_tangent {
-                for (slot, value) in self.scatter[e].iter().zip(k.iter()) {
-                    if *slot != FIXED {
-                        self.values[*slot as usize] += value;
-                    }
-                }
+                self.add_element_matrix(e, &k);
             }
         }
         for (load, scale) in model.point_loads.iter().zip(&self.point_load_scales) {
@@ -257,10 +271,7 @@ impl Assembler {
             }
         }
         if with_tangent {
-            let largest = self.values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-            for &p in &self.rotation_diagonal {
-                self.values[p] += ROTATION_SHIFT * largest;
-            }
+            self.shift_rotations();
         }
         let mut external_norm2 = 0.0;
         for (r, f) in self.residual.iter_mut().zip(&self.external) {
@@ -271,6 +282,40 @@ impl Assembler {
             external_norm: external_norm2.sqrt(),
             strain_energy,
             max_element_rotation,
+        }
+    }
+
+    /// Zeroes the residual and, with `with_tangent`, the tangent values.
+    pub fn clear(&mut self, with_tangent: bool) {
+        self.residual.iter_mut().for_each(|r| *r = 0.0);
+        if with_tangent {
+            self.values.iter_mut().for_each(|v| *v = 0.0);
+        }
+    }
+
+    /// Adds an element's 12×12 tangent block (free entries only).
+    pub fn add_element_matrix(&mut self, element: usize, k: &ElementMatrix) {
+        for (slot, value) in self.scatter[element].iter().zip(k.iter()) {
+            if *slot != FIXED {
+                self.values[*slot as usize] += value;
+            }
+        }
+    }
+
+    /// Adds a node's 6×6 tangent block (free entries only).
+    pub fn add_node_matrix(&mut self, node: usize, k: &Matrix6<f64>) {
+        for (slot, value) in self.node_scatter[node].iter().zip(k.iter()) {
+            if *slot != FIXED {
+                self.values[*slot as usize] += value;
+            }
+        }
+    }
+
+    /// Adds the small shift on the rotational diagonal (see [`ROTATION_SHIFT`]) once a tangent is complete.
+    pub fn shift_rotations(&mut self) {
+        let largest = self.values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        for &p in &self.rotation_diagonal {
+            self.values[p] += ROTATION_SHIFT * largest;
         }
     }
 

@@ -2,9 +2,11 @@
 //!
 //! Layers, bottom up: [`so3`] and [`euler`] (rotations), [`section`], [`rod`] (reference and element),
 //! [`hydro`] (sea, current, drag), [`model`] (supports, loads), [`assembly`] and [`linsolve`]
-//! (global system), [`statics`] (Newton with load stepping), [`response`] (what users read off a state).
+//! (global system), [`statics`] (Newton with load stepping), [`dynamics`] (energy–momentum time
+//! stepping), [`response`] (what users read off a state).
 pub mod assembly;
 pub mod catenary;
+pub mod dynamics;
 pub mod error;
 pub mod euler;
 pub mod hydro;

@@ -1,0 +1,653 @@
+//! Time integration of the rod: the energy–momentum conserving scheme of Simo, Tarnow & Doblaré (1995)
+//! with Simo & Wong's midpoint rule in the Lie algebra for the nodal rotations (formulary
+//! `numerics/rod-dynamics.md` §1–§5).
+//!
+//! Unknowns of a step: nodal displacement increments Δφ_I and Cayley rotation increments θ_I
+//! (Λ_{n+1} = cay(θ)Λ_n). Velocities follow the midpoint rule v_{n+1} = 2Δφ/Δt − v_n and
+//! W_{n+1} = 2Λ_nᵀθ/Δt − W_n; inertia is lumped at the nodes and balanced in spatial momentum. Loads
+//! enter at the step midpoint and are work-conjugate to (Δφ, θ), so each converged step satisfies
+//! E_{n+1} − E_n = supplied work − dissipation exactly, with
+//! - supplied: point loads, driven supports, the current's share of the drag (Δt F·U);
+//! - dissipated: drag on the relative velocity (Δt ℓ(k_a|u_t|³ + k_n|u_n|³) ≥ 0) and rotational damping
+//!   (θ·c θ/Δt ≥ 0).
+//!
+//! Added mass is isotropic here: C_a,normal ρ_w π/4 d_o² added to the translational mass per length in
+//! every direction (keeps the mass constant and the scheme exactly energy–momentum; over-estimates the
+//! axial added mass of a pipe).
+use crate::assembly::{Assembler, Configuration, NODE_DOFS};
+use crate::error::{positive, Error, Result};
+use crate::hydro::morison_drag;
+use crate::model::Model;
+use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
+use crate::rod::element::{ElementMatrix, ElementVector};
+use crate::so3::{cayley, cayley_tangent, skew};
+use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
+
+/// Settings of the integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicOptions {
+    /// Time step Δt (s).
+    pub time_step: f64,
+    /// Relative residual tolerance of Newton's method.
+    pub tolerance: f64,
+    /// Newton iterations allowed per step.
+    pub max_iterations: usize,
+    /// Stress evaluation: average strain (energy–momentum) or midpoint configuration (plain midpoint).
+    pub stress_rule: StressRule,
+}
+
+impl Default for DynamicOptions {
+    fn default() -> Self {
+        DynamicOptions {
+            time_step: 0.05,
+            tolerance: 1e-10,
+            max_iterations: 25,
+            stress_rule: StressRule::AverageStrain,
+        }
+    }
+}
+
+/// The state of the rod at one time.
+#[derive(Debug, Clone)]
+pub struct DynamicState {
+    /// Time t (s).
+    pub time: f64,
+    pub configuration: Configuration,
+    /// Nodal velocities v_I (m/s).
+    pub velocities: Vec<Vector3<f64>>,
+    /// Convected (body-frame) angular velocities W_I (rad/s): Λ̇ = ΛŴ.
+    pub body_angular_velocities: Vec<Vector3<f64>>,
+    /// Gauss-point rotations and strains.
+    pub gauss: Vec<GaussPoint>,
+}
+
+impl DynamicState {
+    /// A state at rest in `configuration` at time `time`; driven nodes move with their drive's velocity.
+    pub fn at_rest(model: &Model, configuration: Configuration, time: f64) -> Result<Self> {
+        let gauss = model
+            .rod
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(e, reference)| {
+                GaussPoint::from_configuration(
+                    &configuration.positions[e],
+                    &configuration.positions[e + 1],
+                    &configuration.rotations[e],
+                    &configuration.rotations[e + 1],
+                    reference,
+                )
+            })
+            .collect();
+        let mut velocities = vec![Vector3::zeros(); model.rod.node_count()];
+        for support in &model.supports {
+            velocities[support.node] = support.velocity(time)?;
+        }
+        Ok(DynamicState {
+            time,
+            body_angular_velocities: vec![Vector3::zeros(); model.rod.node_count()],
+            configuration,
+            velocities,
+            gauss,
+        })
+    }
+
+    /// Spatial angular velocities w_I = Λ_I W_I (rad/s).
+    pub fn angular_velocities(&self) -> Vec<Vector3<f64>> {
+        self.configuration
+            .rotations
+            .iter()
+            .zip(&self.body_angular_velocities)
+            .map(|(q, w)| q * w)
+            .collect()
+    }
+}
+
+/// Energy of the rod (J).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Energy {
+    pub kinetic: f64,
+    pub strain: f64,
+    /// Potential of the submerged weight, zero at z = 0.
+    pub gravity: f64,
+}
+
+impl Energy {
+    /// Kinetic + strain + gravity.
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.strain + self.gravity
+    }
+}
+
+/// What one step took.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport {
+    pub iterations: usize,
+    /// Final residual norm over the free DOFs.
+    pub residual: f64,
+}
+
+/// Work and dissipation of the last step's loads (J).
+#[derive(Debug, Clone, Copy, Default)]
+struct StepWork {
+    supplied: f64,
+    dissipated: f64,
+}
+
+/// Nodal (lumped) inertia and damping of the rod.
+#[derive(Debug, Clone)]
+struct NodalProperties {
+    /// Translational mass, added mass included (kg).
+    mass: Vec<f64>,
+    /// Rotational inertia about the material axes (kg·m²).
+    inertia: Vec<Vector3<f64>>,
+    /// Rotational damping about the material axes (N·m·s).
+    damping: Vec<Vector3<f64>>,
+}
+
+impl NodalProperties {
+    fn new(model: &Model) -> Self {
+        let section = &model.rod.section;
+        let added = model.sea.as_ref().map_or(0.0, |sea| {
+            section.added_mass[1]
+                * sea.density
+                * std::f64::consts::FRAC_PI_4
+                * section.outer_diameter.powi(2)
+        });
+        let count = model.rod.node_count();
+        let mut props = NodalProperties {
+            mass: vec![0.0; count],
+            inertia: vec![Vector3::zeros(); count],
+            damping: vec![Vector3::zeros(); count],
+        };
+        for (e, reference) in model.rod.elements.iter().enumerate() {
+            let half = 0.5 * reference.length;
+            for node in [e, e + 1] {
+                props.mass[node] += half * (section.mass + added);
+                props.inertia[node] += half * section.inertia;
+                props.damping[node] += half * section.rotational_damping;
+            }
+        }
+        props
+    }
+}
+
+/// Advances a model in time.
+pub struct Integrator {
+    model: Model,
+    options: DynamicOptions,
+    assembler: Assembler,
+    state: DynamicState,
+    nodal: NodalProperties,
+    /// Unknowns of the current step on all DOFs: [Δφ_I, θ_I].
+    increments: Vec<f64>,
+    /// Newton correction on the free DOFs.
+    correction: Vec<f64>,
+    /// Σ|terms| per DOF, the scale of the residual.
+    magnitude: Vec<f64>,
+    next_gauss: Vec<GaussPoint>,
+    work: StepWork,
+    supplied_work: f64,
+    dissipated: f64,
+    /// Force and moment the rod exerts on each node's support at the last step (N, N·m).
+    reactions: Vec<Vector6<f64>>,
+}
+
+/// The Cayley parameter θ of a rotation: cay(θ) = R (quaternion (w, v) ↦ 2v/w).
+fn cayley_parameter(rotation: &UnitQuaternion<f64>) -> Vector3<f64> {
+    let q = rotation.quaternion();
+    let sign = if q.w < 0.0 { -1.0 } else { 1.0 };
+    2.0 * sign * q.imag() / q.w.abs().max(1e-300)
+}
+
+/// The unit quaternion of cay(θ): (1, θ/2) normalised.
+fn cayley_quaternion(theta: &Vector3<f64>) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+        1.0,
+        0.5 * theta.x,
+        0.5 * theta.y,
+        0.5 * theta.z,
+    ))
+}
+
+impl Integrator {
+    /// An integrator starting from `state`.
+    pub fn new(model: Model, state: DynamicState, options: DynamicOptions) -> Result<Self> {
+        positive("dt", options.time_step, "s")?;
+        let count = model.rod.node_count();
+        if state.configuration.positions.len() != count
+            || state.gauss.len() != model.rod.element_count()
+        {
+            return Err(Error::input(
+                "state",
+                format!("a state of {} nodes", state.configuration.positions.len()),
+                format!("must belong to this model ({count} nodes)"),
+            ));
+        }
+        let assembler = Assembler::new(&model);
+        let reactions = vec![Vector6::zeros(); count];
+        let nodal = NodalProperties::new(&model);
+        Ok(Integrator {
+            increments: vec![0.0; NODE_DOFS * count],
+            correction: vec![0.0; assembler.dofs.free],
+            magnitude: vec![0.0; NODE_DOFS * count],
+            next_gauss: state.gauss.clone(),
+            assembler,
+            nodal,
+            model,
+            options,
+            state,
+            work: StepWork::default(),
+            supplied_work: 0.0,
+            dissipated: 0.0,
+            reactions,
+        })
+    }
+
+    /// The current state.
+    pub fn state(&self) -> &DynamicState {
+        &self.state
+    }
+
+    /// The model.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// Work supplied since the start (J): point loads, driven supports, the current's share of the drag.
+    pub fn supplied_work(&self) -> f64 {
+        self.supplied_work
+    }
+
+    /// Energy dissipated since the start (J): drag on the relative velocity and rotational damping.
+    pub fn dissipated(&self) -> f64 {
+        self.dissipated
+    }
+
+    /// Force and moment the rod exerted on each node's support over the last step, in e.
+    pub fn reactions(&self) -> &[Vector6<f64>] {
+        &self.reactions
+    }
+
+    /// Energy of the current state.
+    pub fn energy(&self) -> Energy {
+        let section = &self.model.rod.section;
+        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let state = &self.state;
+        let kinetic = (0..self.model.rod.node_count())
+            .map(|i| {
+                let w = state.body_angular_velocities[i];
+                0.5 * self.nodal.mass[i] * state.velocities[i].norm_squared()
+                    + 0.5 * w.dot(&self.nodal.inertia[i].component_mul(&w))
+            })
+            .sum();
+        let strain = state
+            .gauss
+            .iter()
+            .zip(&self.model.rod.elements)
+            .map(|(g, reference)| g.energy(reference, &c_t, &c_r))
+            .sum();
+        Energy {
+            kinetic,
+            strain,
+            gravity: Assembler::gravity_potential(&self.model, &state.configuration),
+        }
+    }
+
+    /// Linear momentum Σ M_I v_I (kg·m/s).
+    pub fn linear_momentum(&self) -> Vector3<f64> {
+        self.state
+            .velocities
+            .iter()
+            .zip(&self.nodal.mass)
+            .map(|(v, m)| v * *m)
+            .sum()
+    }
+
+    /// Angular momentum about the origin Σ (φ_I × M_I v_I + Λ_I J_I W_I) (kg·m²/s).
+    pub fn angular_momentum(&self) -> Vector3<f64> {
+        let state = &self.state;
+        (0..self.model.rod.node_count())
+            .map(|i| {
+                let spin = state.configuration.rotations[i]
+                    * self.nodal.inertia[i].component_mul(&state.body_angular_velocities[i]);
+                state.configuration.positions[i].cross(&(state.velocities[i] * self.nodal.mass[i]))
+                    + spin
+            })
+            .sum()
+    }
+
+    /// Material force and moment [N; M] at the element Gauss points of the current state.
+    pub fn section_forces(&self) -> Vec<Vector6<f64>> {
+        let section = &self.model.rod.section;
+        self.state
+            .gauss
+            .iter()
+            .zip(&self.model.rod.elements)
+            .map(|(g, reference)| {
+                let n = section.c_t() * (g.strain - reference.strain);
+                let m = section.c_r() * (g.curvature - reference.curvature);
+                Vector6::new(n.x, n.y, n.z, m.x, m.y, m.z)
+            })
+            .collect()
+    }
+
+    /// Advances one time step.
+    pub fn step(&mut self) -> Result<StepReport> {
+        let dt = self.options.time_step;
+        let time_next = self.state.time + dt;
+        let time_mid = self.state.time + 0.5 * dt;
+        let targets = self.model.support_targets(time_next)?;
+        let scales = self
+            .model
+            .point_loads
+            .iter()
+            .map(|load| load.scale_at(time_mid))
+            .collect::<Result<Vec<f64>>>()?;
+        self.predict(&targets);
+        let mut residual = f64::INFINITY;
+        let mut converged = false;
+        let mut iterations = 0;
+        for iteration in 0..=self.options.max_iterations {
+            iterations = iteration;
+            self.assemble(&scales, time_mid)?;
+            let mut free2 = 0.0;
+            let mut scale2 = 0.0;
+            for ((r, m), eq) in self
+                .assembler
+                .residual
+                .iter()
+                .zip(&self.magnitude)
+                .zip(&self.assembler.dofs.equation)
+            {
+                if eq.is_some() {
+                    free2 += r * r;
+                    scale2 += m * m;
+                }
+            }
+            residual = free2.sqrt();
+            if !residual.is_finite() {
+                break;
+            }
+            if residual <= self.options.tolerance * scale2.sqrt() || (iteration > 0 && free2 == 0.0)
+            {
+                converged = true;
+                break;
+            }
+            if iteration == self.options.max_iterations {
+                break;
+            }
+            self.assembler.shift_rotations();
+            if self.assembler.lu.factorise(&self.assembler.values).is_err() {
+                break;
+            }
+            for (r, eq) in self
+                .assembler
+                .residual
+                .iter()
+                .zip(&self.assembler.dofs.equation)
+            {
+                if let Some(i) = eq {
+                    self.correction[*i] = -r;
+                }
+            }
+            if self
+                .assembler
+                .lu
+                .solve_in_place(&mut self.correction)
+                .is_err()
+            {
+                break;
+            }
+            let mut correction2 = 0.0;
+            let mut size2 = 0.0;
+            for (dof, eq) in self.assembler.dofs.equation.iter().enumerate() {
+                if let Some(i) = eq {
+                    self.increments[dof] += self.correction[*i];
+                    correction2 += self.correction[*i].powi(2);
+                    size2 += self.increments[dof].powi(2);
+                }
+            }
+            // A correction at round-off of the increments: the residual cannot fall further.
+            if correction2 <= 1e-30 * size2
+                && residual <= 1e3 * self.options.tolerance * scale2.sqrt()
+            {
+                self.assemble(&scales, time_mid)?;
+                converged = true;
+                iterations += 1;
+                break;
+            }
+        }
+        if !converged {
+            return Err(Error::Convergence {
+                context: "time step".into(),
+                reached: self.state.time,
+                iterations,
+                residual,
+                reason: format!(
+                    "Newton did not converge in the step from t = {:.6} s",
+                    self.state.time
+                ),
+            });
+        }
+        self.commit(dt);
+        Ok(StepReport {
+            iterations,
+            residual,
+        })
+    }
+
+    /// Predictor: constant velocity for free nodes; prescribed increments for supported DOFs.
+    fn predict(&mut self, targets: &[crate::model::SupportTarget]) {
+        let dt = self.options.time_step;
+        let state = &self.state;
+        for node in 0..self.model.rod.node_count() {
+            let dphi = state.velocities[node] * dt;
+            let theta =
+                state.configuration.rotations[node] * state.body_angular_velocities[node] * dt;
+            let base = NODE_DOFS * node;
+            self.increments[base..base + 3].copy_from_slice(dphi.as_slice());
+            self.increments[base + 3..base + 6].copy_from_slice(theta.as_slice());
+        }
+        for target in targets {
+            let base = NODE_DOFS * target.node;
+            let dphi = target.position - state.configuration.positions[target.node];
+            self.increments[base..base + 3].copy_from_slice(dphi.as_slice());
+            if let Some(rotation) = target.rotation {
+                let theta = cayley_parameter(
+                    &(rotation * state.configuration.rotations[target.node].inverse()),
+                );
+                self.increments[base + 3..base + 6].copy_from_slice(theta.as_slice());
+            }
+        }
+    }
+
+    /// Residual (all DOFs), tangent (free DOFs), per-DOF magnitude and the step's work, at the current
+    /// increments.
+    fn assemble(&mut self, scales: &[f64], time_mid: f64) -> Result<()> {
+        let dt = self.options.time_step;
+        self.assembler.clear(true);
+        self.magnitude.iter_mut().for_each(|m| *m = 0.0);
+        let mut work = StepWork::default();
+        let model = &self.model;
+        let state = &self.state;
+        let section = &model.rod.section;
+        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let weight = model.submerged_weight();
+        let (k_axial, k_normal) = model.drag_coefficients();
+        let mut k = ElementMatrix::zeros();
+        for (e, reference) in model.rod.elements.iter().enumerate() {
+            let base = NODE_DOFS * e;
+            let increments = ElementVector::from_column_slice(&self.increments[base..base + 12]);
+            let positions = &state.configuration.positions;
+            let chord = positions[e + 1] - positions[e];
+            let step = element_step(
+                &chord,
+                &increments,
+                &state.gauss[e],
+                reference,
+                &c_t,
+                &c_r,
+                self.options.stress_rule,
+                Some(&mut k),
+            );
+            self.next_gauss[e] = step.next;
+            let mut forces = step.forces;
+            for (m, f) in self.magnitude[base..base + 12]
+                .iter_mut()
+                .zip(forces.iter())
+            {
+                *m += f.abs();
+            }
+            // Submerged weight, a dead load: −½L0 w e3 in the residual of each node.
+            let nodal_weight = 0.5 * reference.length * weight;
+            forces[2] -= nodal_weight;
+            forces[8] -= nodal_weight;
+            self.magnitude[base + 2] += nodal_weight.abs();
+            self.magnitude[base + 8] += nodal_weight.abs();
+            if let (Some(sea), true) = (&model.sea, k_axial + k_normal > 0.0) {
+                let dphi1 = increments.fixed_rows::<3>(0).into_owned();
+                let dphi2 = increments.fixed_rows::<3>(6).into_owned();
+                let tangent_mid = (chord + 0.5 * (dphi2 - dphi1)) / reference.length;
+                let stretch = tangent_mid.norm();
+                let t = tangent_mid / stretch;
+                let length = reference.length * stretch;
+                let z_mid =
+                    0.5 * (positions[e].z + positions[e + 1].z) + 0.25 * (dphi1.z + dphi2.z);
+                let (flow, flow_gradient) = sea.current_at(z_mid, time_mid);
+                let velocity = 0.5 * (dphi1 + dphi2) / dt;
+                let relative = flow - velocity;
+                let drag = morison_drag(&relative, &t, k_axial, k_normal);
+                let force = length * drag.force;
+                work.supplied += dt * force.dot(&flow);
+                work.dissipated += dt * length * drag.force.dot(&relative);
+                // dF/dΔφ_b for b = 1, 2 (s_b = ∓1): through ℓ and t (via φ′_{n+½}) and the relative flow.
+                let projector = Matrix3::identity() - t * t.transpose();
+                let d_chord = 0.5 * (drag.force * t.transpose() + drag.d_tangent * projector);
+                let d_flow = length * drag.d_flow;
+                let d_depth = 0.25 * d_flow * flow_gradient * Vector3::z().transpose();
+                let d_velocity = -0.5 / dt * d_flow;
+                let d1 = -d_chord + d_depth + d_velocity;
+                let d2 = d_chord + d_depth + d_velocity;
+                for a in 0..2 {
+                    for i in 0..3 {
+                        forces[NODE_DOFS * a + i] -= 0.5 * force[i];
+                        self.magnitude[base + NODE_DOFS * a + i] += 0.5 * force[i].abs();
+                        for j in 0..3 {
+                            k[(NODE_DOFS * a + i, j)] -= 0.5 * d1[(i, j)];
+                            k[(NODE_DOFS * a + i, NODE_DOFS + j)] -= 0.5 * d2[(i, j)];
+                        }
+                    }
+                }
+            }
+            for (r, f) in self.assembler.residual[base..base + 12]
+                .iter_mut()
+                .zip(forces.iter())
+            {
+                *r += f;
+            }
+            self.assembler.add_element_matrix(e, &k);
+        }
+        for node in 0..model.rod.node_count() {
+            let base = NODE_DOFS * node;
+            let dphi = Vector3::from_column_slice(&self.increments[base..base + 3]);
+            let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
+            let mut forces = Vector6::zeros();
+            let mut block = Matrix6::zeros();
+            // Translational inertia: M(v_{n+1} − v_n)/Δt with v_{n+1} = 2Δφ/Δt − v_n.
+            let mass = self.nodal.mass[node];
+            let inertia_force = mass * (2.0 * dphi / dt - 2.0 * state.velocities[node]) / dt;
+            block
+                .fixed_view_mut::<3, 3>(0, 0)
+                .copy_from(&(Matrix3::identity() * (2.0 * mass / (dt * dt))));
+            // Rotational inertia in spatial momentum: (π_{n+1} − π_n)/Δt, π_{n+1} = cay(θ)[(2/Δt)I_nθ − π_n].
+            let rotation = state.configuration.rotations[node]
+                .to_rotation_matrix()
+                .into_inner();
+            let inertia_n =
+                rotation * Matrix3::from_diagonal(&self.nodal.inertia[node]) * rotation.transpose();
+            let momentum_n = rotation
+                * self.nodal.inertia[node].component_mul(&state.body_angular_velocities[node]);
+            let q = cayley(&theta);
+            let momentum_next = q * (2.0 / dt * inertia_n * theta - momentum_n);
+            let mut moment = (momentum_next - momentum_n) / dt;
+            let mut rotation_block =
+                (2.0 / dt * q * inertia_n - skew(&momentum_next) * cayley_tangent(&theta)) / dt;
+            // Rotational damping D_R: m = −cθ/Δt, c = Λ_n D Λ_nᵀ.
+            let damping =
+                rotation * Matrix3::from_diagonal(&self.nodal.damping[node]) * rotation.transpose();
+            moment += damping * theta / dt;
+            rotation_block += damping / dt;
+            work.dissipated += theta.dot(&(damping * theta)) / dt;
+            block
+                .fixed_view_mut::<3, 3>(3, 3)
+                .copy_from(&rotation_block);
+            forces.fixed_rows_mut::<3>(0).copy_from(&inertia_force);
+            forces.fixed_rows_mut::<3>(3).copy_from(&moment);
+            for (i, f) in forces.iter().enumerate() {
+                self.assembler.residual[base + i] += f;
+                self.magnitude[base + i] += f.abs();
+            }
+            self.assembler.add_node_matrix(node, &block);
+        }
+        for (load, scale) in model.point_loads.iter().zip(scales) {
+            let base = NODE_DOFS * load.node;
+            let force = load.force * *scale;
+            let moment = load.moment * *scale;
+            for i in 0..3 {
+                self.assembler.residual[base + i] -= force[i];
+                self.assembler.residual[base + 3 + i] -= moment[i];
+                self.magnitude[base + i] += force[i].abs();
+                self.magnitude[base + 3 + i] += moment[i].abs();
+            }
+            let dphi = Vector3::from_column_slice(&self.increments[base..base + 3]);
+            let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
+            work.supplied += force.dot(&dphi) + moment.dot(&theta);
+        }
+        self.work = work;
+        Ok(())
+    }
+
+    /// Accepts the converged increments: positions, rotations, velocities, Gauss points, reactions, ledger.
+    fn commit(&mut self, dt: f64) {
+        let mut support_work = 0.0;
+        for node in 0..self.model.rod.node_count() {
+            let base = NODE_DOFS * node;
+            let dphi = Vector3::from_column_slice(&self.increments[base..base + 3]);
+            let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
+            let residual = Vector6::from_column_slice(&self.assembler.residual[base..base + 6]);
+            // At a supported DOF the residual is the force of the support on the rod; its work is supplied.
+            for k in 0..NODE_DOFS {
+                if self.assembler.dofs.equation[base + k].is_none() {
+                    support_work += residual[k] * self.increments[base + k];
+                }
+            }
+            self.reactions[node] = -residual;
+            let state = &mut self.state;
+            let rotation_n = state.configuration.rotations[node];
+            state.configuration.positions[node] += dphi;
+            state.velocities[node] = 2.0 * dphi / dt - state.velocities[node];
+            state.body_angular_velocities[node] =
+                2.0 * (rotation_n.inverse() * theta) / dt - state.body_angular_velocities[node];
+            state.configuration.rotations[node] = cayley_quaternion(&theta) * rotation_n;
+        }
+        self.state.gauss.copy_from_slice(&self.next_gauss);
+        self.state.time += dt;
+        self.supplied_work += self.work.supplied + support_work;
+        self.dissipated += self.work.dissipated;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cayley_parameter_inverts_the_cayley_map() {
+        let theta = Vector3::new(0.3, -1.2, 2.5);
+        let q = cayley_quaternion(&theta);
+        assert!((cayley_parameter(&q) - theta).norm() < 1e-12);
+        let m = q.to_rotation_matrix().into_inner();
+        assert!((m - cayley(&theta)).abs().max() < 1e-14);
+    }
+}
