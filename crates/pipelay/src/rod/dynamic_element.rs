@@ -74,6 +74,7 @@ pub struct ElementStep {
 
 /// Internal forces of one step and, if asked, their tangent with respect to [Δφ1, θ1, Δφ2, θ2].
 /// `chord` is φ2 − φ1 at step n; `increments` the unknowns [Δφ1, θ1, Δφ2, θ2].
+#[allow(clippy::too_many_arguments)]
 pub fn step(
     chord: &Vector3<f64>,
     increments: &ElementVector,
@@ -174,10 +175,7 @@ pub fn step(
         };
         let d_curvature_next =
             cofactor.transpose() * d_theta_prime + cofactor_t_derivative(&theta_prime) * d_w;
-        let (d_strain_alg, d_curvature_alg) = match rule {
-            StressRule::AverageStrain => (0.5 * d_strain, 0.5 * d_curvature_next),
-            StressRule::MidpointConfiguration => (0.5 * d_strain, 0.5 * d_curvature_next),
-        };
+        let (d_strain_alg, d_curvature_alg) = (0.5 * d_strain, 0.5 * d_curvature_next);
         let d_n = -skew(&(0.5 * rotation_next * material_force)) * d_w + mean * c_t * d_strain_alg;
         let d_m = cofactor_derivative(&material_moment) * d_w + cofactor * c_r * d_curvature_alg;
         let d_lever = 0.5 * l0 * (-skew(&tangent_mid) * d_n + 0.5 * skew(&n) * d_tangent);
