@@ -10,9 +10,11 @@ from pipelay._core import (
     Current,
     InputError,
     Model,
+    Results,
     Rod,
     Sea,
     Section,
+    Simulation,
     State,
 )
 
@@ -21,9 +23,11 @@ __all__ = [
     "Current",
     "InputError",
     "Model",
+    "Results",
     "Rod",
     "Sea",
     "Section",
+    "Simulation",
     "State",
 ]
 __version__ = "0.1.0"

@@ -3,6 +3,8 @@ mod callables;
 mod convert;
 mod errors;
 mod model;
+mod simulation;
+mod state;
 mod structure;
 
 use pyo3::prelude::*;
@@ -20,6 +22,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<structure::Current>()?;
     m.add_class::<structure::Sea>()?;
     m.add_class::<model::Model>()?;
-    m.add_class::<model::State>()?;
+    m.add_class::<state::State>()?;
+    m.add_class::<simulation::Simulation>()?;
+    m.add_class::<simulation::Results>()?;
     Ok(())
 }

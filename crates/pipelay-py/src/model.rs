@@ -1,15 +1,15 @@
 //! Python classes Model and State: supports, loads, the static solve and its results.
 use crate::callables::{matrix_function, scalar_function, vector_function};
-use crate::convert::{matrices_to_numpy, matrix3, points_to_numpy, to_numpy, vector3};
+use crate::convert::{matrix3, vector3};
 use crate::errors::{input, to_py};
+use crate::simulation::Simulation;
+use crate::state::State;
 use crate::structure::{Rod, Sea};
 use nalgebra::{Matrix3, Vector3};
-use numpy::{PyArray1, PyArray2, PyArray3};
 use pipelay::assembly::Configuration;
 use pipelay::response::Response;
 use pipelay::statics::{self, Start, StaticOptions};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 /// A rod with its sea, gravity, supports and loads.
 #[pyclass(module = "pipelay", name = "Model")]
@@ -134,10 +134,10 @@ impl Model {
         let solution = py
             .detach(|| statics::solve(model, &options))
             .map_err(to_py)?;
-        Ok(State::new(
+        Ok(State::from_static(
             model,
             solution.configuration,
-            solution.response,
+            &solution.response,
             1.0,
             solution.iterations,
             solution.steps,
@@ -148,7 +148,21 @@ impl Model {
     fn rest(&self) -> State {
         let config = Configuration::reference(&self.0);
         let response = Response::new(&self.0, &config);
-        State::new(&self.0, config, response, 0.0, 0, 0)
+        State::from_static(&self.0, config, &response, 0.0, 0, 0)
+    }
+
+    /// A time simulation from `state` (default: `self.static()`) with time step `dt` (s), using the
+    /// energy–momentum conserving integrator.
+    #[pyo3(signature = (state=None, dt=0.05))]
+    fn simulation(&self, py: Python<'_>, state: Option<&State>, dt: f64) -> PyResult<Simulation> {
+        let state = match state {
+            Some(s) => s.dynamic_state(&self.0).map_err(to_py)?,
+            None => self
+                .r#static(py, None, "auto")?
+                .dynamic_state(&self.0)
+                .map_err(to_py)?,
+        };
+        Simulation::new(self.0.clone(), state, dt)
     }
 
     /// The rod.
@@ -170,149 +184,5 @@ impl Model {
     #[getter]
     fn submerged_weight(&self) -> f64 {
         self.0.submerged_weight()
-    }
-}
-
-/// A configuration of the model and what follows from it (SI units, frame e).
-#[pyclass(module = "pipelay", name = "State", frozen)]
-pub struct State {
-    configuration: Configuration,
-    response: Response,
-    last_node: usize,
-    /// Load factor reached (1.0 for a converged static state, 0.0 for `Model.rest()`).
-    #[pyo3(get)]
-    load_factor: f64,
-    /// Newton iterations spent (all load steps).
-    #[pyo3(get)]
-    iterations: usize,
-    /// Accepted load steps.
-    #[pyo3(get)]
-    steps: usize,
-}
-
-impl State {
-    fn new(
-        model: &pipelay::model::Model,
-        configuration: Configuration,
-        response: Response,
-        load_factor: f64,
-        iterations: usize,
-        steps: usize,
-    ) -> Self {
-        State {
-            configuration,
-            response,
-            last_node: model.rod.element_count(),
-            load_factor,
-            iterations,
-            steps,
-        }
-    }
-
-    fn end_node(&self, end: &str) -> PyResult<usize> {
-        match end {
-            "A" => Ok(0),
-            "B" => Ok(self.last_node),
-            other => Err(input(
-                "end",
-                format!("{other:?}"),
-                "must be \"A\" (node 0) or \"B\" (node n)",
-            )),
-        }
-    }
-}
-
-#[pymethods]
-impl State {
-    /// Node positions (n + 1, 3) (m).
-    #[getter]
-    fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        points_to_numpy(py, &self.configuration.positions)
-    }
-    /// Nodal rotations R_t^e (n + 1, 3, 3).
-    #[getter]
-    fn rotations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
-        let matrices: Vec<Matrix3<f64>> = self
-            .configuration
-            .rotations
-            .iter()
-            .map(|q| q.to_rotation_matrix().into_inner())
-            .collect();
-        matrices_to_numpy(py, &matrices)
-    }
-    /// Nodal velocities (n + 1, 3) (m/s): zero in statics.
-    #[getter]
-    fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        points_to_numpy(py, &vec![Vector3::zeros(); self.last_node + 1])
-    }
-    /// Spatial angular velocities (n + 1, 3) (rad/s): zero in statics.
-    #[getter]
-    fn angular_velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        self.velocities(py)
-    }
-    /// Material-frame force (N) and moment (N·m) at element midpoints (n, 6): [N1, N2, N3, M1, M2, M3].
-    #[getter]
-    fn section_forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let rows: Vec<Vec<f64>> = self
-            .response
-            .section_forces
-            .iter()
-            .map(|f| f.as_slice().to_vec())
-            .collect();
-        PyArray2::from_vec2(py, &rows).expect("rows of six")
-    }
-    /// Axial force N1 at element midpoints (n,) (N), positive in tension.
-    #[getter]
-    fn tension<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        let tension: Vec<f64> = self.response.section_forces.iter().map(|f| f[0]).collect();
-        to_numpy(py, &tension)
-    }
-    /// Force (N) and moment (N·m) (6,) the rod exerts on the support at end "A" or "B", in e.
-    fn reaction<'py>(&self, py: Python<'py>, end: &str) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let node = self.end_node(end)?;
-        Ok(to_numpy(py, self.response.nodal_reactions[node].as_slice()))
-    }
-    /// Vessel position η (6,): None without a vessel.
-    #[getter]
-    fn eta(&self) -> Option<Vec<f64>> {
-        None
-    }
-    /// Vessel velocity ν (6,): None without a vessel.
-    #[getter]
-    fn nu(&self) -> Option<Vec<f64>> {
-        None
-    }
-    /// Thrust τ (6,): None without a vessel.
-    #[getter]
-    fn tau(&self) -> Option<Vec<f64>> {
-        None
-    }
-    /// Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total.
-    fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let parts = [
-            ("pipe_kinetic", 0.0),
-            ("pipe_strain", self.response.strain_energy),
-            ("pipe_gravity", self.response.gravity_energy),
-            ("vessel_kinetic", 0.0),
-            ("vessel_potential", 0.0),
-        ];
-        let dict = PyDict::new(py);
-        let mut total = 0.0;
-        for (name, value) in parts {
-            dict.set_item(name, value)?;
-            total += value;
-        }
-        dict.set_item("total", total)?;
-        Ok(dict)
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "State(nodes={}, load_factor={}, iterations={}, steps={})",
-            self.last_node + 1,
-            self.load_factor,
-            self.iterations,
-            self.steps
-        )
     }
 }

@@ -249,6 +249,11 @@ impl Integrator {
         &self.state
     }
 
+    /// The settings.
+    pub fn options(&self) -> &DynamicOptions {
+        &self.options
+    }
+
     /// The model.
     pub fn model(&self) -> &Model {
         &self.model
@@ -330,6 +335,24 @@ impl Integrator {
                 Vector6::new(n.x, n.y, n.z, m.x, m.y, m.z)
             })
             .collect()
+    }
+
+    /// Advances `steps` time steps, recording into `history` every `record_every` steps.
+    pub fn advance(
+        &mut self,
+        steps: usize,
+        record_every: usize,
+        history: &mut crate::history::History,
+        counter: &mut usize,
+    ) -> Result<()> {
+        for _ in 0..steps {
+            let report = self.step()?;
+            *counter += 1;
+            if *counter % record_every.max(1) == 0 {
+                history.record(self, report.iterations);
+            }
+        }
+        Ok(())
     }
 
     /// Advances one time step.

@@ -9,6 +9,7 @@ pub mod catenary;
 pub mod dynamics;
 pub mod error;
 pub mod euler;
+pub mod history;
 pub mod hydro;
 pub mod linsolve;
 pub mod model;

@@ -1,0 +1,317 @@
+//! Python classes Simulation and Results: time stepping with a progress bar, the GIL released while the
+//! engine steps, and the recorded time series.
+use crate::errors::{input, to_py, ConvergenceError};
+use crate::state::State;
+use numpy::{PyArray1, PyArrayMethods};
+use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator};
+use pipelay::history::History;
+use pipelay::model::Model;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// A time simulation of a model (energy–momentum conserving integrator).
+#[pyclass(module = "pipelay", name = "Simulation")]
+pub struct Simulation {
+    integrator: Integrator,
+    last_iterations: usize,
+}
+
+impl Simulation {
+    pub fn new(model: Model, state: DynamicState, dt: f64) -> PyResult<Self> {
+        let options = DynamicOptions {
+            time_step: dt,
+            ..DynamicOptions::default()
+        };
+        let integrator = Integrator::new(model, state, options).map_err(to_py)?;
+        Ok(Simulation {
+            integrator,
+            last_iterations: 0,
+        })
+    }
+}
+
+/// Array of `shape` from flat row-major data.
+fn shaped<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_slice(py, data)
+        .reshape(shape.to_vec())?
+        .into_any())
+}
+
+#[pymethods]
+impl Simulation {
+    /// Advances one time step dt. Raises ConvergenceError if Newton fails (the state is then unchanged).
+    fn step(&mut self, py: Python<'_>) -> PyResult<()> {
+        let integrator = &mut self.integrator;
+        let report = py.detach(|| integrator.step()).map_err(to_py)?;
+        self.last_iterations = report.iterations;
+        Ok(())
+    }
+
+    /// Runs to `t_end` (s) and returns the Results: the current state and every `record_every`-th step after
+    /// it. A progress bar (tqdm) shows on long runs unless `progress=False`. Ctrl-C stops the run between
+    /// steps and returns what was computed so far; a failed step raises ConvergenceError whose `results`
+    /// attribute holds the steps before it.
+    #[pyo3(signature = (t_end, progress=true, record_every=1))]
+    fn run(
+        &mut self,
+        py: Python<'_>,
+        t_end: f64,
+        progress: bool,
+        record_every: i64,
+    ) -> PyResult<Results> {
+        let dt = self.time_step();
+        let start = self.integrator.state().time;
+        if !t_end.is_finite() || t_end < start {
+            return Err(input(
+                "t_end",
+                t_end,
+                &format!("must be a finite time >= the current time {start} s"),
+            ));
+        }
+        if record_every < 1 {
+            return Err(input(
+                "record_every",
+                record_every,
+                "must be an integer >= 1",
+            ));
+        }
+        let steps = ((t_end - start) / dt - 1e-9).ceil().max(0.0) as usize;
+        let mut history = History::starting_at(&self.integrator);
+        let bar = if progress && steps >= 200 {
+            let tqdm = py.import("tqdm")?.getattr("tqdm")?;
+            let kwargs = PyDict::new(py);
+            kwargs.set_item("total", steps)?;
+            kwargs.set_item("unit", "step")?;
+            kwargs.set_item("desc", "pipelay")?;
+            Some(tqdm.call((), Some(&kwargs))?)
+        } else {
+            None
+        };
+        let chunk = (steps / 100).clamp(1, 1000);
+        let mut done = 0;
+        let mut counter = 0;
+        let mut outcome = Ok(());
+        while done < steps {
+            let count = chunk.min(steps - done);
+            let integrator = &mut self.integrator;
+            let history_ref = &mut history;
+            let counter_ref = &mut counter;
+            let result = py.detach(|| {
+                integrator.advance(count, record_every as usize, history_ref, counter_ref)
+            });
+            done = counter;
+            if let Some(bar) = &bar {
+                bar.call_method1("update", (count,))?;
+            }
+            if let Err(error) = result {
+                outcome = Err(error);
+                break;
+            }
+            if let Err(interrupt) = py.check_signals() {
+                if interrupt.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                    let warnings = py.import("warnings")?;
+                    warnings.call_method1(
+                        "warn",
+                        (format!(
+                            "run interrupted at t = {:.6} s: returning the results so far",
+                            self.integrator.state().time
+                        ),),
+                    )?;
+                    break;
+                }
+                return Err(interrupt);
+            }
+        }
+        if let Some(bar) = &bar {
+            bar.call_method0("close")?;
+        }
+        let last_node = self.integrator.model().rod.element_count();
+        let results = Results { history, last_node };
+        match outcome {
+            Ok(()) => Ok(results),
+            Err(error) => {
+                let err = ConvergenceError::new_err(error.to_string());
+                err.value(py).setattr("results", Py::new(py, results)?)?;
+                Err(err)
+            }
+        }
+    }
+
+    /// Current time (s).
+    #[getter]
+    fn time(&self) -> f64 {
+        self.integrator.state().time
+    }
+    /// Time step (s).
+    #[getter(dt)]
+    fn time_step(&self) -> f64 {
+        self.integrator.options().time_step
+    }
+    /// The current state.
+    #[getter]
+    fn state(&self) -> State {
+        State::from_integrator(&self.integrator, self.last_iterations)
+    }
+    /// Work supplied since the simulation started (J).
+    #[getter]
+    fn supplied_work(&self) -> f64 {
+        self.integrator.supplied_work()
+    }
+    /// Energy dissipated since the simulation started (J).
+    #[getter]
+    fn dissipated(&self) -> f64 {
+        self.integrator.dissipated()
+    }
+    /// Linear momentum (3,) (kg·m/s).
+    fn linear_momentum(&self) -> (f64, f64, f64) {
+        let p = self.integrator.linear_momentum();
+        (p.x, p.y, p.z)
+    }
+    /// Angular momentum about the origin (3,) (kg·m²/s).
+    fn angular_momentum(&self) -> (f64, f64, f64) {
+        let j = self.integrator.angular_momentum();
+        (j.x, j.y, j.z)
+    }
+}
+
+/// Time series of a run (SI units, frame e); arrays are copies you own.
+#[pyclass(module = "pipelay", name = "Results", frozen)]
+pub struct Results {
+    history: History,
+    last_node: usize,
+}
+
+#[pymethods]
+impl Results {
+    /// Times (T,) (s).
+    #[getter]
+    fn time<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.time)
+    }
+    /// Node positions (T, n + 1, 3) (m).
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.positions,
+            &[self.history.len(), self.last_node + 1, 3],
+        )
+    }
+    /// Nodal rotations R_t^e (T, n + 1, 3, 3).
+    #[getter]
+    fn rotations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.rotations,
+            &[self.history.len(), self.last_node + 1, 3, 3],
+        )
+    }
+    /// Node velocities (T, n + 1, 3) (m/s).
+    #[getter]
+    fn velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.velocities,
+            &[self.history.len(), self.last_node + 1, 3],
+        )
+    }
+    /// Material force (N) and moment (N·m) at element midpoints (T, n, 6).
+    #[getter]
+    fn section_forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.section_forces,
+            &[self.history.len(), self.last_node, 6],
+        )
+    }
+    /// Axial force at element midpoints (T, n) (N).
+    #[getter]
+    fn tension<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let tension: Vec<f64> = self
+            .history
+            .section_forces
+            .chunks_exact(6)
+            .map(|f| f[0])
+            .collect();
+        shaped(py, &tension, &[self.history.len(), self.last_node])
+    }
+    /// Force (N) and moment (N·m) the rod exerts on the support at end "A" or "B" (T, 6), in e; for the
+    /// first record of a run started from a static state, zero.
+    fn reaction<'py>(&self, py: Python<'py>, end: &str) -> PyResult<Bound<'py, PyAny>> {
+        let data = match end {
+            "A" => &self.history.reaction_a,
+            "B" => &self.history.reaction_b,
+            other => {
+                return Err(input(
+                    "end",
+                    format!("{other:?}"),
+                    "must be \"A\" (node 0) or \"B\" (node n)",
+                ))
+            }
+        };
+        shaped(py, data, &[self.history.len(), 6])
+    }
+    /// Energy parts (T,) each (J): keys as State.energy().
+    #[getter]
+    fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let h = &self.history;
+        let total: Vec<f64> = (0..h.len())
+            .map(|i| h.kinetic[i] + h.strain[i] + h.gravity[i])
+            .collect();
+        let zeros = vec![0.0; h.len()];
+        let dict = PyDict::new(py);
+        dict.set_item("pipe_kinetic", PyArray1::from_slice(py, &h.kinetic))?;
+        dict.set_item("pipe_strain", PyArray1::from_slice(py, &h.strain))?;
+        dict.set_item("pipe_gravity", PyArray1::from_slice(py, &h.gravity))?;
+        dict.set_item("vessel_kinetic", PyArray1::from_slice(py, &zeros))?;
+        dict.set_item("vessel_potential", PyArray1::from_slice(py, &zeros))?;
+        dict.set_item("total", PyArray1::from_slice(py, &total))?;
+        Ok(dict)
+    }
+    /// Work done on the system since the start of the run (T,) (J): point loads, driven supports and the
+    /// current's share of the drag.
+    #[getter]
+    fn supplied_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.supplied_work)
+    }
+    /// Energy dissipated since the start of the run (T,) (J): never decreasing.
+    #[getter]
+    fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.dissipated)
+    }
+    /// Newton iterations of the step leading to each record (T,).
+    #[getter]
+    fn iterations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let its: Vec<f64> = self.history.iterations.iter().map(|&i| i as f64).collect();
+        PyArray1::from_slice(py, &its)
+    }
+    /// Vessel position η (T, 6): None without a vessel.
+    #[getter]
+    fn eta(&self) -> Option<Vec<f64>> {
+        None
+    }
+    /// Vessel velocity ν (T, 6): None without a vessel.
+    #[getter]
+    fn nu(&self) -> Option<Vec<f64>> {
+        None
+    }
+    /// Thrust τ (T, 6): None without a vessel.
+    #[getter]
+    fn tau(&self) -> Option<Vec<f64>> {
+        None
+    }
+
+    fn __len__(&self) -> usize {
+        self.history.len()
+    }
+
+    fn __repr__(&self) -> String {
+        let t = &self.history.time;
+        format!(
+            "Results(records={}, t=[{}, {}] s)",
+            t.len(),
+            t.first().copied().unwrap_or(0.0),
+            t.last().copied().unwrap_or(0.0)
+        )
+    }
+}

@@ -1,0 +1,218 @@
+//! Python class State: one configuration of a model and what follows from it.
+use crate::convert::{matrices_to_numpy, points_to_numpy, to_numpy};
+use crate::errors::input;
+use nalgebra::{Matrix3, Vector3, Vector6};
+use numpy::{PyArray1, PyArray2, PyArray3};
+use pipelay::assembly::Configuration;
+use pipelay::dynamics::{DynamicState, Energy, Integrator};
+use pipelay::model::Model;
+use pipelay::response::Response;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// A configuration of the model and what follows from it (SI units, frame e).
+#[pyclass(module = "pipelay", name = "State", frozen)]
+pub struct State {
+    configuration: Configuration,
+    velocities: Vec<Vector3<f64>>,
+    angular_velocities: Vec<Vector3<f64>>,
+    section_forces: Vec<Vector6<f64>>,
+    reactions: Vec<Vector6<f64>>,
+    energy: Energy,
+    /// The integrator's own state (Gauss points included), when the state comes from a simulation.
+    dynamic: Option<DynamicState>,
+    /// Time (s): 0 for static states.
+    #[pyo3(get)]
+    time: f64,
+    /// Load factor reached (1.0 for a converged static state, 0.0 for `Model.rest()`).
+    #[pyo3(get)]
+    load_factor: f64,
+    /// Newton iterations spent (static: all load steps; simulation: the last step).
+    #[pyo3(get)]
+    iterations: usize,
+    /// Accepted load steps (static states).
+    #[pyo3(get)]
+    steps: usize,
+}
+
+impl State {
+    /// A static state (at rest).
+    pub fn from_static(
+        model: &Model,
+        configuration: Configuration,
+        response: &Response,
+        load_factor: f64,
+        iterations: usize,
+        steps: usize,
+    ) -> Self {
+        let count = model.rod.node_count();
+        State {
+            configuration,
+            velocities: vec![Vector3::zeros(); count],
+            angular_velocities: vec![Vector3::zeros(); count],
+            section_forces: response.section_forces.clone(),
+            reactions: response.nodal_reactions.clone(),
+            energy: Energy {
+                kinetic: 0.0,
+                strain: response.strain_energy,
+                gravity: response.gravity_energy,
+            },
+            dynamic: None,
+            time: 0.0,
+            load_factor,
+            iterations,
+            steps,
+        }
+    }
+
+    /// The current state of a simulation.
+    pub fn from_integrator(integrator: &Integrator, iterations: usize) -> Self {
+        let state = integrator.state();
+        State {
+            configuration: state.configuration.clone(),
+            velocities: state.velocities.clone(),
+            angular_velocities: state.angular_velocities(),
+            section_forces: integrator.section_forces(),
+            reactions: integrator.reactions().to_vec(),
+            energy: integrator.energy(),
+            dynamic: Some(state.clone()),
+            time: state.time,
+            load_factor: 1.0,
+            iterations,
+            steps: 0,
+        }
+    }
+
+    /// The state as the integrator's starting point.
+    pub fn dynamic_state(&self, model: &Model) -> pipelay::Result<DynamicState> {
+        if self.configuration.positions.len() != model.rod.node_count() {
+            return Err(pipelay::Error::input(
+                "state",
+                format!("a state of {} nodes", self.configuration.positions.len()),
+                format!(
+                    "must belong to this model ({} nodes)",
+                    model.rod.node_count()
+                ),
+            ));
+        }
+        match &self.dynamic {
+            Some(state) => Ok(state.clone()),
+            None => DynamicState::at_rest(model, self.configuration.clone(), self.time),
+        }
+    }
+
+    fn end_node(&self, end: &str) -> PyResult<usize> {
+        match end {
+            "A" => Ok(0),
+            "B" => Ok(self.configuration.positions.len() - 1),
+            other => Err(input(
+                "end",
+                format!("{other:?}"),
+                "must be \"A\" (node 0) or \"B\" (node n)",
+            )),
+        }
+    }
+}
+
+/// The energy dictionary of API.md from rod energy parts (no vessel yet).
+fn energy_dict<'py>(
+    py: Python<'py>,
+    kinetic: f64,
+    strain: f64,
+    gravity: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let dict = PyDict::new(py);
+    dict.set_item("pipe_kinetic", kinetic)?;
+    dict.set_item("pipe_strain", strain)?;
+    dict.set_item("pipe_gravity", gravity)?;
+    dict.set_item("vessel_kinetic", 0.0)?;
+    dict.set_item("vessel_potential", 0.0)?;
+    dict.set_item("total", kinetic + strain + gravity)?;
+    Ok(dict)
+}
+
+#[pymethods]
+impl State {
+    /// Node positions (n + 1, 3) (m).
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_to_numpy(py, &self.configuration.positions)
+    }
+    /// Nodal rotations R_t^e (n + 1, 3, 3).
+    #[getter]
+    fn rotations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        let matrices: Vec<Matrix3<f64>> = self
+            .configuration
+            .rotations
+            .iter()
+            .map(|q| q.to_rotation_matrix().into_inner())
+            .collect();
+        matrices_to_numpy(py, &matrices)
+    }
+    /// Nodal velocities (n + 1, 3) (m/s).
+    #[getter]
+    fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_to_numpy(py, &self.velocities)
+    }
+    /// Spatial angular velocities (n + 1, 3) (rad/s).
+    #[getter]
+    fn angular_velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        points_to_numpy(py, &self.angular_velocities)
+    }
+    /// Material-frame force (N) and moment (N·m) at element midpoints (n, 6): [N1, N2, N3, M1, M2, M3].
+    #[getter]
+    fn section_forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let rows: Vec<Vec<f64>> = self
+            .section_forces
+            .iter()
+            .map(|f| f.as_slice().to_vec())
+            .collect();
+        PyArray2::from_vec2(py, &rows).expect("rows of six")
+    }
+    /// Axial force N1 at element midpoints (n,) (N), positive in tension.
+    #[getter]
+    fn tension<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let tension: Vec<f64> = self.section_forces.iter().map(|f| f[0]).collect();
+        to_numpy(py, &tension)
+    }
+    /// Force (N) and moment (N·m) (6,) the rod exerts on the support at end "A" or "B", in e.
+    fn reaction<'py>(&self, py: Python<'py>, end: &str) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let node = self.end_node(end)?;
+        Ok(to_numpy(py, self.reactions[node].as_slice()))
+    }
+    /// Vessel position η (6,): None without a vessel.
+    #[getter]
+    fn eta(&self) -> Option<Vec<f64>> {
+        None
+    }
+    /// Vessel velocity ν (6,): None without a vessel.
+    #[getter]
+    fn nu(&self) -> Option<Vec<f64>> {
+        None
+    }
+    /// Thrust τ (6,): None without a vessel.
+    #[getter]
+    fn tau(&self) -> Option<Vec<f64>> {
+        None
+    }
+    /// Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total.
+    fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        energy_dict(
+            py,
+            self.energy.kinetic,
+            self.energy.strain,
+            self.energy.gravity,
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "State(nodes={}, time={}, load_factor={}, iterations={}, steps={})",
+            self.configuration.positions.len(),
+            self.time,
+            self.load_factor,
+            self.iterations,
+            self.steps
+        )
+    }
+}

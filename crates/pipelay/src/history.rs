@@ -1,0 +1,93 @@
+//! The record of a simulation: states at chosen steps, reactions at the ends, energy and its ledger.
+use crate::dynamics::Integrator;
+use nalgebra::Vector6;
+
+/// Time series of a run, stored flat (row-major: time first) for cheap hand-over to arrays.
+#[derive(Debug, Clone, Default)]
+pub struct History {
+    /// Number of nodes n + 1.
+    pub nodes: usize,
+    /// Times (s).
+    pub time: Vec<f64>,
+    /// Node positions, (T, n+1, 3) (m).
+    pub positions: Vec<f64>,
+    /// Nodal rotations R_t^e, (T, n+1, 3, 3) row-major.
+    pub rotations: Vec<f64>,
+    /// Node velocities, (T, n+1, 3) (m/s).
+    pub velocities: Vec<f64>,
+    /// Section forces at element midpoints, (T, n, 6): [N; M] material (N, N·m).
+    pub section_forces: Vec<f64>,
+    /// Force and moment the rod exerts on the supports at ends A and B, (T, 6) each.
+    pub reaction_a: Vec<f64>,
+    pub reaction_b: Vec<f64>,
+    /// Energy parts (J).
+    pub kinetic: Vec<f64>,
+    pub strain: Vec<f64>,
+    pub gravity: Vec<f64>,
+    /// Work supplied and energy dissipated since the start of the run (J).
+    pub supplied_work: Vec<f64>,
+    pub dissipated: Vec<f64>,
+    /// Newton iterations of the step that led to each record (0 for the first).
+    pub iterations: Vec<usize>,
+    /// Ledger values at the start of the run, so that the record starts from zero.
+    supplied_offset: f64,
+    dissipated_offset: f64,
+}
+
+impl History {
+    /// An empty history whose first record is the integrator's current state.
+    pub fn starting_at(integrator: &Integrator) -> Self {
+        let mut history = History {
+            nodes: integrator.model().rod.node_count(),
+            supplied_offset: integrator.supplied_work(),
+            dissipated_offset: integrator.dissipated(),
+            ..History::default()
+        };
+        history.record(integrator, 0);
+        history
+    }
+
+    /// Number of records T.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// Whether nothing is recorded.
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
+    /// Appends the integrator's current state.
+    pub fn record(&mut self, integrator: &Integrator, iterations: usize) {
+        let state = integrator.state();
+        self.time.push(state.time);
+        for (p, v) in state.configuration.positions.iter().zip(&state.velocities) {
+            self.positions.extend_from_slice(p.as_slice());
+            self.velocities.extend_from_slice(v.as_slice());
+        }
+        for q in &state.configuration.rotations {
+            let m = q.to_rotation_matrix().into_inner();
+            for i in 0..3 {
+                for j in 0..3 {
+                    self.rotations.push(m[(i, j)]);
+                }
+            }
+        }
+        for f in integrator.section_forces() {
+            self.section_forces.extend_from_slice(f.as_slice());
+        }
+        let reactions = integrator.reactions();
+        let ends: [&Vector6<f64>; 2] = [&reactions[0], &reactions[self.nodes - 1]];
+        self.reaction_a.extend_from_slice(ends[0].as_slice());
+        self.reaction_b.extend_from_slice(ends[1].as_slice());
+        let energy = integrator.energy();
+        self.kinetic.push(energy.kinetic);
+        self.strain.push(energy.strain);
+        self.gravity.push(energy.gravity);
+        self.supplied_work
+            .push(integrator.supplied_work() - self.supplied_offset);
+        self.dissipated
+            .push(integrator.dissipated() - self.dissipated_offset);
+        self.iterations.push(iterations);
+    }
+}
