@@ -3,7 +3,17 @@ use crate::convert::{matrix3, vector3};
 use nalgebra::{Matrix3, Vector3};
 use pipelay::model::TimeFunction;
 use pyo3::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
+
+/// Set when a callable was interrupted by Ctrl-C (KeyboardInterrupt raised inside it), so that a run can
+/// stop cleanly instead of reporting a failed callable.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Whether a callable saw Ctrl-C since the last call; clears the flag.
+pub fn take_interrupt() -> bool {
+    INTERRUPTED.swap(false, Ordering::SeqCst)
+}
 
 /// Wraps `callable(t)`, converting its result with `convert`; a Python error becomes the message.
 fn wrap<T: 'static>(
@@ -13,10 +23,12 @@ fn wrap<T: 'static>(
 ) -> TimeFunction<T> {
     Arc::new(move |time| {
         Python::attach(|py| {
-            let value = callable
-                .bind(py)
-                .call1((time,))
-                .map_err(|e| format!("{argument}({time}) raised {e}"))?;
+            let value = callable.bind(py).call1((time,)).map_err(|e| {
+                if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                    INTERRUPTED.store(true, Ordering::SeqCst);
+                }
+                format!("{argument}({time}) raised {e}")
+            })?;
             convert(&value, argument).map_err(|e| e.to_string())
         })
     })

@@ -1,6 +1,7 @@
 //! Python classes Simulation and Results: time stepping with a progress bar, the GIL released while the
 //! engine steps, and the recorded time series.
-use crate::errors::{input, to_py, ConvergenceError};
+use crate::callables::take_interrupt;
+use crate::errors::{input, to_py};
 use crate::state::State;
 use numpy::{PyArray1, PyArrayMethods};
 use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator};
@@ -49,8 +50,8 @@ impl Simulation {
 
     /// Runs to `t_end` (s) and returns the Results: the current state and every `record_every`-th step after
     /// it. A progress bar (tqdm) shows on long runs unless `progress=False`. Ctrl-C stops the run between
-    /// steps and returns what was computed so far; a failed step raises ConvergenceError whose `results`
-    /// attribute holds the steps before it.
+    /// steps and returns what was computed so far (with a warning); a failed step raises ConvergenceError
+    /// (or InputError when a drive or scale callable fails) whose `results` attribute holds the steps before it.
     #[pyo3(signature = (t_end, progress=true, record_every=1))]
     fn run(
         &mut self,
@@ -103,23 +104,25 @@ impl Simulation {
             if let Some(bar) = &bar {
                 bar.call_method1("update", (count,))?;
             }
-            if let Err(error) = result {
-                outcome = Err(error);
-                break;
-            }
-            if let Err(interrupt) = py.check_signals() {
-                if interrupt.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
-                    let warnings = py.import("warnings")?;
-                    warnings.call_method1(
-                        "warn",
-                        (format!(
-                            "run interrupted at t = {:.6} s: returning the results so far",
-                            self.integrator.state().time
-                        ),),
-                    )?;
+            let interrupted = match result {
+                Err(error) if !take_interrupt() => {
+                    outcome = Err(error);
                     break;
                 }
-                return Err(interrupt);
+                Err(_) => true,
+                Ok(()) => match py.check_signals() {
+                    Err(e) if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => true,
+                    Err(e) => return Err(e),
+                    Ok(()) => false,
+                },
+            };
+            if interrupted {
+                let message = format!(
+                    "run interrupted at t = {:.6} s: returning the results so far",
+                    self.integrator.state().time
+                );
+                py.import("warnings")?.call_method1("warn", (message,))?;
+                break;
             }
         }
         if let Some(bar) = &bar {
@@ -130,7 +133,7 @@ impl Simulation {
         match outcome {
             Ok(()) => Ok(results),
             Err(error) => {
-                let err = ConvergenceError::new_err(error.to_string());
+                let err = to_py(error);
                 err.value(py).setattr("results", Py::new(py, results)?)?;
                 Err(err)
             }

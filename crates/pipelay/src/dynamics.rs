@@ -23,6 +23,9 @@ use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
+/// How many times a step may be halved when Newton fails in it.
+pub const MAX_HALVINGS: usize = 4;
+
 /// Settings of the integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DynamicOptions {
@@ -355,9 +358,28 @@ impl Integrator {
         Ok(())
     }
 
-    /// Advances one time step.
+    /// Advances one time step Δt. Where Newton fails, the step is split into two halves, up to
+    /// [`MAX_HALVINGS`] times; each sub-step keeps the exact energy balance.
     pub fn step(&mut self) -> Result<StepReport> {
-        let dt = self.options.time_step;
+        self.substep(self.options.time_step, 0)
+    }
+
+    fn substep(&mut self, dt: f64, depth: usize) -> Result<StepReport> {
+        match self.try_step(dt) {
+            Err(Error::Convergence { .. }) if depth < MAX_HALVINGS => {
+                let first = self.substep(0.5 * dt, depth + 1)?;
+                let second = self.substep(0.5 * dt, depth + 1)?;
+                Ok(StepReport {
+                    iterations: first.iterations + second.iterations,
+                    residual: second.residual,
+                })
+            }
+            other => other,
+        }
+    }
+
+    /// One step of size `dt`; the state is untouched if Newton fails.
+    fn try_step(&mut self, dt: f64) -> Result<StepReport> {
         let time_next = self.state.time + dt;
         let time_mid = self.state.time + 0.5 * dt;
         let targets = self.model.support_targets(time_next)?;
@@ -367,13 +389,13 @@ impl Integrator {
             .iter()
             .map(|load| load.scale_at(time_mid))
             .collect::<Result<Vec<f64>>>()?;
-        self.predict(&targets);
+        self.predict(&targets, dt);
         let mut residual = f64::INFINITY;
         let mut converged = false;
         let mut iterations = 0;
         for iteration in 0..=self.options.max_iterations {
             iterations = iteration;
-            self.assemble(&scales, time_mid)?;
+            self.assemble(&scales, time_mid, dt)?;
             let mut free2 = 0.0;
             let mut scale2 = 0.0;
             for ((r, m), eq) in self
@@ -435,7 +457,7 @@ impl Integrator {
             if correction2 <= 1e-30 * size2
                 && residual <= 1e3 * self.options.tolerance * scale2.sqrt()
             {
-                self.assemble(&scales, time_mid)?;
+                self.assemble(&scales, time_mid, dt)?;
                 converged = true;
                 iterations += 1;
                 break;
@@ -461,8 +483,7 @@ impl Integrator {
     }
 
     /// Predictor: constant velocity for free nodes; prescribed increments for supported DOFs.
-    fn predict(&mut self, targets: &[crate::model::SupportTarget]) {
-        let dt = self.options.time_step;
+    fn predict(&mut self, targets: &[crate::model::SupportTarget], dt: f64) {
         let state = &self.state;
         for node in 0..self.model.rod.node_count() {
             let dphi = state.velocities[node] * dt;
@@ -487,8 +508,7 @@ impl Integrator {
 
     /// Residual (all DOFs), tangent (free DOFs), per-DOF magnitude and the step's work, at the current
     /// increments.
-    fn assemble(&mut self, scales: &[f64], time_mid: f64) -> Result<()> {
-        let dt = self.options.time_step;
+    fn assemble(&mut self, scales: &[f64], time_mid: f64, dt: f64) -> Result<()> {
         self.assembler.clear(true);
         self.magnitude.iter_mut().for_each(|m| *m = 0.0);
         let mut work = StepWork::default();
