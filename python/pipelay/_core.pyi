@@ -10,7 +10,18 @@ _ArrayLike = npt.ArrayLike
 _FloatArray: TypeAlias = npt.NDArray[np.float64]
 _End: TypeAlias = Literal["A", "B"]
 
-__all__ = ["ConvergenceError", "Current", "InputError", "Model", "Rod", "Sea", "Section", "State"]
+__all__ = [
+    "ConvergenceError",
+    "Current",
+    "InputError",
+    "Model",
+    "Results",
+    "Rod",
+    "Sea",
+    "Section",
+    "Simulation",
+    "State",
+]
 
 class InputError(ValueError):
     """Bad input: the message names the argument (or scenario key), the value and what is allowed."""
@@ -169,6 +180,9 @@ class State:
     def tau(self) -> list[float] | None:
         """Thrust τ (6,), None without a vessel."""
     @property
+    def time(self) -> float:
+        """Time (s): 0 for static states."""
+    @property
     def load_factor(self) -> float:
         """Load factor reached (1.0 when converged, 0.0 for Model.rest())."""
     @property
@@ -183,6 +197,82 @@ class State:
         """Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total."""
 
 @final
+@final
+class Simulation:
+    """A time simulation of a model (energy–momentum conserving integrator)."""
+
+    def step(self) -> None:
+        """Advance one time step dt."""
+    def run(self, t_end: float, progress: bool = True, record_every: int = 1) -> Results:
+        """Run to t_end (s); returns the current state and every record_every-th step after it."""
+    @property
+    def time(self) -> float:
+        """Current time (s)."""
+    @property
+    def dt(self) -> float:
+        """Time step (s)."""
+    @property
+    def state(self) -> State:
+        """The current state."""
+    @property
+    def supplied_work(self) -> float:
+        """Work supplied since the simulation started (J)."""
+    @property
+    def dissipated(self) -> float:
+        """Energy dissipated since the simulation started (J)."""
+    def linear_momentum(self) -> tuple[float, float, float]:
+        """Linear momentum (kg·m/s)."""
+    def angular_momentum(self) -> tuple[float, float, float]:
+        """Angular momentum about the origin (kg·m²/s)."""
+
+@final
+class Results:
+    """Time series of a run (SI units, frame e)."""
+
+    @property
+    def time(self) -> _FloatArray:
+        """Times (T,) (s)."""
+    @property
+    def positions(self) -> _FloatArray:
+        """Node positions (T, n + 1, 3) (m)."""
+    @property
+    def rotations(self) -> _FloatArray:
+        """Nodal rotations (T, n + 1, 3, 3)."""
+    @property
+    def velocities(self) -> _FloatArray:
+        """Node velocities (T, n + 1, 3) (m/s)."""
+    @property
+    def section_forces(self) -> _FloatArray:
+        """Material force and moment at element midpoints (T, n, 6)."""
+    @property
+    def tension(self) -> _FloatArray:
+        """Axial force at element midpoints (T, n) (N)."""
+    def reaction(self, end: _End) -> _FloatArray:
+        """Force and moment the rod exerts on the support at `end` (T, 6), in e."""
+    @property
+    def energy(self) -> dict[str, _FloatArray]:
+        """Energy parts (T,) each (J), keys as State.energy()."""
+    @property
+    def supplied_work(self) -> _FloatArray:
+        """Work done on the system since the start of the run (T,) (J)."""
+    @property
+    def dissipated(self) -> _FloatArray:
+        """Energy dissipated since the start of the run (T,) (J)."""
+    @property
+    def iterations(self) -> _FloatArray:
+        """Newton iterations of the step leading to each record (T,)."""
+    @property
+    def eta(self) -> list[float] | None:
+        """Vessel position η (T, 6), None without a vessel."""
+    @property
+    def nu(self) -> list[float] | None:
+        """Vessel velocity ν (T, 6), None without a vessel."""
+    @property
+    def tau(self) -> list[float] | None:
+        """Thrust τ (T, 6), None without a vessel."""
+    def __len__(self) -> int: ...
+
+@final
 class Model:
     """A rod with its sea, gravity (m/s², along +e3), supports and loads."""
 
@@ -193,6 +283,16 @@ class Model:
         """Clamp an end: position (3,) (m) and rotation (3, 3) held (defaults: the reference)."""
     def pin(self, end: _End, position: _ArrayLike | None = None) -> None:
         """Pin an end: position (3,) (m) held, rotation free (default: the reference node)."""
+    def drive(
+        self,
+        end: _End,
+        position: Callable[[float], _ArrayLike],
+        velocity: Callable[[float], _ArrayLike] | None = None,
+        rotation: Callable[[float], _ArrayLike] | None = None,
+    ) -> None:
+        """Drive an end: position(t) (m), initial velocity(t) (m/s), rotation(t) (3, 3); free rotation without it."""
+    def simulation(self, state: State | None = None, dt: float = 0.05) -> Simulation:
+        """A time simulation from `state` (default: self.static()) with time step `dt` (s)."""
     def point_load(
         self,
         node: int | _End,

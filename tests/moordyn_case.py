@@ -1,0 +1,294 @@
+"""The peer-code case shared by ``tests/test_moordyn.py`` and ``benches/moordyn_race.py``: one mooring line
+(a 90 mm steel wire rope) hanging between a fixed point and a moving one, run in pipelay and in MoorDyn v2.
+
+SI units. pipelay's frame e: origin at the fixed end A (node 0), e1 horizontal, e3 pointing down, the sea
+surface at z = −depth. MoorDyn's frame: z up, the surface at z = 0; the fixed end is at (0, 0, −depth) and
+the two frames are related by (x, y, z)_MoorDyn = (x, y, −depth − z)_e.
+
+The line (unstretched length 250 m) is pinned at A and its top end B starts at 150 m horizontally and 190 m
+above A, 10 m below the surface (static top tension ≈ 99.1 kN). From rest, B is driven in surge and heave
+at a 10 s period, the amplitudes growing over the first 10 s by a C² ramp (zero velocity and acceleration at
+t = 0, so the start is smooth and the initial velocity consistent):
+
+    x_B(t) = x0 + A_x r(t) sin(ωt),   z_B(t) = z0 + A_z r(t) sin(ωt + φ),
+    r(t) = 10 s³ − 15 s⁴ + 6 s⁵,  s = min(t / T_ramp, 1),
+
+with A_x = 8 m, A_z = 2 m (downwards first: e3 points down), ω = 2π/10 s, φ = 1 rad. The top tension then swings between
+about 60 and 210 kN: the line goes from near-taut to slack, with drag and inertia both mattering.
+
+How the two models are matched:
+
+* weight and buoyancy: both use w = (m − ρ_w π/4 d²) g = 328.4 N/m, the line fully submerged;
+* drag: normal Cd = 1.2 on the diameter d in both; axial drag off in both (pipelay refers its axial Cd to d,
+  MoorDyn to πd, so zero is the one value that means the same);
+* added mass: Ca = 1 in all directions, since pipelay's is isotropic (MoorDyn: Can = Cat = 1);
+* bending: MoorDyn's line has EI = 0. pipelay needs EI > 0: it gets EI = GJ = 10 N·m², whose bending length
+  √(EI/T) ≤ 3 cm at the lowest tension (≈ 10 kN) is far below the shortest element used (0.25 m at
+  n = 1000), so the line behaves as a cable. GA = EA;
+* internal damping: none. MoorDyn's default RK2 scheme is unstable without internal damping (BA = 0 blows up
+  within 3 s), so MoorDyn runs with its RK4 scheme and BA = 0, the same undamped physics as pipelay. (With
+  RK2 and BA/-zeta = −0.8 the top tension agrees with RK4/BA = 0 to 0.03 % of the mean at n = 50.);
+* seabed: no contact in either code. pipelay has none; MoorDyn's seabed is put 50 m below A (the line's
+  lowest point dips at most ≈ 1 m below A during the motion);
+* the top force is |F_B|, the magnitude of the force of the line on the support at B: pipelay's
+  ``reaction("B")``, MoorDyn's force on its coupled point (which includes the half-segment weight of the
+  end node, as pipelay's reaction does).
+
+MoorDyn is driven one internal step per ``Step`` call: at each call it gets the position of B at the start
+of the step and the secant velocity to the position at the end, so the prescribed motion is met exactly at
+every step.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import sys
+import tempfile
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+import pipelay as pl
+
+__all__ = [
+    "CASE",
+    "Case",
+    "Run",
+    "max_relative_error",
+    "moordyn_input",
+    "run_moordyn",
+    "run_pipelay",
+    "top_position",
+    "top_velocity",
+]
+
+
+@dataclass(frozen=True)
+class Case:
+    """The line, the sea and the drive. Lengths in m, masses in kg, forces in N, times in s."""
+
+    length: float = 250.0  # unstretched length (m)
+    diameter: float = 0.09  # outer (volume-equivalent) diameter (m)
+    mass: float = 40.0  # mass per unit length in air (kg/m)
+    ea: float = 4.0e8  # axial stiffness (N)
+    ei: float = 10.0  # pipelay's (small) bending stiffness (N·m²); MoorDyn uses 0
+    cd_normal: float = 1.2  # normal drag coefficient on d (-)
+    ca: float = 1.0  # added-mass coefficient, all directions (-)
+    rho_water: float = 1025.0  # sea-water density (kg/m³)
+    gravity: float = 9.81  # (m/s²)
+    depth: float = 200.0  # depth of the fixed end A below the surface (m)
+    x0: float = 150.0  # horizontal distance from A to B at rest (m)
+    rise: float = 190.0  # height of B above A at rest (m)
+    amp_x: float = 8.0  # surge amplitude (m)
+    amp_z: float = 2.0  # heave amplitude, downwards first (m)
+    period: float = 10.0  # drive period (s)
+    phase: float = 1.0  # heave phase lead over surge (rad)
+    ramp: float = 10.0  # duration of the amplitude ramp (s)
+    t_end: float = 25.0  # simulated time (s)
+
+    @property
+    def omega(self) -> float:
+        """Drive angular frequency (rad/s)."""
+        return 2.0 * math.pi / self.period
+
+    @property
+    def submerged_weight(self) -> float:
+        """(m − ρ_w π/4 d²) g (N/m)."""
+        return (self.mass - self.rho_water * math.pi / 4.0 * self.diameter**2) * self.gravity
+
+
+CASE = Case()
+
+
+@dataclass(frozen=True)
+class Run:
+    """A top-tension history: ``time`` (T,) in s, ``tension`` (T,) = |F_B| in N (``tension[0]`` is the static
+    value), the static top tension (N), wall time of the time integration alone (s) and the number of steps."""
+
+    time: np.ndarray
+    tension: np.ndarray
+    static_tension: float
+    wall: float
+    steps: int
+
+
+def _ramp(t: float, case: Case) -> tuple[float, float]:
+    """The C² amplitude ramp r(t) (-) and its rate r'(t) (1/s)."""
+    s = min(max(t / case.ramp, 0.0), 1.0)
+    r = s**3 * (10.0 - 15.0 * s + 6.0 * s * s)
+    rate = 30.0 * s * s * (1.0 - s) ** 2 / case.ramp
+    return r, rate
+
+
+def top_position(t: float, case: Case = CASE) -> tuple[float, float, float]:
+    """Position of B at time t (s), in pipelay's frame e (m)."""
+    r, _ = _ramp(t, case)
+    w = case.omega
+    return (
+        case.x0 + case.amp_x * r * math.sin(w * t),
+        0.0,
+        -case.rise + case.amp_z * r * math.sin(w * t + case.phase),
+    )
+
+
+def top_velocity(t: float, case: Case = CASE) -> tuple[float, float, float]:
+    """Velocity of B at time t (s), in pipelay's frame e (m/s)."""
+    r, rate = _ramp(t, case)
+    w = case.omega
+    return (
+        case.amp_x * (rate * math.sin(w * t) + r * w * math.cos(w * t)),
+        0.0,
+        case.amp_z * (rate * math.sin(w * t + case.phase) + r * w * math.cos(w * t + case.phase)),
+    )
+
+
+def pipelay_model(n: int, case: Case = CASE) -> pl.Model:
+    """The pipelay model with ``n`` elements: A pinned at the origin, B driven along ``top_position``."""
+    d, m = case.diameter, case.mass
+    section = pl.Section(
+        EA=case.ea,
+        GA=case.ea,
+        GJ=case.ei,
+        EI=case.ei,
+        mass=m,
+        inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
+        outer_diameter=d,
+        drag=(0.0, case.cd_normal),
+        added_mass=(case.ca, case.ca),
+    )
+    rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, section)
+    model = pl.Model(rod, sea=pl.Sea(case.depth, density=case.rho_water), gravity=case.gravity)
+    model.pin("A")
+    model.drive("B", position=lambda t: top_position(t, case), velocity=lambda t: top_velocity(t, case))
+    return model
+
+
+def run_pipelay(n: int, dt: float, case: Case = CASE, t_end: float | None = None) -> Run:
+    """Static equilibrium at t = 0, then the drive to ``t_end`` (s; default ``case.t_end``) with step ``dt`` (s)
+    on ``n`` elements. The static reaction replaces the first recorded sample (see the note in the test)."""
+    t_end = case.t_end if t_end is None else t_end
+    model = pipelay_model(n, case)
+    state = model.static()
+    static_tension = float(np.linalg.norm(state.reaction("B")[:3]))
+    sim = model.simulation(state=state, dt=dt)
+    steps = int(round(t_end / dt))
+    began = time.perf_counter()
+    res = sim.run(steps * dt, progress=False, record_every=1)
+    wall = time.perf_counter() - began
+    tension = np.linalg.norm(res.reaction("B")[:, :3], axis=1)
+    tension[0] = static_tension
+    return Run(np.asarray(res.time), tension, static_tension, wall, len(res.time) - 1)
+
+
+def moordyn_input(n: int, dt: float, case: Case = CASE, scheme: str = "RK4", ba: float = 0.0) -> str:
+    """The MoorDyn v2 input file for ``n`` segments, internal step ``dt`` (s), time scheme ``scheme`` and internal
+    damping ``ba`` (N·s; negative: minus the damping ratio)."""
+    top = _to_moordyn(top_position(0.0, case), case)
+    return f"""--------------------- MoorDyn Input File ------------------------------------
+pipelay peer comparison: steel wire rope between a fixed point and a driven one
+---------------------- LINE TYPES ------------------------------------------------------
+TypeName  Diam  Mass/m  EA  BA/-zeta  EI  Cd  Ca  CdAx  CaAx
+(name)  (m)  (kg/m)  (N)  (N-s/-)  (N-m^2)  (-)  (-)  (-)  (-)
+rope  {case.diameter!r}  {case.mass!r}  {case.ea!r}  {ba!r}  0.0  {case.cd_normal!r}  {case.ca!r}  0.0  {case.ca!r}
+---------------------- POINTS ----------------------------------------------------------
+ID  Attachment  X  Y  Z  Mass  Volume  CdA  Ca
+(#)  (word/ID)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)
+1  Fixed  0.0  0.0  {-case.depth!r}  0  0  0  0
+2  Coupled  {top[0]!r}  {top[1]!r}  {top[2]!r}  0  0  0  0
+---------------------- LINES -----------------------------------------------------------
+ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)  (name)  (ID)  (ID)  (m)  (-)  (-)
+1  rope  1  2  {case.length!r}  {n}  -
+---------------------- OPTIONS ---------------------------------------------------------
+0  writeLog
+{dt!r}  dtM
+{scheme}  tScheme
+{case.gravity!r}  g
+{case.rho_water!r}  rho
+{case.depth + 50.0!r}  WtrDpth
+1.0  dtIC
+300.0  TmaxIC
+1e-7  threshIC
+1  disableOutput
+1  disableOutTime
+------------------------- need this line -----------------------------------------------
+"""
+
+
+def _to_moordyn(p: tuple[float, float, float] | np.ndarray, case: Case) -> np.ndarray:
+    """A position (m) or, with ``case.depth`` dropped, a velocity in e, in MoorDyn's frame (z up, surface 0)."""
+    return np.array([p[0], p[1], -case.depth - p[2]])
+
+
+@contextlib.contextmanager
+def _quiet() -> Iterator[None]:
+    """Silence the C library's own prints on file descriptors 1 and 2 (MoorDyn's banner and log)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(1), os.dup(2)]
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        os.dup2(devnull, 2)
+        yield
+    finally:
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for fd in (*saved, devnull):
+            os.close(fd)
+
+
+def run_moordyn(
+    n: int,
+    dt: float,
+    case: Case = CASE,
+    t_end: float | None = None,
+    scheme: str = "RK4",
+    ba: float = 0.0,
+) -> Run:
+    """MoorDyn on ``n`` segments with internal (and coupling) step ``dt`` (s) to ``t_end`` (s; default
+    ``case.t_end``): its static initial condition with B at ``top_position(0)``, then one ``Step`` per ``dt``.
+    Raises RuntimeError if MoorDyn fails (e.g. goes unstable: NaN)."""
+    import moordyn
+
+    t_end = case.t_end if t_end is None else t_end
+    steps = int(round(t_end / dt))
+    with tempfile.TemporaryDirectory(prefix="pipelay-moordyn-") as folder:
+        path = os.path.join(folder, "line.txt")
+        with open(path, "w", encoding="utf-8") as handle:
+            handle.write(moordyn_input(n, dt, case, scheme, ba))
+        with _quiet():
+            system = moordyn.Create(path)
+            moordyn.SetVerbosity(system, moordyn.LEVEL_ERR)
+            x = _to_moordyn(top_position(0.0, case), case)
+            err = moordyn.Init(system, x, np.zeros(3))
+        try:
+            if err != 0:
+                raise RuntimeError(f"MoorDyn Init failed with error code {err}")
+            static_tension = float(np.linalg.norm(moordyn.Step(system, x, np.zeros(3), 0.0, 0.0)))
+            # the drive, sampled once, in MoorDyn's frame
+            times = np.arange(steps + 1) * dt
+            path_e = np.array([top_position(t, case) for t in times])
+            path_md = np.column_stack([path_e[:, 0], path_e[:, 1], -case.depth - path_e[:, 2]])
+            velocities = np.diff(path_md, axis=0) / dt
+            tension = np.empty(steps + 1)
+            tension[0] = static_tension
+            step = moordyn.Step
+            began = time.perf_counter()
+            for k in range(steps):
+                force = step(system, path_md[k], velocities[k], times[k], dt)
+                tension[k + 1] = math.sqrt(force[0] * force[0] + force[1] * force[1] + force[2] * force[2])
+            wall = time.perf_counter() - began
+        finally:
+            moordyn.Close(system)
+    return Run(times, tension, static_tension, wall, steps)
+
+
+def max_relative_error(run: Run, reference: Run) -> float:
+    """max |T − T_ref| over the run, the reference interpolated at ``run.time``, relative to the mean of
+    the reference (-)."""
+    ref = np.interp(run.time, reference.time, reference.tension)
+    return float(np.max(np.abs(run.tension - ref)) / np.mean(reference.tension))
