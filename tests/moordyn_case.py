@@ -168,7 +168,13 @@ def pipelay_model(n: int, case: Case = CASE) -> pl.Model:
 
 def run_pipelay(n: int, dt: float, case: Case = CASE, t_end: float | None = None) -> Run:
     """Static equilibrium at t = 0, then the drive to ``t_end`` (s; default ``case.t_end``) with step ``dt`` (s)
-    on ``n`` elements. The static reaction replaces the first recorded sample (see the note in the test)."""
+    on ``n`` elements.
+
+    Two things about pipelay's recorded reactions (this version): the sample recorded at t = 0 is zero (the
+    simulation's initial state carries no reaction), so the static reaction takes its place; and the sample
+    recorded at t_{k+1} is the energy–momentum scheme's algorithmic force of the step, the average of the
+    end-of-step values, which is second-order accurate at the step's midpoint t_k + dt/2 and only first-order
+    at t_{k+1}. The history is therefore returned at the midpoints."""
     t_end = case.t_end if t_end is None else t_end
     model = pipelay_model(n, case)
     state = model.static()
@@ -180,7 +186,9 @@ def run_pipelay(n: int, dt: float, case: Case = CASE, t_end: float | None = None
     wall = time.perf_counter() - began
     tension = np.linalg.norm(res.reaction("B")[:, :3], axis=1)
     tension[0] = static_tension
-    return Run(np.asarray(res.time), tension, static_tension, wall, len(res.time) - 1)
+    times = np.asarray(res.time) - 0.5 * dt
+    times[0] = 0.0
+    return Run(times, tension, static_tension, wall, len(res.time) - 1)
 
 
 def moordyn_input(n: int, dt: float, case: Case = CASE, scheme: str = "RK4", ba: float = 0.0) -> str:

@@ -18,5 +18,6 @@ pub mod rod;
 pub mod section;
 pub mod so3;
 pub mod statics;
+pub mod vessel;
 
 pub use error::{Error, Result};
