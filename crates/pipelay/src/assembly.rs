@@ -1,10 +1,13 @@
 //! Global assembly: the residual r = f_int − f_ext over all nodal DOFs and the tangent K = ∂r/∂q on
 //! the free DOFs, scattered into a fixed sparse pattern (node-major [x_a, θ_a], block tridiagonal).
+use crate::coupling::{static_forces, StaticTarget};
 use crate::hydro::element_current_drag;
 use crate::linsolve::SparseLu;
 use crate::model::Model;
+use crate::model::VesselAttachment;
 use crate::rod::element::{evaluate, ElementMatrix};
-use nalgebra::{Matrix6, UnitQuaternion, Vector3};
+use crate::so3::exp_quat;
+use nalgebra::{Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// Degrees of freedom per node: position (3) and spatial spin (3).
 pub const NODE_DOFS: usize = 6;
@@ -90,6 +93,14 @@ pub struct Assembler {
     pub point_load_scales: Vec<f64>,
     /// For each node, the value position of each entry of its 6×6 diagonal block (FIXED when not free).
     node_scatter: Vec<[u32; 36]>,
+    /// How far a vessel's static target has moved from the end node's reference pose (0 to 1).
+    pub vessel_motion: f64,
+    /// The holding thrust of the last static assembly (body frame).
+    pub vessel_thrust: Vector6<f64>,
+    /// The vessel's force and moment on its node in the last static assembly (spatial).
+    pub vessel_force: Vector6<f64>,
+    /// Size of the vessel's static force in the last assembly (N).
+    pub external_vessel_norm: f64,
 }
 
 /// Relative size of the shift added to the rotational diagonal of the tangent. It removes the exact
@@ -166,6 +177,10 @@ impl Assembler {
             })
             .collect();
         Assembler {
+            vessel_motion: 1.0,
+            vessel_thrust: Vector6::zeros(),
+            vessel_force: Vector6::zeros(),
+            external_vessel_norm: 0.0,
             node_scatter,
             rotation_diagonal,
             point_load_scales: vec![1.0; model.point_loads.len()],
@@ -270,18 +285,74 @@ impl Assembler {
                 self.external[base + 3 + i] += scale * load.moment[i];
             }
         }
-        if with_tangent {
-            self.shift_rotations();
-        }
         let mut external_norm2 = 0.0;
         for (r, f) in self.residual.iter_mut().zip(&self.external) {
             *r -= load_factor * f;
             external_norm2 += (load_factor * f).powi(2);
         }
+        self.external_vessel_norm = 0.0;
+        if let Some(attachment) = &model.vessel {
+            self.add_static_vessel(model, attachment, config, with_tangent);
+        }
+        if with_tangent {
+            self.shift_rotations();
+        }
         AssemblySummary {
-            external_norm: external_norm2.sqrt(),
+            external_norm: external_norm2.sqrt().max(self.external_vessel_norm),
             strain_energy,
             max_element_rotation,
+        }
+    }
+
+    /// The vessel's static forces on its node (restoring, holding springs) with their tangent by central
+    /// differences; records the holding thrust.
+    fn add_static_vessel(
+        &mut self,
+        model: &Model,
+        attachment: &VesselAttachment,
+        config: &Configuration,
+        with_tangent: bool,
+    ) {
+        let node = attachment.node;
+        let target = StaticTarget::at(
+            attachment,
+            &model.rod.nodes[node],
+            &model.rod.frames[node],
+            self.vessel_motion,
+        );
+        let forces = |position: &Vector3<f64>, rotation: &UnitQuaternion<f64>| {
+            static_forces(attachment, position, rotation, &target)
+        };
+        let (position, rotation) = (config.positions[node], config.rotations[node]);
+        let (force, thrust) = forces(&position, &rotation);
+        self.vessel_thrust = thrust;
+        self.vessel_force = force;
+        let base = NODE_DOFS * node;
+        for i in 0..NODE_DOFS {
+            self.residual[base + i] -= force[i];
+        }
+        self.external_vessel_norm = force.norm();
+        if with_tangent {
+            let mut block = Matrix6::zeros();
+            for j in 0..NODE_DOFS {
+                let h = if j < 3 {
+                    1e-6 * (1.0 + position.norm())
+                } else {
+                    1e-7
+                };
+                let perturbed = |step: f64| {
+                    let mut delta = Vector3::zeros();
+                    delta[j % 3] = step;
+                    if j < 3 {
+                        forces(&(position + delta), &rotation).0
+                    } else {
+                        forces(&position, &(exp_quat(&delta) * rotation)).0
+                    }
+                };
+                let column = (perturbed(h) - perturbed(-h)) / (2.0 * h);
+                block.set_column(j, &(-column));
+            }
+            self.add_node_matrix(node, &block);
         }
     }
 

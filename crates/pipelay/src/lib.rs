@@ -6,6 +6,7 @@
 //! stepping), [`response`] (what users read off a state).
 pub mod assembly;
 pub mod catenary;
+pub mod coupling;
 pub mod dynamics;
 pub mod error;
 pub mod euler;

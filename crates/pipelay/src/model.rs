@@ -183,6 +183,8 @@ pub struct Model {
     pub gravity: f64,
     pub supports: Vec<Support>,
     pub point_loads: Vec<PointLoad>,
+    /// A vessel holding one end, if any.
+    pub vessel: Option<VesselAttachment>,
 }
 
 impl Model {
@@ -195,6 +197,7 @@ impl Model {
             gravity,
             supports: Vec::new(),
             point_loads: Vec::new(),
+            vessel: None,
         })
     }
 
@@ -309,6 +312,61 @@ impl Model {
         Ok(())
     }
 
+    /// Attaches a vessel to an end (which must not also be supported). `angle` is β, zyx Euler angles of
+    /// R_b^t (rad); `eta` the starting pose; the sea gives the surface where restoring vanishes.
+    pub fn attach_vessel(
+        &mut self,
+        end: &str,
+        vessel: crate::vessel::Vessel,
+        eta: nalgebra::Vector6<f64>,
+        angle: Vector3<f64>,
+        controller: Option<Pid>,
+        environment: Vec<EnvironmentForce>,
+    ) -> Result<()> {
+        let node = self.end_node(end)?;
+        finite("eta", eta.as_slice())?;
+        finite("angle", angle.as_slice())?;
+        let Some(sea) = &self.sea else {
+            return Err(Error::input(
+                "sea",
+                "None",
+                "a vessel needs a sea (pl.Sea) to float in",
+            ));
+        };
+        if let Some(c) = &controller {
+            for (name, m) in [("kp", &c.kp), ("kd", &c.kd), ("ki", &c.ki)] {
+                finite(name, m.as_slice())?;
+            }
+            finite("reference", c.reference.as_slice())?;
+            finite("start", &[c.start])?;
+            if let Some(limit) = &c.integral_limit {
+                for &l in limit.iter() {
+                    crate::error::positive("integral_limit", l, "(units of η·s)")?;
+                }
+            }
+            if let Some(limit) = &c.thrust_limit {
+                for &l in limit.iter() {
+                    crate::error::positive("thrust_limit", l, "N (surge, sway), N·m (yaw)")?;
+                }
+            }
+        }
+        for force in &environment {
+            finite("environment", force.value.as_slice())?;
+            finite("environment start", &[force.start])?;
+        }
+        self.supports.retain(|s| s.node != node);
+        self.vessel = Some(VesselAttachment {
+            node,
+            surface: -sea.depth,
+            vessel,
+            angle: crate::euler::rotation(&angle),
+            eta,
+            controller,
+            environment,
+        });
+        Ok(())
+    }
+
     /// Where every support holds its node at time t (s).
     pub fn support_targets(&self, time: f64) -> Result<Vec<SupportTarget>> {
         self.supports.iter().map(|s| s.target(time)).collect()
@@ -357,4 +415,44 @@ impl Model {
             None => (0.0, 0.0),
         }
     }
+}
+
+/// A PID controller on the vessel's η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref,
+/// active from `start`; thrust acts in surge, sway and yaw only.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pid {
+    pub kp: nalgebra::Matrix6<f64>,
+    pub kd: nalgebra::Matrix6<f64>,
+    pub ki: nalgebra::Matrix6<f64>,
+    /// η_ref = [x, y, z, φ, θ, ψ] in e (m, rad).
+    pub reference: nalgebra::Vector6<f64>,
+    /// Time the controller starts (s).
+    pub start: f64,
+    /// Bound on each component of ∫η̃ (keeps the PID passive, §III.B); `None`: unbounded.
+    pub integral_limit: Option<nalgebra::Vector6<f64>>,
+    /// Bounds on the thrust in surge (N), sway (N) and yaw (N·m); `None`: unbounded.
+    pub thrust_limit: Option<Vector3<f64>>,
+}
+
+/// A constant environmental force and moment on the vessel (body frame), from `start` (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnvironmentForce {
+    pub value: nalgebra::Vector6<f64>,
+    pub start: f64,
+}
+
+/// A vessel holding one end of the rod (eq. 5): the rod's end node is the vessel's reference point CO,
+/// and the rod's end frame is R_t^e(L) = R_b^e R_b^tᵀ with the fixed clamp angle R_b^t(β).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VesselAttachment {
+    pub node: usize,
+    pub vessel: crate::vessel::Vessel,
+    /// R_b^t(β): the body frame in the pipe-end frame.
+    pub angle: nalgebra::Matrix3<f64>,
+    /// Starting pose η = [x, y, z, φ, θ, ψ] in e.
+    pub eta: nalgebra::Vector6<f64>,
+    pub controller: Option<Pid>,
+    pub environment: Vec<EnvironmentForce>,
+    /// Elevation of the calm sea surface z_0 = −depth, where restoring vanishes (m).
+    pub surface: f64,
 }

@@ -15,6 +15,18 @@ pub struct Response {
     pub strain_energy: f64,
     /// Potential of the submerged weight (J), zero at z = 0.
     pub gravity_energy: f64,
+    /// With a vessel: its pose η, the holding thrust τ and the pipe's force on it χ (body frame), and its
+    /// restoring energy (J).
+    pub vessel: Option<VesselResponse>,
+}
+
+/// Static quantities of an attached vessel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VesselResponse {
+    pub eta: Vector6<f64>,
+    pub thrust: Vector6<f64>,
+    pub pipe_force: Vector6<f64>,
+    pub restoring_energy: f64,
 }
 
 impl Response {
@@ -63,7 +75,31 @@ impl Response {
             .chunks_exact(NODE_DOFS)
             .map(|r| -Vector6::from_column_slice(r))
             .collect();
+        let vessel = model.vessel.as_ref().map(|attachment| {
+            let node = attachment.node;
+            let body = crate::coupling::body_rotation(attachment, &config.rotations[node]);
+            let position = config.positions[node];
+            let force = assembler.vessel_force;
+            let mut pipe_force = Vector6::zeros();
+            pipe_force
+                .fixed_rows_mut::<3>(0)
+                .copy_from(&(-(body.transpose() * force.fixed_rows::<3>(0))));
+            pipe_force
+                .fixed_rows_mut::<3>(3)
+                .copy_from(&(-(body.transpose() * force.fixed_rows::<3>(3))));
+            VesselResponse {
+                eta: crate::coupling::eta_of(&position, &body),
+                thrust: assembler.vessel_thrust,
+                pipe_force,
+                restoring_energy: attachment.vessel.restoring_energy(
+                    &position,
+                    &body,
+                    attachment.surface,
+                ),
+            }
+        });
         Response {
+            vessel,
             section_forces,
             nodal_reactions,
             strain_energy: summary.strain_energy,

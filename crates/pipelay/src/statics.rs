@@ -331,10 +331,25 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         .map(|load| load.scale_at(0.0))
         .collect::<Result<_>>()?;
     let mut iterations = 0;
+    // A vessel holds its end where η puts it, upright at the surface: a target for the catenary guess.
+    let mut guess_targets = targets.clone();
+    if let Some(attachment) = &model.vessel {
+        let mut upright = attachment.eta;
+        upright[2] = attachment.surface;
+        upright[3] = 0.0;
+        upright[4] = 0.0;
+        guess_targets.push(SupportTarget {
+            node: attachment.node,
+            position: upright.fixed_rows::<3>(0).into_owned(),
+            rotation: Some(quat_from_matrix(&crate::coupling::node_rotation(
+                attachment, &upright,
+            ))),
+        });
+    }
     let catenary = match options.start {
         Start::Reference => None,
-        Start::Auto => catenary_guess(model, &targets),
-        Start::Catenary => Some(catenary_guess(model, &targets).ok_or_else(|| {
+        Start::Auto => catenary_guess(model, &guess_targets),
+        Start::Catenary => Some(catenary_guess(model, &guess_targets).ok_or_else(|| {
             Error::input(
                 "start",
                 "\"catenary\"",
@@ -372,6 +387,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         let point = PathPoint::at(target);
         let mut trial = config.clone();
         let increment = support_increment(model, &targets, &trial, point.support);
+        assembler.vessel_motion = point.support;
         let moves = increment.iter().any(|&du| du != 0.0);
         let outcome = newton(
             model,

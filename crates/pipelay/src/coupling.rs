@@ -1,0 +1,321 @@
+//! The vessel on the rod's end node (eqs. 5, 22–23): the node is the vessel's reference point and turns
+//! with it, so pipe and vessel share the node's unknowns and the interface does no spurious work.
+//!
+//! Statics: heave, roll and pitch find their equilibrium against the hydrostatic restoring; surge, sway and
+//! yaw are held at η by stiff springs whose force is the holding thrust (or, with a controller active at
+//! t = 0, by the controller's K_p). Dynamics: the vessel's momentum-form step of [`crate::vessel`], with
+//! damping, thrust (hold or PID) and environment as a body-frame generalised force at the step midpoint.
+use crate::euler;
+use crate::model::{Pid, VesselAttachment};
+use crate::so3::{cayley, exp, log};
+use crate::vessel::{vessel_step, VesselState};
+use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
+
+/// Stiffness of the holding springs relative to the vessel's heave restoring G33 (translation) and pitch
+/// restoring G55 (yaw): large enough that η is held to ~1e-6 m, small enough for a well-conditioned tangent.
+const HOLD_STIFFNESS: f64 = 1e6;
+
+/// The vessel's frame from the end node's: Λ_B = Λ_N R_b^t.
+pub fn body_rotation(
+    attachment: &VesselAttachment,
+    node_rotation: &UnitQuaternion<f64>,
+) -> Matrix3<f64> {
+    node_rotation.to_rotation_matrix().into_inner() * attachment.angle
+}
+
+/// The end node's frame for a vessel pose: Λ_N = R(Θ) R_b^tᵀ.
+pub fn node_rotation(attachment: &VesselAttachment, eta: &Vector6<f64>) -> Matrix3<f64> {
+    euler::rotation(&eta.fixed_rows::<3>(3).into_owned()) * attachment.angle.transpose()
+}
+
+/// η = [x, y, z, φ, θ, ψ] of a pose.
+pub fn eta_of(position: &Vector3<f64>, body: &Matrix3<f64>) -> Vector6<f64> {
+    let angles = euler::angles_from_rotation(body);
+    Vector6::new(
+        position.x, position.y, position.z, angles.x, angles.y, angles.z,
+    )
+}
+
+/// Wraps an angle to (−π, π].
+fn wrap(angle: f64) -> f64 {
+    let two_pi = std::f64::consts::TAU;
+    let a = angle.rem_euclid(two_pi);
+    if a > std::f64::consts::PI {
+        a - two_pi
+    } else {
+        a
+    }
+}
+
+/// η − η_ref with angles wrapped.
+pub fn eta_error(eta: &Vector6<f64>, reference: &Vector6<f64>) -> Vector6<f64> {
+    let mut e = eta - reference;
+    for k in 3..6 {
+        e[k] = wrap(e[k]);
+    }
+    e
+}
+
+/// Keeps thrust to surge, sway and yaw, within the limits.
+fn thrust_only(mut tau: Vector6<f64>, limit: Option<&Vector3<f64>>) -> Vector6<f64> {
+    tau[2] = 0.0;
+    tau[3] = 0.0;
+    tau[4] = 0.0;
+    if let Some(limit) = limit {
+        for (k, l) in [(0, limit.x), (1, limit.y), (5, limit.z)] {
+            tau[k] = tau[k].clamp(-l, l);
+        }
+    }
+    tau
+}
+
+/// The target pose of the vessel in statics at support motion μ: from the end node's reference pose to η's
+/// x, y and heading at the surface, upright.
+#[derive(Debug, Clone, Copy)]
+pub struct StaticTarget {
+    pub position: Vector3<f64>,
+    pub rotation: Matrix3<f64>,
+    /// Surface elevation for the restoring at this μ.
+    pub surface: f64,
+}
+
+impl StaticTarget {
+    pub fn at(
+        attachment: &VesselAttachment,
+        reference_position: &Vector3<f64>,
+        reference_rotation: &UnitQuaternion<f64>,
+        motion: f64,
+    ) -> Self {
+        let final_position = Vector3::new(attachment.eta[0], attachment.eta[1], attachment.surface);
+        let final_rotation = euler::rotation(&Vector3::new(0.0, 0.0, attachment.eta[5]));
+        let start_rotation = body_rotation(attachment, reference_rotation);
+        let turn = log(&(final_rotation * start_rotation.transpose()));
+        StaticTarget {
+            position: reference_position + motion * (final_position - reference_position),
+            rotation: exp(&(motion * turn)) * start_rotation,
+            surface: reference_position.z + motion * (attachment.surface - reference_position.z),
+        }
+    }
+}
+
+/// Static forces of the vessel on the end node (spatial force and moment, work-conjugate to (Δx, θ)) and
+/// the holding thrust (body frame): restoring of the body toward the target's heave, roll and pitch, and
+/// holding springs (or the active controller's K_p) in surge, sway and yaw.
+pub fn static_forces(
+    attachment: &VesselAttachment,
+    position: &Vector3<f64>,
+    node_rotation: &UnitQuaternion<f64>,
+    target: &StaticTarget,
+) -> (Vector6<f64>, Vector6<f64>) {
+    let vessel = &attachment.vessel;
+    let body = body_rotation(attachment, node_rotation);
+    let e3 = Vector3::z();
+    // Restoring toward the target: V = ½(q − q_t)ᵀG_r(q − q_t), q = (z − z0, (Λe2)·e3, −(Λe1)·e3).
+    let q = crate::vessel::Vessel::restoring_coordinates(position, &body, target.surface);
+    let q_target = crate::vessel::Vessel::restoring_coordinates(
+        &target.position,
+        &target.rotation,
+        target.surface,
+    );
+    let g = Matrix3::from_fn(|i, j| vessel.restoring[(i + 2, j + 2)]);
+    let gradient = g * (q - q_target);
+    let mut force = -gradient[0] * e3;
+    let mut moment =
+        -(gradient[1] * body.column(1).cross(&e3) - gradient[2] * body.column(0).cross(&e3));
+    // Surge, sway, yaw.
+    let (hold_force, hold_moment) = match attachment.controller.as_ref().filter(|c| c.start <= 0.0)
+    {
+        Some(controller) => controller_static(controller, position, &body),
+        None => {
+            // Thrusters push along the body's surge and sway axes and turn it about its heave axis.
+            let k = HOLD_STIFFNESS * vessel.restoring[(2, 2)].max(1.0);
+            let k_yaw = HOLD_STIFFNESS * vessel.restoring[(4, 4)].max(1.0);
+            let horizontal = position - target.position;
+            let offset = body.transpose() * Vector3::new(horizontal.x, horizontal.y, 0.0);
+            let f = body * Vector3::new(-k * offset.x, -k * offset.y, 0.0);
+            // Yaw error ≈ (Λe1)·(R_t e2).
+            let yaw_error = body.column(0).dot(&target.rotation.column(1));
+            let m = body * Vector3::new(0.0, 0.0, -k_yaw * yaw_error);
+            (f, m)
+        }
+    };
+    force += hold_force;
+    moment += hold_moment;
+    let mut thrust = Vector6::zeros();
+    thrust
+        .fixed_rows_mut::<3>(0)
+        .copy_from(&(body.transpose() * hold_force));
+    thrust
+        .fixed_rows_mut::<3>(3)
+        .copy_from(&(body.transpose() * hold_moment));
+    let mut out = Vector6::zeros();
+    out.fixed_rows_mut::<3>(0).copy_from(&force);
+    out.fixed_rows_mut::<3>(3).copy_from(&moment);
+    (out, thrust_only(thrust, None))
+}
+
+/// The controller's static force: −Jᵀ(η)K_p η̃ in surge, sway and yaw, as spatial force and moment.
+fn controller_static(
+    controller: &Pid,
+    position: &Vector3<f64>,
+    body: &Matrix3<f64>,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let eta = eta_of(position, body);
+    let tau = pid_thrust(controller, &eta, &Vector6::zeros(), &Vector6::zeros());
+    (body * tau.fixed_rows::<3>(0), body * tau.fixed_rows::<3>(3))
+}
+
+/// τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i z) (body frame), thrust in surge, sway, yaw within the limits.
+pub fn pid_thrust(
+    controller: &Pid,
+    eta: &Vector6<f64>,
+    velocity: &Vector6<f64>,
+    integral: &Vector6<f64>,
+) -> Vector6<f64> {
+    let error = eta_error(eta, &controller.reference);
+    let jacobian = euler::jacobian(eta).unwrap_or_else(Matrix6::identity);
+    let rate = jacobian * velocity;
+    let tau_pid = controller.kp * error + controller.kd * rate + controller.ki * integral;
+    thrust_only(
+        -jacobian.transpose() * tau_pid,
+        controller.thrust_limit.as_ref(),
+    )
+}
+
+/// The vessel's part of the end node's residual in a time step, with its tangent by central differences
+/// (a 6×6 block), the body-frame thrust and the step's work.
+pub struct DynamicVessel<'a> {
+    pub attachment: &'a VesselAttachment,
+    /// ν at step n.
+    pub velocity: Vector6<f64>,
+    /// ∫η̃ at step n.
+    pub integral: Vector6<f64>,
+    /// Thrust applied before the controller starts (the static holding thrust).
+    pub hold_thrust: Vector6<f64>,
+}
+
+/// Outcome of the vessel's contribution at trial increments.
+#[derive(Debug, Clone, Copy)]
+pub struct VesselContribution {
+    pub residual: Vector6<f64>,
+    pub tangent: Matrix6<f64>,
+    pub velocity_next: Vector6<f64>,
+    pub velocity_mid: Vector6<f64>,
+    pub thrust: Vector6<f64>,
+    /// η̃ at the midpoint (for the integral update).
+    pub error_mid: Vector6<f64>,
+    /// Work of thrust and environment, Δt ν_{n+½}·(τ + w) (J).
+    pub supplied: f64,
+    /// Δt ν_{n+½}·D(ν_{n+½}) (J).
+    pub dissipated: f64,
+}
+
+impl DynamicVessel<'_> {
+    /// Body-frame generalised force at the midpoint and the thrust in it.
+    fn body_force(
+        &self,
+        position_mid: &Vector3<f64>,
+        body_mid: &Matrix3<f64>,
+        velocity_mid: &Vector6<f64>,
+        time_mid: f64,
+        dt: f64,
+    ) -> (Vector6<f64>, Vector6<f64>, Vector6<f64>) {
+        let attachment = self.attachment;
+        let eta = eta_of(position_mid, body_mid);
+        let (thrust, error) = match attachment
+            .controller
+            .as_ref()
+            .filter(|c| time_mid >= c.start)
+        {
+            Some(controller) => {
+                let error = eta_error(&eta, &controller.reference);
+                let integral = clamp_integral(controller, &(self.integral + 0.5 * dt * error));
+                (pid_thrust(controller, &eta, velocity_mid, &integral), error)
+            }
+            None => (self.hold_thrust, Vector6::zeros()),
+        };
+        let environment: Vector6<f64> = attachment
+            .environment
+            .iter()
+            .filter(|w| time_mid >= w.start)
+            .map(|w| w.value)
+            .sum();
+        let force = thrust + environment - attachment.vessel.damping_force(velocity_mid);
+        (force, thrust, error)
+    }
+
+    /// Residual, tangent and work at increments (Δx, θ) of the end node, whose state at n is given.
+    pub fn contribution(
+        &self,
+        position: &Vector3<f64>,
+        node_rotation: &UnitQuaternion<f64>,
+        increment: &Vector6<f64>,
+        dt: f64,
+        time_mid: f64,
+    ) -> VesselContribution {
+        let attachment = self.attachment;
+        let body = body_rotation(attachment, node_rotation);
+        let state = VesselState {
+            position: *position,
+            rotation: UnitQuaternion::from_matrix(&body),
+            velocity: self.velocity,
+        };
+        let evaluate = |inc: &Vector6<f64>| {
+            let dx = inc.fixed_rows::<3>(0).into_owned();
+            let theta = inc.fixed_rows::<3>(3).into_owned();
+            let position_mid = position + 0.5 * dx;
+            let body_mid = cayley(&(0.5 * theta)) * body;
+            let step = vessel_step(
+                &attachment.vessel,
+                &state,
+                inc,
+                dt,
+                attachment.surface,
+                &|v| self.body_force(&position_mid, &body_mid, v, time_mid, dt).0,
+            );
+            let (_, thrust, error) =
+                self.body_force(&position_mid, &body_mid, &step.velocity_mid, time_mid, dt);
+            (step, thrust, error)
+        };
+        let (step, thrust, error_mid) = evaluate(increment);
+        let mut tangent = Matrix6::zeros();
+        for j in 0..6 {
+            let h = if j < 3 {
+                1e-6 * (1.0 + increment.fixed_rows::<3>(0).norm())
+            } else {
+                1e-7
+            };
+            let mut plus = *increment;
+            plus[j] += h;
+            let mut minus = *increment;
+            minus[j] -= h;
+            let column = (evaluate(&plus).0.residual - evaluate(&minus).0.residual) / (2.0 * h);
+            tangent.set_column(j, &column);
+        }
+        let environment: Vector6<f64> = attachment
+            .environment
+            .iter()
+            .filter(|w| time_mid >= w.start)
+            .map(|w| w.value)
+            .sum();
+        let v = step.velocity_mid;
+        VesselContribution {
+            residual: step.residual,
+            tangent,
+            velocity_next: step.velocity_next,
+            velocity_mid: v,
+            thrust,
+            error_mid,
+            supplied: dt * v.dot(&(thrust + environment)),
+            dissipated: dt * v.dot(&attachment.vessel.damping_force(&v)),
+        }
+    }
+}
+
+/// ∫η̃ within the controller's bound.
+pub fn clamp_integral(controller: &Pid, integral: &Vector6<f64>) -> Vector6<f64> {
+    match &controller.integral_limit {
+        Some(limit) => integral.zip_map(limit, |z, l| z.clamp(-l, l)),
+        None => *integral,
+    }
+}
