@@ -13,8 +13,8 @@ t = 0, so the start is smooth and the initial velocity consistent):
     x_B(t) = x0 + A_x r(t) sin(ωt),   z_B(t) = z0 + A_z r(t) sin(ωt + φ),
     r(t) = 10 s³ − 15 s⁴ + 6 s⁵,  s = min(t / T_ramp, 1),
 
-with A_x = 8 m, A_z = 2 m (downwards first: e3 points down), ω = 2π/10 s, φ = 1 rad. The top tension then swings between
-about 60 and 210 kN: the line goes from near-taut to slack, with drag and inertia both mattering.
+with A_x = 8 m, A_z = 2 m (downwards first: e3 points down), ω = 2π/10 s, φ = 1 rad, run to t = 25 s.
+The top tension then swings between 64 and 228 kN (mean 115 kN); the line's lowest tension is ≈ 5 kN.
 
 How the two models are matched:
 
@@ -23,11 +23,11 @@ How the two models are matched:
   MoorDyn to πd, so zero is the one value that means the same);
 * added mass: Ca = 1 in all directions, since pipelay's is isotropic (MoorDyn: Can = Cat = 1);
 * bending: MoorDyn's line has EI = 0. pipelay needs EI > 0: it gets EI = GJ = 10 N·m², whose bending length
-  √(EI/T) ≤ 3 cm at the lowest tension (≈ 10 kN) is far below the shortest element used (0.25 m at
+  √(EI/T) ≤ 5 cm even at the lowest tension (≈ 5 kN) is far below the shortest element used (0.25 m at
   n = 1000), so the line behaves as a cable. GA = EA;
 * internal damping: none. MoorDyn's default RK2 scheme is unstable without internal damping (BA = 0 blows up
-  within 3 s), so MoorDyn runs with its RK4 scheme and BA = 0, the same undamped physics as pipelay. (With
-  RK2 and BA/-zeta = −0.8 the top tension agrees with RK4/BA = 0 to 0.03 % of the mean at n = 50.);
+  within 3 s), so MoorDyn runs with its RK4 scheme and BA = 0, the same undamped physics as pipelay. (MoorDyn's
+  usual BA/-zeta = −0.8 changes the top tension by at most 0.10 % of the mean at n = 50, with RK2 or RK4.);
 * seabed: no contact in either code. pipelay has none; MoorDyn's seabed is put 50 m below A (the line's
   lowest point dips at most ≈ 1 m below A during the motion);
 * the top force is |F_B|, the magnitude of the force of the line on the support at B: pipelay's
@@ -35,8 +35,10 @@ How the two models are matched:
   end node, as pipelay's reaction does).
 
 MoorDyn is driven one internal step per ``Step`` call: at each call it gets the position of B at the start
-of the step and the secant velocity to the position at the end, so the prescribed motion is met exactly at
-every step.
+of the step and the secant velocity to the position at the end (MoorDyn moves a coupled point linearly within
+a call), so the prescribed motion is met exactly at every step. Its static state is its own initial-condition
+solve (a pseudo-dynamic relaxation), which converges slowly: 300 s of relaxation leave the top tension within
+≈ 0.01 % of equilibrium at n ≤ 200; ``moordyn_initial`` lets several runs share one such solve.
 """
 
 from __future__ import annotations
@@ -49,6 +51,7 @@ import tempfile
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pipelay as pl
@@ -58,7 +61,9 @@ __all__ = [
     "Case",
     "Run",
     "max_relative_error",
+    "moordyn_initial",
     "moordyn_input",
+    "pipelay_model",
     "run_moordyn",
     "run_pipelay",
     "top_position",
@@ -106,13 +111,15 @@ CASE = Case()
 @dataclass(frozen=True)
 class Run:
     """A top-tension history: ``time`` (T,) in s, ``tension`` (T,) = |F_B| in N (``tension[0]`` is the static
-    value), the static top tension (N), wall time of the time integration alone (s) and the number of steps."""
+    value), the static top tension (N), the wall time of the time integration alone (s; statics and set-up
+    excluded), the number of steps and, for pipelay, the number of Newton iterations (0 for MoorDyn)."""
 
     time: np.ndarray
     tension: np.ndarray
     static_tension: float
     wall: float
     steps: int
+    iterations: int = 0
 
 
 def _ramp(t: float, case: Case) -> tuple[float, float]:
@@ -180,7 +187,7 @@ def run_pipelay(n: int, dt: float, case: Case = CASE, t_end: float | None = None
     state = model.static()
     static_tension = float(np.linalg.norm(state.reaction("B")[:3]))
     sim = model.simulation(state=state, dt=dt)
-    steps = int(round(t_end / dt))
+    steps = round(t_end / dt)
     began = time.perf_counter()
     res = sim.run(steps * dt, progress=False, record_every=1)
     wall = time.perf_counter() - began
@@ -188,12 +195,16 @@ def run_pipelay(n: int, dt: float, case: Case = CASE, t_end: float | None = None
     tension[0] = static_tension
     times = np.asarray(res.time) - 0.5 * dt
     times[0] = 0.0
-    return Run(times, tension, static_tension, wall, len(res.time) - 1)
+    iterations = int(np.sum(res.iterations))
+    return Run(times, tension, static_tension, wall, len(res.time) - 1, iterations)
 
 
-def moordyn_input(n: int, dt: float, case: Case = CASE, scheme: str = "RK4", ba: float = 0.0) -> str:
-    """The MoorDyn v2 input file for ``n`` segments, internal step ``dt`` (s), time scheme ``scheme`` and internal
-    damping ``ba`` (N·s; negative: minus the damping ratio)."""
+def moordyn_input(
+    n: int, dt: float, case: Case = CASE, scheme: str = "RK4", ba: float = 0.0, ic_time: float = 300.0
+) -> str:
+    """The MoorDyn v2 input file for ``n`` segments, internal step ``dt`` (s), time scheme ``scheme``, internal
+    damping ``ba`` (N·s; negative: minus the damping ratio) and at most ``ic_time`` (s) of simulated time for
+    its initial-condition (static) solve."""
     top = _to_moordyn(top_position(0.0, case), case)
     return f"""--------------------- MoorDyn Input File ------------------------------------
 pipelay peer comparison: steel wire rope between a fixed point and a driven one
@@ -218,7 +229,7 @@ ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 {case.rho_water!r}  rho
 {case.depth + 50.0!r}  WtrDpth
 1.0  dtIC
-300.0  TmaxIC
+{ic_time!r}  TmaxIC
 1e-7  threshIC
 1  disableOutput
 1  disableOutTime
@@ -226,14 +237,14 @@ ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 """
 
 
-def _to_moordyn(p: tuple[float, float, float] | np.ndarray, case: Case) -> np.ndarray:
-    """A position (m) or, with ``case.depth`` dropped, a velocity in e, in MoorDyn's frame (z up, surface 0)."""
+def _to_moordyn(p: tuple[float, float, float], case: Case) -> np.ndarray:
+    """A position in e (m) in MoorDyn's frame (z up, the surface at z = 0) (m)."""
     return np.array([p[0], p[1], -case.depth - p[2]])
 
 
 @contextlib.contextmanager
 def _quiet() -> Iterator[None]:
-    """Silence the C library's own prints on file descriptors 1 and 2 (MoorDyn's banner and log)."""
+    """Silence the C library's own prints on file descriptors 1 and 2 (MoorDyn's banner, log and NaN dumps)."""
     sys.stdout.flush()
     sys.stderr.flush()
     saved = [os.dup(1), os.dup(2)]
@@ -249,6 +260,41 @@ def _quiet() -> Iterator[None]:
             os.close(fd)
 
 
+@contextlib.contextmanager
+def _moordyn_system(text: str) -> Iterator[Any]:
+    """A MoorDyn system built from the input file ``text`` (written to a temporary folder), closed on exit."""
+    import moordyn
+
+    with tempfile.TemporaryDirectory(prefix="pipelay-moordyn-") as folder:
+        path = os.path.join(folder, "line.txt")
+        with open(path, "w", encoding="utf-8") as handle:
+            handle.write(text)
+        with _quiet():
+            system = moordyn.Create(path)
+        try:
+            yield system
+        finally:
+            moordyn.Close(system)
+
+
+def moordyn_initial(n: int, dt: float, case: Case = CASE, ic_time: float = 300.0) -> tuple[bytes, float]:
+    """MoorDyn's own static initial condition for ``n`` segments with B at ``top_position(0)``, found by its
+    initial-condition solver (a pseudo-dynamic relaxation run with step ``dt`` (s) for at most ``ic_time`` (s)
+    of simulated time): the serialized system, to start ``run_moordyn`` from, and the top tension |F_B| (N)."""
+    import moordyn
+
+    x = _to_moordyn(top_position(0.0, case), case)
+    with _moordyn_system(moordyn_input(n, dt, case, ic_time=ic_time)) as system:
+        with _quiet():
+            err = moordyn.Init(system, x, np.zeros(3))
+        if err != 0:
+            raise RuntimeError(
+                f"MoorDyn's initial-condition solve failed (error {err}), n = {n}, dt = {dt} s"
+            )
+        force = moordyn.Step(system, x, np.zeros(3), 0.0, 0.0)
+        return moordyn.Serialize(system), float(np.linalg.norm(force))
+
+
 def run_moordyn(
     n: int,
     dt: float,
@@ -256,42 +302,51 @@ def run_moordyn(
     t_end: float | None = None,
     scheme: str = "RK4",
     ba: float = 0.0,
+    ic_time: float = 300.0,
+    initial: bytes | None = None,
 ) -> Run:
     """MoorDyn on ``n`` segments with internal (and coupling) step ``dt`` (s) to ``t_end`` (s; default
-    ``case.t_end``): its static initial condition with B at ``top_position(0)``, then one ``Step`` per ``dt``.
-    Raises RuntimeError if MoorDyn fails (e.g. goes unstable: NaN)."""
+    ``case.t_end``), time scheme ``scheme`` and internal damping ``ba`` (see ``moordyn_input``).
+
+    It starts from ``initial`` (a system serialized by ``moordyn_initial`` for the same ``n``) or, without it,
+    from its own initial-condition solve (at most ``ic_time`` s of simulated time at step ``dt``). Then one
+    ``Step`` per ``dt``. Raises RuntimeError if MoorDyn fails (e.g. it goes unstable: NaN) or if the top force
+    stops being finite."""
     import moordyn
 
     t_end = case.t_end if t_end is None else t_end
-    steps = int(round(t_end / dt))
-    with tempfile.TemporaryDirectory(prefix="pipelay-moordyn-") as folder:
-        path = os.path.join(folder, "line.txt")
-        with open(path, "w", encoding="utf-8") as handle:
-            handle.write(moordyn_input(n, dt, case, scheme, ba))
+    steps = round(t_end / dt)
+    times = np.arange(steps + 1) * dt
+    path_e = np.array([top_position(float(t), case) for t in times])
+    path = np.column_stack([path_e[:, 0], path_e[:, 1], -case.depth - path_e[:, 2]])  # MoorDyn's frame
+    velocities = np.diff(path, axis=0) / dt  # secant velocities: B lands on the path at every step
+    x0 = path[0].tolist()
+    with _moordyn_system(moordyn_input(n, dt, case, scheme, ba, ic_time)) as system:
         with _quiet():
-            system = moordyn.Create(path)
-            moordyn.SetVerbosity(system, moordyn.LEVEL_ERR)
-            x = _to_moordyn(top_position(0.0, case), case)
-            err = moordyn.Init(system, x, np.zeros(3))
-        try:
-            if err != 0:
-                raise RuntimeError(f"MoorDyn Init failed with error code {err}")
-            static_tension = float(np.linalg.norm(moordyn.Step(system, x, np.zeros(3), 0.0, 0.0)))
-            # the drive, sampled once, in MoorDyn's frame
-            times = np.arange(steps + 1) * dt
-            path_e = np.array([top_position(t, case) for t in times])
-            path_md = np.column_stack([path_e[:, 0], path_e[:, 1], -case.depth - path_e[:, 2]])
-            velocities = np.diff(path_md, axis=0) / dt
-            tension = np.empty(steps + 1)
-            tension[0] = static_tension
-            step = moordyn.Step
+            err = moordyn.Init_NoIC(system, x0, [0.0] * 3) if initial else moordyn.Init(system, x0, [0.0] * 3)
+        if err != 0:
+            raise RuntimeError(f"MoorDyn's initialisation failed (error {err}), n = {n}, dt = {dt} s")
+        if initial:
+            moordyn.Deserialize(system, initial)
+        static_tension = float(np.linalg.norm(moordyn.Step(system, x0, [0.0] * 3, 0.0, 0.0)))
+        tension = np.empty(steps + 1)
+        tension[0] = static_tension
+        positions = path.tolist()
+        speeds = velocities.tolist()
+        step = moordyn.Step
+        with _quiet():  # an unstable run prints MoorDyn's NaN dump; the error below says what happened
             began = time.perf_counter()
-            for k in range(steps):
-                force = step(system, path_md[k], velocities[k], times[k], dt)
-                tension[k + 1] = math.sqrt(force[0] * force[0] + force[1] * force[1] + force[2] * force[2])
+            try:
+                for k in range(steps):
+                    fx, fy, fz = step(system, positions[k], speeds[k], float(times[k]), dt)
+                    tension[k + 1] = math.sqrt(fx * fx + fy * fy + fz * fz)
+            except RuntimeError as exc:
+                raise RuntimeError(
+                    f"MoorDyn failed at t = {times[k]:.4f} s (n = {n}, dt = {dt} s): {exc}"
+                ) from exc
             wall = time.perf_counter() - began
-        finally:
-            moordyn.Close(system)
+    if not np.all(np.isfinite(tension)):
+        raise RuntimeError(f"MoorDyn's top force is not finite (n = {n}, dt = {dt} s)")
     return Run(times, tension, static_tension, wall, steps)
 
 

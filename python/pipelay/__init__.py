@@ -6,8 +6,10 @@ Rod end "A" is node 0 (seabed end), "B" is node n (top end).
 """
 
 from pipelay._core import (
+    PID,
     ConvergenceError,
     Current,
+    Force,
     InputError,
     Model,
     Results,
@@ -16,11 +18,14 @@ from pipelay._core import (
     Section,
     Simulation,
     State,
+    Vessel,
 )
 
 __all__ = [
+    "PID",
     "ConvergenceError",
     "Current",
+    "Force",
     "InputError",
     "Model",
     "Results",
@@ -29,5 +34,6 @@ __all__ = [
     "Section",
     "Simulation",
     "State",
+    "Vessel",
 ]
 __version__ = "0.1.0"

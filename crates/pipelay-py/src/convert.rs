@@ -50,6 +50,24 @@ pub fn matrix3(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Matrix3<f64
     Ok(Matrix3::from_row_slice(&flat))
 }
 
+/// A 6×6 matrix (row-major as numpy gives it).
+pub fn float_matrix6(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<nalgebra::Matrix6<f64>> {
+    let (flat, shape) = float_array(value, argument)?;
+    if shape != [6, 6] {
+        return Err(input(
+            argument,
+            format!("an array of shape {shape:?}"),
+            "must have shape (6, 6)",
+        ));
+    }
+    finite_or_error(argument, &flat)?;
+    Ok(nalgebra::Matrix6::from_row_slice(&flat))
+}
+
+fn finite_or_error(argument: &str, values: &[f64]) -> PyResult<()> {
+    pipelay::error::finite(argument, values).map_err(crate::errors::to_py)
+}
+
 /// An (n, 3) array of points.
 pub fn points(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<Vector3<f64>>> {
     let (flat, shape) = float_array(value, argument)?;

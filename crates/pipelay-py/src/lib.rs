@@ -6,6 +6,7 @@ mod model;
 mod simulation;
 mod state;
 mod structure;
+mod vessel;
 
 use pyo3::prelude::*;
 
@@ -25,5 +26,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<state::State>()?;
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<simulation::Results>()?;
+    m.add_class::<vessel::Vessel>()?;
+    m.add_class::<vessel::PyPid>()?;
+    m.add_class::<vessel::PyForce>()?;
     Ok(())
 }

@@ -1,10 +1,11 @@
 //! Python classes Model and State: supports, loads, the static solve and its results.
 use crate::callables::{matrix_function, scalar_function, vector_function};
-use crate::convert::{matrix3, vector3};
+use crate::convert::{array, matrix3, vector3};
 use crate::errors::{input, to_py};
 use crate::simulation::Simulation;
 use crate::state::State;
 use crate::structure::{Rod, Sea};
+use crate::vessel::{PyForce, PyPid, Vessel};
 use nalgebra::{Matrix3, Vector3};
 use pipelay::assembly::Configuration;
 use pipelay::response::Response;
@@ -149,6 +150,52 @@ impl Model {
         let config = Configuration::reference(&self.0);
         let response = Response::new(&self.0, &config);
         State::from_static(&self.0, config, &response, 0.0, 0, 0)
+    }
+
+    /// Attaches a vessel at `end` (usually "B"): the pipe's end is clamped to the vessel's reference point CO at
+    /// the fixed angle β (`angle`, zyx Euler angles of R_b^t, rad). `eta` (6,) is the starting pose; in statics
+    /// heave, roll and pitch settle and surge, sway and yaw are held at eta by thrust (reported as
+    /// `state.tau`), unless the controller is active at t = 0. Until the controller starts, simulations keep
+    /// applying the holding thrust of their starting state. `environment`: pl.Force objects (body frame).
+    #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None))]
+    fn attach_vessel(
+        &mut self,
+        end: &str,
+        vessel: &Vessel,
+        eta: &Bound<'_, PyAny>,
+        angle: Option<&Bound<'_, PyAny>>,
+        controller: Option<&PyPid>,
+        environment: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let mut forces = Vec::new();
+        if let Some(items) = environment {
+            for item in items.try_iter()? {
+                let item = item?;
+                let force = item.cast::<PyForce>().map_err(|_| {
+                    input(
+                        "environment",
+                        item.repr().map_or("?".into(), |r| r.to_string()),
+                        "must be a sequence of pl.Force",
+                    )
+                })?;
+                forces.push(force.get().0);
+            }
+        }
+        let eta = nalgebra::Vector6::from(array::<6>(eta, "eta")?);
+        let angle = angle
+            .map(|a| vector3(a, "angle"))
+            .transpose()?
+            .unwrap_or_else(Vector3::zeros);
+        self.0
+            .attach_vessel(
+                end,
+                vessel.0.clone(),
+                eta,
+                angle,
+                controller.map(|c| c.0.clone()),
+                forces,
+            )
+            .map_err(to_py)
     }
 
     /// A time simulation from `state` (default: `self.static()`) with time step `dt` (s), using the

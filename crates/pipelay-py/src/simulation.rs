@@ -184,6 +184,15 @@ pub struct Results {
     last_node: usize,
 }
 
+impl Results {
+    fn series<'py>(&self, py: Python<'py>, data: &[f64]) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if data.is_empty() {
+            return Ok(None);
+        }
+        shaped(py, data, &[self.history.len(), 6]).map(Some)
+    }
+}
+
 #[pymethods]
 impl Results {
     /// Times (T,) (s).
@@ -288,20 +297,36 @@ impl Results {
         let its: Vec<f64> = self.history.iterations.iter().map(|&i| i as f64).collect();
         PyArray1::from_slice(py, &its)
     }
-    /// Vessel position η (T, 6): None without a vessel.
+    /// Vessel pose η (T, 6) in e (m, rad): None without a vessel.
     #[getter]
-    fn eta(&self) -> Option<Vec<f64>> {
-        None
+    fn eta<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.eta)
     }
-    /// Vessel velocity ν (T, 6): None without a vessel.
+    /// Vessel velocity ν (T, 6), body frame: None without a vessel.
     #[getter]
-    fn nu(&self) -> Option<Vec<f64>> {
-        None
+    fn nu<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.nu)
     }
-    /// Thrust τ (T, 6): None without a vessel.
+    /// Thrust actually applied τ (T, 6), body frame (N, N·m): None without a vessel.
     #[getter]
-    fn tau(&self) -> Option<Vec<f64>> {
-        None
+    fn tau<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.tau)
+    }
+    /// The pipe's force and moment on the vessel χ (T, 6), body frame: None without a vessel.
+    #[getter]
+    fn chi<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.chi)
+    }
+    /// Passivity margin max over t of E(t) − E(0) − ∫νᵀτ (J), with ∫νᵀτ the work of the thrust (here: all
+    /// supplied work). Never above solver tolerance for a passive system.
+    fn passivity_margin(&self) -> f64 {
+        let h = &self.history;
+        let total = |i: usize| {
+            h.kinetic[i] + h.strain[i] + h.gravity[i] + h.vessel_kinetic[i] + h.vessel_potential[i]
+        };
+        (0..h.len())
+            .map(|i| total(i) - total(0) - h.supplied_work[i])
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     fn __len__(&self) -> usize {

@@ -19,6 +19,8 @@ pub struct State {
     section_forces: Vec<Vector6<f64>>,
     reactions: Vec<Vector6<f64>>,
     energy: Energy,
+    /// With a vessel: η, ν, τ and χ (6,) each.
+    vessel: Option<[Vector6<f64>; 4]>,
     /// The integrator's own state (Gauss points included), when the state comes from a simulation.
     dynamic: Option<DynamicState>,
     /// Time (s): 0 for static states.
@@ -56,7 +58,12 @@ impl State {
                 kinetic: 0.0,
                 strain: response.strain_energy,
                 gravity: response.gravity_energy,
+                vessel_kinetic: 0.0,
+                vessel_potential: response.vessel.map_or(0.0, |v| v.restoring_energy),
             },
+            vessel: response
+                .vessel
+                .map(|v| [v.eta, Vector6::zeros(), v.thrust, v.pipe_force]),
             dynamic: None,
             time: 0.0,
             load_factor,
@@ -75,6 +82,19 @@ impl State {
             section_forces: integrator.section_forces(),
             reactions: integrator.reactions().to_vec(),
             energy: integrator.energy(),
+            vessel: match (&integrator.model().vessel, &state.vessel) {
+                (Some(attachment), Some(motion)) => {
+                    let node = attachment.node;
+                    let body = pipelay::coupling::body_rotation(
+                        attachment,
+                        &state.configuration.rotations[node],
+                    );
+                    let eta =
+                        pipelay::coupling::eta_of(&state.configuration.positions[node], &body);
+                    Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
+                }
+                _ => None,
+            },
             dynamic: Some(state.clone()),
             time: state.time,
             load_factor: 1.0,
@@ -180,20 +200,25 @@ impl State {
         let node = self.end_node(end)?;
         Ok(to_numpy(py, self.reactions[node].as_slice()))
     }
-    /// Vessel position η (6,): None without a vessel.
+    /// Vessel pose η = [x, y, z, φ, θ, ψ] (6,) in e (m, rad): None without a vessel.
     #[getter]
-    fn eta(&self) -> Option<Vec<f64>> {
-        None
+    fn eta<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.vessel.as_ref().map(|v| to_numpy(py, v[0].as_slice()))
     }
-    /// Vessel velocity ν (6,): None without a vessel.
+    /// Vessel velocity ν (6,), body frame (m/s, rad/s): None without a vessel.
     #[getter]
-    fn nu(&self) -> Option<Vec<f64>> {
-        None
+    fn nu<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.vessel.as_ref().map(|v| to_numpy(py, v[1].as_slice()))
     }
-    /// Thrust τ (6,): None without a vessel.
+    /// Thrust τ (6,), body frame (N, N·m); in statics the holding thrust: None without a vessel.
     #[getter]
-    fn tau(&self) -> Option<Vec<f64>> {
-        None
+    fn tau<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.vessel.as_ref().map(|v| to_numpy(py, v[2].as_slice()))
+    }
+    /// The pipe's force and moment on the vessel χ (6,), body frame (N, N·m): None without a vessel.
+    #[getter]
+    fn chi<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.vessel.as_ref().map(|v| to_numpy(py, v[3].as_slice()))
     }
     /// Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {

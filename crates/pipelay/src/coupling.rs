@@ -201,6 +201,8 @@ pub struct VesselContribution {
     pub tangent: Matrix6<f64>,
     pub velocity_next: Vector6<f64>,
     pub velocity_mid: Vector6<f64>,
+    /// Scale of the residual's terms per row.
+    pub magnitude: Vector6<f64>,
     pub thrust: Vector6<f64>,
     /// η̃ at the midpoint (for the integral update).
     pub error_mid: Vector6<f64>,
@@ -257,7 +259,7 @@ impl DynamicVessel<'_> {
         let body = body_rotation(attachment, node_rotation);
         let state = VesselState {
             position: *position,
-            rotation: UnitQuaternion::from_matrix(&body),
+            rotation: crate::so3::quat_from_matrix(&body),
             velocity: self.velocity,
         };
         let evaluate = |inc: &Vector6<f64>| {
@@ -304,6 +306,7 @@ impl DynamicVessel<'_> {
             tangent,
             velocity_next: step.velocity_next,
             velocity_mid: v,
+            magnitude: step.magnitude,
             thrust,
             error_mid,
             supplied: dt * v.dot(&(thrust + environment)),

@@ -15,6 +15,7 @@
 //! every direction (keeps the mass constant and the scheme exactly energy–momentum; over-estimates the
 //! axial added mass of a pipe).
 use crate::assembly::{Assembler, Configuration, NODE_DOFS};
+use crate::coupling::{body_rotation, clamp_integral, DynamicVessel, VesselContribution};
 use crate::error::{positive, Error, Result};
 use crate::hydro::morison_drag;
 use crate::model::Model;
@@ -62,6 +63,24 @@ pub struct DynamicState {
     pub body_angular_velocities: Vec<Vector3<f64>>,
     /// Gauss-point rotations and strains.
     pub gauss: Vec<GaussPoint>,
+    /// The attached vessel's velocity and controller state, if any.
+    pub vessel: Option<VesselMotion>,
+}
+
+/// Velocity and controller state of an attached vessel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VesselMotion {
+    /// ν = [u, v, w, p, q, r] (body frame).
+    pub velocity: Vector6<f64>,
+    /// ∫η̃ dt of the PID.
+    pub integral: Vector6<f64>,
+    /// Thrust that holds the vessel until the controller starts (body frame): the static holding thrust of
+    /// the starting configuration.
+    pub hold_thrust: Vector6<f64>,
+    /// Thrust applied over the last step (body frame).
+    pub thrust: Vector6<f64>,
+    /// The pipe's force and moment on the vessel over the last step, χ (body frame).
+    pub pipe_force: Vector6<f64>,
 }
 
 impl DynamicState {
@@ -86,12 +105,27 @@ impl DynamicState {
         for support in &model.supports {
             velocities[support.node] = support.velocity(time)?;
         }
+        let vessel = model.vessel.as_ref().map(|_| {
+            let held = crate::response::Response::new(model, &configuration).vessel;
+            let (hold_thrust, pipe_force) = held
+                .map_or((Vector6::zeros(), Vector6::zeros()), |v| {
+                    (v.thrust, v.pipe_force)
+                });
+            VesselMotion {
+                velocity: Vector6::zeros(),
+                integral: Vector6::zeros(),
+                hold_thrust,
+                thrust: hold_thrust,
+                pipe_force,
+            }
+        });
         Ok(DynamicState {
             time,
             body_angular_velocities: vec![Vector3::zeros(); model.rod.node_count()],
             configuration,
             velocities,
             gauss,
+            vessel,
         })
     }
 
@@ -113,12 +147,16 @@ pub struct Energy {
     pub strain: f64,
     /// Potential of the submerged weight, zero at z = 0.
     pub gravity: f64,
+    /// Vessel kinetic energy ½νᵀMν.
+    pub vessel_kinetic: f64,
+    /// Vessel restoring potential ½qᵀG q.
+    pub vessel_potential: f64,
 }
 
 impl Energy {
-    /// Kinetic + strain + gravity.
+    /// The storage function E = E_P + E_V (eq. 24).
     pub fn total(&self) -> f64 {
-        self.kinetic + self.strain + self.gravity
+        self.kinetic + self.strain + self.gravity + self.vessel_kinetic + self.vessel_potential
     }
 }
 
@@ -194,6 +232,10 @@ pub struct Integrator {
     dissipated: f64,
     /// Force and moment the rod exerts on each node's support at the last step (N, N·m).
     reactions: Vec<Vector6<f64>>,
+    /// The vessel's part of the last assembly.
+    vessel_step: Option<VesselContribution>,
+    /// The rod's force on the vessel node in the last assembly (spatial).
+    rod_force_at_vessel: Vector6<f64>,
 }
 
 /// The Cayley parameter θ of a rotation: cay(θ) = R (quaternion (w, v) ↦ 2v/w).
@@ -244,6 +286,8 @@ impl Integrator {
             supplied_work: 0.0,
             dissipated: 0.0,
             reactions,
+            vessel_step: None,
+            rod_force_at_vessel: Vector6::zeros(),
         })
     }
 
@@ -295,10 +339,27 @@ impl Integrator {
             .zip(&self.model.rod.elements)
             .map(|(g, reference)| g.energy(reference, &c_t, &c_r))
             .sum();
+        let (vessel_kinetic, vessel_potential) = match (&self.model.vessel, &state.vessel) {
+            (Some(attachment), Some(motion)) => {
+                let node = attachment.node;
+                let body = body_rotation(attachment, &state.configuration.rotations[node]);
+                (
+                    crate::vessel::kinetic_energy(&attachment.vessel, &motion.velocity),
+                    attachment.vessel.restoring_energy(
+                        &state.configuration.positions[node],
+                        &body,
+                        attachment.surface,
+                    ),
+                )
+            }
+            _ => (0.0, 0.0),
+        };
         Energy {
             kinetic,
             strain,
             gravity: Assembler::gravity_potential(&self.model, &state.configuration),
+            vessel_kinetic,
+            vessel_potential,
         }
     }
 
@@ -647,6 +708,35 @@ impl Integrator {
             let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
             work.supplied += force.dot(&dphi) + moment.dot(&theta);
         }
+        self.vessel_step = None;
+        if let (Some(attachment), Some(motion)) = (&model.vessel, &state.vessel) {
+            let node = attachment.node;
+            let base = NODE_DOFS * node;
+            let increment = Vector6::from_column_slice(&self.increments[base..base + 6]);
+            let vessel = DynamicVessel {
+                attachment,
+                velocity: motion.velocity,
+                integral: motion.integral,
+                hold_thrust: motion.hold_thrust,
+            };
+            let contribution = vessel.contribution(
+                &state.configuration.positions[node],
+                &state.configuration.rotations[node],
+                &increment,
+                dt,
+                time_mid,
+            );
+            self.rod_force_at_vessel =
+                Vector6::from_column_slice(&self.assembler.residual[base..base + 6]);
+            for i in 0..NODE_DOFS {
+                self.assembler.residual[base + i] += contribution.residual[i];
+                self.magnitude[base + i] += contribution.magnitude[i];
+            }
+            self.assembler.add_node_matrix(node, &contribution.tangent);
+            work.supplied += contribution.supplied;
+            work.dissipated += contribution.dissipated;
+            self.vessel_step = Some(contribution);
+        }
         self.work = work;
         Ok(())
     }
@@ -675,6 +765,35 @@ impl Integrator {
             state.configuration.rotations[node] = cayley_quaternion(&theta) * rotation_n;
         }
         self.state.gauss.copy_from_slice(&self.next_gauss);
+        if let (Some(attachment), Some(motion), Some(step)) = (
+            &self.model.vessel,
+            &mut self.state.vessel,
+            &self.vessel_step,
+        ) {
+            let time_mid = self.state.time + 0.5 * dt;
+            motion.velocity = step.velocity_next;
+            motion.thrust = step.thrust;
+            if let Some(controller) = attachment
+                .controller
+                .as_ref()
+                .filter(|c| time_mid >= c.start)
+            {
+                motion.integral =
+                    clamp_integral(controller, &(motion.integral + dt * step.error_mid));
+            }
+            // χ: the pipe's force on the vessel, −(rod's force on the node), in the body frame.
+            let body = body_rotation(
+                attachment,
+                &self.state.configuration.rotations[attachment.node],
+            );
+            let f = self.rod_force_at_vessel;
+            let mut chi = Vector6::zeros();
+            chi.fixed_rows_mut::<3>(0)
+                .copy_from(&(-(body.transpose() * f.fixed_rows::<3>(0))));
+            chi.fixed_rows_mut::<3>(3)
+                .copy_from(&(-(body.transpose() * f.fixed_rows::<3>(3))));
+            motion.pipe_force = chi;
+        }
         self.state.time += dt;
         self.supplied_work += self.work.supplied + support_work;
         self.dissipated += self.work.dissipated;

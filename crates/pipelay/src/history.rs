@@ -24,6 +24,13 @@ pub struct History {
     pub kinetic: Vec<f64>,
     pub strain: Vec<f64>,
     pub gravity: Vec<f64>,
+    pub vessel_kinetic: Vec<f64>,
+    pub vessel_potential: Vec<f64>,
+    /// With a vessel: η (e), ν, thrust τ and the pipe's force χ (body frame), (T, 6) each; empty without.
+    pub eta: Vec<f64>,
+    pub nu: Vec<f64>,
+    pub tau: Vec<f64>,
+    pub chi: Vec<f64>,
     /// Work supplied and energy dissipated since the start of the run (J).
     pub supplied_work: Vec<f64>,
     pub dissipated: Vec<f64>,
@@ -84,6 +91,18 @@ impl History {
         self.kinetic.push(energy.kinetic);
         self.strain.push(energy.strain);
         self.gravity.push(energy.gravity);
+        self.vessel_kinetic.push(energy.vessel_kinetic);
+        self.vessel_potential.push(energy.vessel_potential);
+        if let (Some(attachment), Some(motion)) = (&integrator.model().vessel, &state.vessel) {
+            let node = attachment.node;
+            let body =
+                crate::coupling::body_rotation(attachment, &state.configuration.rotations[node]);
+            let eta = crate::coupling::eta_of(&state.configuration.positions[node], &body);
+            self.eta.extend_from_slice(eta.as_slice());
+            self.nu.extend_from_slice(motion.velocity.as_slice());
+            self.tau.extend_from_slice(motion.thrust.as_slice());
+            self.chi.extend_from_slice(motion.pipe_force.as_slice());
+        }
         self.supplied_work
             .push(integrator.supplied_work() - self.supplied_offset);
         self.dissipated

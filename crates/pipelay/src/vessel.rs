@@ -328,6 +328,8 @@ pub struct VesselStep {
     pub velocity_next: Vector6<f64>,
     /// ν_{n+½}.
     pub velocity_mid: Vector6<f64>,
+    /// Size of the residual's terms per row (inertia, restoring, forces), its scale for convergence.
+    pub magnitude: Vector6<f64>,
 }
 
 /// The vessel's residual for one step: inertia in momentum form, hydrostatic restoring as a discrete
@@ -375,17 +377,27 @@ pub fn vessel_step(
     let restoring_force = -gradient[0] * e3;
     let restoring_moment =
         -(gradient[1] * mean.column(1).cross(&e3) - gradient[2] * mean.column(0).cross(&e3));
+    let inertia_force = (p_next - p_n) / dt;
+    let inertia_moment = (pi_next - pi_n + dx.cross(&p_mean)) / dt;
     let mut residual = Vector6::zeros();
     residual
         .fixed_rows_mut::<3>(0)
-        .copy_from(&((p_next - p_n) / dt - force - restoring_force));
+        .copy_from(&(inertia_force - force - restoring_force));
     residual
         .fixed_rows_mut::<3>(3)
-        .copy_from(&((pi_next - pi_n + dx.cross(&p_mean)) / dt - moment - restoring_moment));
+        .copy_from(&(inertia_moment - moment - restoring_moment));
+    let mut magnitude = Vector6::zeros();
+    magnitude
+        .fixed_rows_mut::<3>(0)
+        .copy_from(&(inertia_force.abs() + force.abs() + restoring_force.abs()));
+    magnitude
+        .fixed_rows_mut::<3>(3)
+        .copy_from(&(inertia_moment.abs() + moment.abs() + restoring_moment.abs()));
     VesselStep {
         residual,
         velocity_next,
         velocity_mid,
+        magnitude,
     }
 }
 

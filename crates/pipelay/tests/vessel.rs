@@ -79,3 +79,146 @@ fn static_vessel_holds_the_pipe() {
         "the pipe pulls back and down"
     );
 }
+
+use pipelay::assembly::Configuration;
+use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator};
+use pipelay::section::SectionExtras;
+
+/// A vessel carrying only a tiny, light rod: the vessel's own dynamics.
+fn lone_vessel(vessel: Vessel, heave: f64, pitch: f64) -> Integrator {
+    let extras = SectionExtras {
+        inertia: [1e-6; 3],
+        ..SectionExtras::default()
+    };
+    let section = Section::new(1e3, [1e3; 2], 1.0, [1.0; 2], 1e-6, extras).expect("section");
+    let rod = Rod::straight(
+        Vector3::new(-1.0, 0.0, -10.0),
+        Vector3::new(0.0, 0.0, -10.0),
+        1,
+        section,
+    )
+    .expect("rod");
+    let sea = Sea::new(10.0, 1025.0, None).expect("sea");
+    let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
+    let eta = Vector6::new(0.0, 0.0, -10.0 + heave, 0.0, pitch, 0.0);
+    model
+        .attach_vessel("B", vessel, eta, Vector3::zeros(), None, vec![])
+        .expect("vessel");
+    let mut config = Configuration::reference(&model);
+    let attachment = model.vessel.as_ref().expect("attached");
+    config.positions[1] = eta.fixed_rows::<3>(0).into_owned();
+    config.rotations[1] =
+        nalgebra::UnitQuaternion::from_matrix(&pipelay::coupling::node_rotation(attachment, &eta));
+    config.positions[0] = config.positions[1] - config.rotations[1] * Vector3::x();
+    config.rotations[0] = config.rotations[1];
+    let mut state = DynamicState::at_rest(&model, config, 0.0).expect("state");
+    if let Some(v) = state.vessel.as_mut() {
+        v.hold_thrust = Vector6::zeros();
+    }
+    let options = DynamicOptions {
+        time_step: 0.05,
+        ..DynamicOptions::default()
+    };
+    Integrator::new(model, state, options).expect("integrator")
+}
+
+/// Times of upward zero crossings of a signal (linear interpolation).
+fn crossings(times: &[f64], values: &[f64]) -> Vec<f64> {
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    (1..values.len())
+        .filter(|&i| values[i - 1] - mean < 0.0 && values[i] - mean >= 0.0)
+        .map(|i| {
+            let (a, b) = (values[i - 1] - mean, values[i] - mean);
+            times[i - 1] + (times[i] - times[i - 1]) * (-a / (b - a))
+        })
+        .collect()
+}
+
+/// Undamped heave and pitch oscillations of the OSV against the linear theory: the periods of the
+/// coupled heave–pitch system (eigenvalues of M⁻¹G over heave and pitch) within 0.5 %; and the diagonal
+/// estimates 2π√(M33/G33) = 6.60 s, 2π√(M55/G55) = 6.47 s for reference.
+#[test]
+fn free_decay_periods_match_linear_theory() {
+    let osv = Vessel::osv();
+    let undamped = Vessel {
+        damping: nalgebra::Matrix6::zeros(),
+        ..osv.clone()
+    };
+    let m = osv.mass();
+    let g = osv.restoring;
+    let m2 = nalgebra::Matrix2::new(m[(2, 2)], m[(2, 4)], m[(4, 2)], m[(4, 4)]);
+    let g2 = nalgebra::Matrix2::new(g[(2, 2)], g[(2, 4)], g[(4, 2)], g[(4, 4)]);
+    let eigen = (m2.try_inverse().expect("M invertible") * g2)
+        .eigenvalues()
+        .expect("real eigenvalues");
+    let mut periods: Vec<f64> = eigen
+        .iter()
+        .map(|w2| 2.0 * std::f64::consts::PI / w2.sqrt())
+        .collect();
+    periods.sort_by(|a, b| b.partial_cmp(a).expect("finite"));
+    println!(
+        "coupled periods {periods:?}, diagonal {} {}",
+        2.0 * std::f64::consts::PI * (m[(2, 2)] / g[(2, 2)]).sqrt(),
+        2.0 * std::f64::consts::PI * (m[(4, 4)] / g[(4, 4)]).sqrt()
+    );
+    // Heave release excites both coupled modes; measure heave alone by a release in the mode shape instead:
+    // the eigenvector gives the pitch/heave ratio.
+    let a = m2.try_inverse().expect("M invertible") * g2;
+    for (k, &period) in periods.iter().enumerate() {
+        let w2 = (2.0 * std::f64::consts::PI / period).powi(2);
+        // (A − w²I)v = 0 → v = (A12, w² − A11).
+        let (heave, pitch) = (a[(0, 1)], w2 - a[(0, 0)]);
+        let scale = 0.2 / (heave.abs() + 10.0 * pitch.abs());
+        let mut sim = lone_vessel(undamped.clone(), heave * scale, pitch * scale);
+        let (mut times, mut values) = (vec![], vec![]);
+        for _ in 0..1200 {
+            sim.step().expect("step");
+            times.push(sim.state().time);
+            let z = sim.state().configuration.positions[1].z;
+            values.push(if heave.abs() > 1e-12 { z } else { 0.0 });
+        }
+        let up = crossings(&times, &values);
+        let measured = (up[up.len() - 1] - up[0]) / (up.len() - 1) as f64;
+        println!("mode {k}: period {period:.4} s, measured {measured:.4} s");
+        assert!(
+            (measured / period - 1.0).abs() < 5e-3,
+            "mode {k}: {measured} vs {period}"
+        );
+    }
+}
+
+/// Pipe and vessel with every dissipation off and no thrust: the total energy (pipe and vessel) stays
+/// constant to 1e-8 relative while the vessel heaves, pitches and drags the pipe.
+#[test]
+fn coupled_system_without_dissipation_conserves_energy() {
+    let mut model = pipe_with_vessel(20);
+    model.rod.section.drag = [0.0, 0.0];
+    if let Some(attachment) = model.vessel.as_mut() {
+        attachment.vessel.damping = nalgebra::Matrix6::zeros();
+    }
+    let solution = solve(&model, &StaticOptions::default()).expect("statics");
+    let mut state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
+    if let Some(v) = state.vessel.as_mut() {
+        v.hold_thrust = Vector6::zeros(); // let go: the pipe pulls the vessel back
+    }
+    let options = DynamicOptions {
+        time_step: 0.1,
+        ..DynamicOptions::default()
+    };
+    let mut sim = Integrator::new(model, state, options).expect("integrator");
+    let start = sim.energy();
+    let mut worst: f64 = 0.0;
+    let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
+    for _ in 0..300 {
+        sim.step().expect("step");
+        worst = worst.max((sim.energy().total() - start.total()).abs() / scale);
+    }
+    let moved = (sim.state().configuration.positions[20] - Vector3::new(850.0, 0.0, -800.0)).norm();
+    println!(
+        "energy drift {worst:.2e} of {scale:.3e} J; vessel moved {moved:.2} m; kinetic {:.3e} J",
+        sim.energy().vessel_kinetic + sim.energy().kinetic
+    );
+    assert!(moved > 1.0, "the vessel moves");
+    assert!(worst < 1e-8, "energy drift {worst:e}");
+    assert_eq!(sim.dissipated(), 0.0);
+}

@@ -1,0 +1,191 @@
+//! Python classes Vessel, PID and Force.
+use crate::convert::{array, float_matrix6, to_numpy};
+use crate::errors::{input, to_py};
+use nalgebra::{Matrix6, Vector3, Vector6};
+use numpy::{PyArray1, PyArray2};
+use pipelay::model::{EnvironmentForce, Pid};
+use pyo3::prelude::*;
+
+/// A DP vessel (eq. 10): M = M_RB + M_A, linear damping D and restoring G (6×6, about CO, surge…yaw);
+/// C(ν) follows from M_RB and M_A (Fossen's m2c form).
+#[pyclass(module = "pipelay", name = "Vessel", frozen)]
+#[derive(Clone)]
+pub struct Vessel(pub pipelay::vessel::Vessel);
+
+fn matrix_to_numpy<'py>(py: Python<'py>, m: &Matrix6<f64>) -> Bound<'py, PyArray2<f64>> {
+    let rows: Vec<Vec<f64>> = (0..6)
+        .map(|i| (0..6).map(|j| m[(i, j)]).collect())
+        .collect();
+    PyArray2::from_vec2(py, &rows).expect("6×6")
+}
+
+#[pymethods]
+impl Vessel {
+    #[new]
+    #[pyo3(signature = (M, D, G, *, M_RB=None, quadratic_damping=None))]
+    #[allow(non_snake_case)]
+    fn new(
+        M: &Bound<'_, PyAny>,
+        D: &Bound<'_, PyAny>,
+        G: &Bound<'_, PyAny>,
+        M_RB: Option<&Bound<'_, PyAny>>,
+        quadratic_damping: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let mass = float_matrix6(M, "M")?;
+        let damping = float_matrix6(D, "D")?;
+        let restoring = float_matrix6(G, "G")?;
+        let rigid = M_RB.map(|m| float_matrix6(m, "M_RB")).transpose()?;
+        let quadratic = quadratic_damping
+            .map(|m| float_matrix6(m, "quadratic_damping"))
+            .transpose()?;
+        pipelay::vessel::Vessel::new(mass, damping, restoring, rigid, quadratic)
+            .map(Vessel)
+            .map_err(to_py)
+    }
+
+    /// The 83 m offshore supply vessel of Fossen's MSS toolbox (osv.m; 6-DOF, about CO).
+    #[staticmethod]
+    fn osv() -> Self {
+        Vessel(pipelay::vessel::Vessel::osv())
+    }
+
+    /// M = M_RB + M_A (6, 6) (kg, kg·m, kg·m²).
+    #[getter(M)]
+    fn mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        matrix_to_numpy(py, &self.0.mass())
+    }
+    /// Rigid-body mass M_RB (6, 6).
+    #[getter(M_RB)]
+    fn rigid_body_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        matrix_to_numpy(py, &self.0.rigid_body_mass)
+    }
+    /// Added mass M_A (6, 6).
+    #[getter(M_A)]
+    fn added_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        matrix_to_numpy(py, &self.0.added_mass)
+    }
+    /// Linear damping D (6, 6).
+    #[getter(D)]
+    fn damping<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        matrix_to_numpy(py, &self.0.damping)
+    }
+    /// Restoring G (6, 6).
+    #[getter(G)]
+    fn restoring<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        matrix_to_numpy(py, &self.0.restoring)
+    }
+    /// C(ν) = C_RB(ν) + C_A(ν) (6, 6) for ν (6,).
+    fn coriolis<'py>(
+        &self,
+        py: Python<'py>,
+        nu: &Bound<'_, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let nu = Vector6::from(array::<6>(nu, "nu")?);
+        Ok(matrix_to_numpy(py, &self.0.coriolis(&nu)))
+    }
+}
+
+/// Gains: (6,) for a diagonal matrix or (6, 6).
+fn gains(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Matrix6<f64>> {
+    if let Ok(diagonal) = array::<6>(value, argument) {
+        return Ok(Matrix6::from_diagonal(&Vector6::from(diagonal)));
+    }
+    float_matrix6(value, argument).map_err(|_| {
+        input(
+            argument,
+            value.repr().map_or("?".into(), |r| r.to_string()),
+            "must have shape (6,) or (6, 6)",
+        )
+    })
+}
+
+/// A PID controller on η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − reference, from
+/// `start` (s). PD when ki is None. `integral_limit` (6,) bounds ∫η̃; `thrust_limit` (3,) bounds the thrust in
+/// surge (N), sway (N) and yaw (N·m).
+#[pyclass(module = "pipelay", name = "PID", frozen)]
+#[derive(Clone)]
+pub struct PyPid(pub Pid);
+
+#[pymethods]
+impl PyPid {
+    #[new]
+    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        kp: &Bound<'_, PyAny>,
+        kd: &Bound<'_, PyAny>,
+        ki: Option<&Bound<'_, PyAny>>,
+        reference: Option<&Bound<'_, PyAny>>,
+        start: f64,
+        integral_limit: Option<&Bound<'_, PyAny>>,
+        thrust_limit: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let Some(reference) = reference else {
+            return Err(input(
+                "reference",
+                "None",
+                "must be η_ref (6,): [x, y, z, φ, θ, ψ] (m, rad)",
+            ));
+        };
+        if !start.is_finite() {
+            return Err(input("start", start, "must be a finite time (s)"));
+        }
+        Ok(PyPid(Pid {
+            kp: gains(kp, "kp")?,
+            kd: gains(kd, "kd")?,
+            ki: ki
+                .map(|k| gains(k, "ki"))
+                .transpose()?
+                .unwrap_or_else(Matrix6::zeros),
+            reference: Vector6::from(array::<6>(reference, "reference")?),
+            start,
+            integral_limit: integral_limit
+                .map(|l| array::<6>(l, "integral_limit").map(Vector6::from))
+                .transpose()?,
+            thrust_limit: thrust_limit
+                .map(|l| array::<3>(l, "thrust_limit").map(Vector3::from))
+                .transpose()?,
+        }))
+    }
+
+    /// η_ref (6,).
+    #[getter]
+    fn reference<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        to_numpy(py, self.0.reference.as_slice())
+    }
+    /// Start time (s).
+    #[getter]
+    fn start(&self) -> f64 {
+        self.0.start
+    }
+}
+
+/// A constant environmental force and moment (6,) on the vessel, body frame (N, N·m), from `start` (s).
+#[pyclass(module = "pipelay", name = "Force", frozen)]
+#[derive(Clone)]
+pub struct PyForce(pub EnvironmentForce);
+
+#[pymethods]
+impl PyForce {
+    #[new]
+    #[pyo3(signature = (value, start=0.0))]
+    fn new(value: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
+        if !start.is_finite() {
+            return Err(input("start", start, "must be a finite time (s)"));
+        }
+        Ok(PyForce(EnvironmentForce {
+            value: Vector6::from(array::<6>(value, "value")?),
+            start,
+        }))
+    }
+    /// The force and moment (6,).
+    #[getter]
+    fn value<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        to_numpy(py, self.0.value.as_slice())
+    }
+    /// Start time (s).
+    #[getter]
+    fn start(&self) -> f64 {
+        self.0.start
+    }
+}
