@@ -41,6 +41,7 @@ from moordyn_case import (
     CASE,
     Run,
     _moordyn_system,
+    _quiet,
     max_relative_error,
     moordyn_initial,
     moordyn_input,
@@ -118,7 +119,8 @@ def moordyn_call_overhead(n: int = 50, calls: int = 20000) -> float:
     initial, _ = moordyn_initial(n, axial_wave_time(n), ic_time=1.0)
     with _moordyn_system(moordyn_input(n, axial_wave_time(n), ic_time=0.0)) as system:
         x = [CASE.x0, 0.0, -CASE.depth + CASE.rise]
-        moordyn.Init_NoIC(system, x, [0.0] * 3)
+        with _quiet():
+            moordyn.Init_NoIC(system, x, [0.0] * 3)
         moordyn.Deserialize(system, initial)
         began = time.perf_counter()
         for _ in range(calls):

@@ -31,8 +31,9 @@ How the two models are matched:
 * seabed: no contact in either code. pipelay has none; MoorDyn's seabed is put 50 m below A (the line's
   lowest point dips at most ≈ 1 m below A during the motion);
 * the top force is |F_B|, the magnitude of the force of the line on the support at B: pipelay's
-  ``reaction("B")``, MoorDyn's force on its coupled point (which includes the half-segment weight of the
-  end node, as pipelay's reaction does).
+  ``reaction("B")``, MoorDyn's force on its coupled point. Both include the end node's half-segment weight
+  and drag; pipelay's also includes the end node's lumped inertia (m + Ca ρ_w A) l/2 · a_B, MoorDyn's does
+  not. That term is at most 69 N at n = 100 (0.06 % of the mean tension), vanishes like 1/n and is left in.
 
 MoorDyn is driven one internal step per ``Step`` call: at each call it gets the position of B at the start
 of the step and the secant velocity to the position at the end (MoorDyn moves a coupled point linearly within
@@ -179,9 +180,11 @@ def run_pipelay(n: int, dt: float, case: Case = CASE, t_end: float | None = None
 
     Two things about pipelay's recorded reactions (this version): the sample recorded at t = 0 is zero (the
     simulation's initial state carries no reaction), so the static reaction takes its place; and the sample
-    recorded at t_{k+1} is the energy–momentum scheme's algorithmic force of the step, the average of the
-    end-of-step values, which is second-order accurate at the step's midpoint t_k + dt/2 and only first-order
-    at t_{k+1}. The history is therefore returned at the midpoints."""
+    recorded at t_{k+1} is the energy–momentum scheme's algorithmic force of the step (time-centred: built on
+    the average of the start- and end-of-step strains), which is second-order accurate at the step's midpoint
+    t_k + dt/2 but only first-order at t_{k+1}. The history is therefore returned at the midpoints (t = 0 then
+    dt/2, 3dt/2, …). Measured here: read at t_{k+1}, the dt = 0.05 s history is off by 2.7 % of the mean
+    against dt = 0.01 s; read at the midpoints, by 0.66 %."""
     t_end = case.t_end if t_end is None else t_end
     model = pipelay_model(n, case)
     state = model.static()

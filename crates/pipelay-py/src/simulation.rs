@@ -268,15 +268,26 @@ impl Results {
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let h = &self.history;
         let total: Vec<f64> = (0..h.len())
-            .map(|i| h.kinetic[i] + h.strain[i] + h.gravity[i])
+            .map(|i| {
+                h.kinetic[i]
+                    + h.strain[i]
+                    + h.gravity[i]
+                    + h.vessel_kinetic[i]
+                    + h.vessel_potential[i]
+            })
             .collect();
-        let zeros = vec![0.0; h.len()];
         let dict = PyDict::new(py);
         dict.set_item("pipe_kinetic", PyArray1::from_slice(py, &h.kinetic))?;
         dict.set_item("pipe_strain", PyArray1::from_slice(py, &h.strain))?;
         dict.set_item("pipe_gravity", PyArray1::from_slice(py, &h.gravity))?;
-        dict.set_item("vessel_kinetic", PyArray1::from_slice(py, &zeros))?;
-        dict.set_item("vessel_potential", PyArray1::from_slice(py, &zeros))?;
+        dict.set_item(
+            "vessel_kinetic",
+            PyArray1::from_slice(py, &h.vessel_kinetic),
+        )?;
+        dict.set_item(
+            "vessel_potential",
+            PyArray1::from_slice(py, &h.vessel_potential),
+        )?;
         dict.set_item("total", PyArray1::from_slice(py, &total))?;
         Ok(dict)
     }

@@ -134,20 +134,15 @@ impl State {
     }
 }
 
-/// The energy dictionary of API.md from rod energy parts (no vessel yet).
-fn energy_dict<'py>(
-    py: Python<'py>,
-    kinetic: f64,
-    strain: f64,
-    gravity: f64,
-) -> PyResult<Bound<'py, PyDict>> {
+/// The energy dictionary of API.md.
+fn energy_dict<'py>(py: Python<'py>, energy: &Energy) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
-    dict.set_item("pipe_kinetic", kinetic)?;
-    dict.set_item("pipe_strain", strain)?;
-    dict.set_item("pipe_gravity", gravity)?;
-    dict.set_item("vessel_kinetic", 0.0)?;
-    dict.set_item("vessel_potential", 0.0)?;
-    dict.set_item("total", kinetic + strain + gravity)?;
+    dict.set_item("pipe_kinetic", energy.kinetic)?;
+    dict.set_item("pipe_strain", energy.strain)?;
+    dict.set_item("pipe_gravity", energy.gravity)?;
+    dict.set_item("vessel_kinetic", energy.vessel_kinetic)?;
+    dict.set_item("vessel_potential", energy.vessel_potential)?;
+    dict.set_item("total", energy.total())?;
     Ok(dict)
 }
 
@@ -222,12 +217,7 @@ impl State {
     }
     /// Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        energy_dict(
-            py,
-            self.energy.kinetic,
-            self.energy.strain,
-            self.energy.gravity,
-        )
+        energy_dict(py, &self.energy)
     }
 
     fn __repr__(&self) -> String {

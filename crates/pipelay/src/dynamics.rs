@@ -232,6 +232,9 @@ pub struct Integrator {
     dissipated: f64,
     /// Force and moment the rod exerts on each node's support at the last step (N, N·m).
     reactions: Vec<Vector6<f64>>,
+    /// Round-off floor of the residual norm (N): internal forces carry errors of about 1e-16·EA per element,
+    /// a vessel's restoring about 1e-16·G.
+    round_off: f64,
     /// The vessel's part of the last assembly.
     vessel_step: Option<VesselContribution>,
     /// The rod's force on the vessel node in the last assembly (spatial).
@@ -272,7 +275,15 @@ impl Integrator {
         let assembler = Assembler::new(&model);
         let reactions = vec![Vector6::zeros(); count];
         let nodal = NodalProperties::new(&model);
+        let round_off = 1e-13
+            * (model.rod.section.translational_stiffness.max()
+                * (model.rod.element_count() as f64).sqrt()
+                + model
+                    .vessel
+                    .as_ref()
+                    .map_or(0.0, |v| v.vessel.restoring.abs().max()));
         Ok(Integrator {
+            round_off,
             increments: vec![0.0; NODE_DOFS * count],
             correction: vec![0.0; assembler.dofs.free],
             magnitude: vec![0.0; NODE_DOFS * count],
@@ -475,7 +486,8 @@ impl Integrator {
             if !residual.is_finite() {
                 break;
             }
-            if residual <= self.options.tolerance * scale2.sqrt() || (iteration > 0 && free2 == 0.0)
+            if residual <= self.options.tolerance * scale2.sqrt() + self.round_off
+                || (iteration > 0 && free2 == 0.0)
             {
                 converged = true;
                 break;
