@@ -182,7 +182,7 @@ pub fn pid_thrust(
     )
 }
 
-/// The vessel's part of the end node's residual in a time step, with its tangent by central differences
+/// The vessel's part of the end node's residual in a time step, with its tangent by forward differences
 /// (a 6×6 block), the body-frame thrust and the step's work.
 pub struct DynamicVessel<'a> {
     pub attachment: &'a VesselAttachment,
@@ -280,19 +280,17 @@ impl DynamicVessel<'_> {
             (step, thrust, error)
         };
         let (step, thrust, error_mid) = evaluate(increment);
+        // Tangent by forward differences (6 extra evaluations; O(h) accurate, enough for Newton).
         let mut tangent = Matrix6::zeros();
         for j in 0..6 {
             let h = if j < 3 {
-                1e-6 * (1.0 + increment.fixed_rows::<3>(0).norm())
+                1e-7 * (1.0 + increment.fixed_rows::<3>(0).norm())
             } else {
-                1e-7
+                1e-8
             };
             let mut plus = *increment;
             plus[j] += h;
-            let mut minus = *increment;
-            minus[j] -= h;
-            let column = (evaluate(&plus).0.residual - evaluate(&minus).0.residual) / (2.0 * h);
-            tangent.set_column(j, &column);
+            tangent.set_column(j, &((evaluate(&plus).0.residual - step.residual) / h));
         }
         let environment: Vector6<f64> = attachment
             .environment
