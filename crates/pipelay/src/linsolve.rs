@@ -18,8 +18,8 @@ const DENSE_LIMIT: usize = 150;
 /// The factorisation behind [`SparseLu`].
 enum Factors {
     Sparse {
-        symbolic: SymbolicLu<usize>,
-        numeric: NumericLu<usize, f64>,
+        symbolic: Box<SymbolicLu<usize>>,
+        numeric: Box<NumericLu<usize, f64>>,
     },
     Dense {
         matrix: Mat<f64>,
@@ -73,8 +73,8 @@ impl SparseLu {
             let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
             (
                 Factors::Sparse {
-                    symbolic,
-                    numeric: NumericLu::new(),
+                    symbolic: Box::new(symbolic),
+                    numeric: Box::new(NumericLu::new()),
                 },
                 factor_scratch,
                 solve_scratch,
