@@ -17,6 +17,7 @@ $(STAMP): $(SOURCES)
 	touch $@
 
 run: $(STAMP)
+	$(BIN)/python examples/jensen2009.py --out $(OUT)
 	$(BIN)/python examples/hanging_pipe.py --out $(OUT)
 
 test: $(STAMP)
@@ -32,3 +33,6 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python benches/static_hanging.py
+	$(BIN)/python benches/dynamic_step_cost.py
+	$(BIN)/python benches/jensen2009_speed.py
+	$(BIN)/python benches/validation_statics.py

@@ -11,8 +11,10 @@ _FloatArray: TypeAlias = npt.NDArray[np.float64]
 _End: TypeAlias = Literal["A", "B"]
 
 __all__ = [
+    "PID",
     "ConvergenceError",
     "Current",
+    "Force",
     "InputError",
     "Model",
     "Results",
@@ -21,6 +23,7 @@ __all__ = [
     "Section",
     "Simulation",
     "State",
+    "Vessel",
 ]
 
 class InputError(ValueError):
@@ -171,14 +174,17 @@ class State:
     def tension(self) -> _FloatArray:
         """Axial force at element midpoints (n,) (N)."""
     @property
-    def eta(self) -> list[float] | None:
-        """Vessel position η (6,), None without a vessel."""
+    def eta(self) -> _FloatArray | None:
+        """Vessel pose η (6,) in e, None without a vessel."""
     @property
-    def nu(self) -> list[float] | None:
-        """Vessel velocity ν (6,), None without a vessel."""
+    def nu(self) -> _FloatArray | None:
+        """Vessel velocity ν (6,), body frame, None without a vessel."""
     @property
-    def tau(self) -> list[float] | None:
-        """Thrust τ (6,), None without a vessel."""
+    def tau(self) -> _FloatArray | None:
+        """Thrust τ (6,), body frame (statics: the holding thrust), None without a vessel."""
+    @property
+    def chi(self) -> _FloatArray | None:
+        """The pipe's force and moment on the vessel (6,), body frame, None without a vessel."""
     @property
     def time(self) -> float:
         """Time (s): 0 for static states."""
@@ -197,6 +203,73 @@ class State:
         """Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total."""
 
 @final
+@final
+class Vessel:
+    """A DP vessel: M = M_RB + M_A, damping D and restoring G (6×6, about CO)."""
+
+    def __new__(
+        cls,
+        M: _ArrayLike,
+        D: _ArrayLike,
+        G: _ArrayLike,
+        *,
+        M_RB: _ArrayLike | None = None,
+        quadratic_damping: _ArrayLike | None = None,
+    ) -> Vessel: ...
+    @staticmethod
+    def osv() -> Vessel:
+        """The 83 m offshore supply vessel of Fossen's MSS toolbox."""
+    @property
+    def M(self) -> _FloatArray:
+        """M = M_RB + M_A (6, 6)."""
+    @property
+    def M_RB(self) -> _FloatArray:
+        """Rigid-body mass (6, 6)."""
+    @property
+    def M_A(self) -> _FloatArray:
+        """Added mass (6, 6)."""
+    @property
+    def D(self) -> _FloatArray:
+        """Linear damping (6, 6)."""
+    @property
+    def G(self) -> _FloatArray:
+        """Restoring (6, 6)."""
+    def coriolis(self, nu: _ArrayLike) -> _FloatArray:
+        """C(ν) = C_RB(ν) + C_A(ν) (6, 6)."""
+
+@final
+class PID:
+    """PID on η: τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), from `start` (s)."""
+
+    def __new__(
+        cls,
+        kp: _ArrayLike,
+        kd: _ArrayLike,
+        ki: _ArrayLike | None = None,
+        reference: _ArrayLike | None = None,
+        start: float = 0.0,
+        integral_limit: _ArrayLike | None = None,
+        thrust_limit: _ArrayLike | None = None,
+    ) -> PID: ...
+    @property
+    def reference(self) -> _FloatArray:
+        """η_ref (6,)."""
+    @property
+    def start(self) -> float:
+        """Start time (s)."""
+
+@final
+class Force:
+    """A constant environmental force and moment (6,) on the vessel, body frame, from `start` (s)."""
+
+    def __new__(cls, value: _ArrayLike, start: float = 0.0) -> Force: ...
+    @property
+    def value(self) -> _FloatArray:
+        """The force and moment (6,)."""
+    @property
+    def start(self) -> float:
+        """Start time (s)."""
+
 @final
 class Simulation:
     """A time simulation of a model (energy–momentum conserving integrator)."""
@@ -262,14 +335,19 @@ class Results:
     def iterations(self) -> _FloatArray:
         """Newton iterations of the step leading to each record (T,)."""
     @property
-    def eta(self) -> list[float] | None:
-        """Vessel position η (T, 6), None without a vessel."""
+    def eta(self) -> _FloatArray | None:
+        """Vessel pose η (T, 6) in e, None without a vessel."""
     @property
-    def nu(self) -> list[float] | None:
-        """Vessel velocity ν (T, 6), None without a vessel."""
+    def nu(self) -> _FloatArray | None:
+        """Vessel velocity ν (T, 6), body frame, None without a vessel."""
     @property
-    def tau(self) -> list[float] | None:
-        """Thrust τ (T, 6), None without a vessel."""
+    def tau(self) -> _FloatArray | None:
+        """Thrust applied τ (T, 6), body frame, None without a vessel."""
+    @property
+    def chi(self) -> _FloatArray | None:
+        """The pipe's force and moment on the vessel χ (T, 6), body frame, None without a vessel."""
+    def passivity_margin(self) -> float:
+        """max over t of E(t) − E(0) − W(t) (J): at round-off for this passive scheme."""
     def __len__(self) -> int: ...
 
 @final
@@ -291,6 +369,17 @@ class Model:
         rotation: Callable[[float], _ArrayLike] | None = None,
     ) -> None:
         """Drive an end: position(t) (m), initial velocity(t) (m/s), rotation(t) (3, 3); free rotation without it."""
+    def attach_vessel(
+        self,
+        end: _End,
+        vessel: Vessel,
+        *,
+        eta: _ArrayLike,
+        angle: _ArrayLike | None = None,
+        controller: PID | None = None,
+        environment: Sequence[Force] | None = None,
+    ) -> None:
+        """Attach a vessel at `end`: starting pose eta (6,), clamp angle β (zyx, rad), controller, forces."""
     def simulation(self, state: State | None = None, dt: float = 0.05) -> Simulation:
         """A time simulation from `state` (default: self.static()) with time step `dt` (s)."""
     def point_load(
