@@ -144,7 +144,9 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=Path("."), help="directory for the figures")
     parser.add_argument("--elements", type=int, default=10, help="number of pipe elements")
-    parser.add_argument("--dt", type=float, default=0.25, help="time step (s); 0.25 s is within 1 cm of 0.025 s")
+    parser.add_argument(
+        "--dt", type=float, default=0.25, help="time step (s); 0.25 s is within 1 cm of 0.025 s"
+    )
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
 

@@ -247,8 +247,9 @@ impl Results {
             .collect();
         shaped(py, &tension, &[self.history.len(), self.last_node])
     }
-    /// Force (N) and moment (N·m) the rod exerts on the support at end "A" or "B" (T, 6), in e; for the
-    /// first record of a run started from a static state, zero.
+    /// Force (N) and moment (N·m) the rod exerts on the support at end "A" or "B" (T, 6), in e. Each record is
+    /// the mean over the step that ended at that time (second-order accurate at the step's midpoint
+    /// t − Δt/2); the first record is the reaction of the starting state.
     fn reaction<'py>(&self, py: Python<'py>, end: &str) -> PyResult<Bound<'py, PyAny>> {
         let data = match end {
             "A" => &self.history.reaction_a,

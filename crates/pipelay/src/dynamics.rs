@@ -273,7 +273,9 @@ impl Integrator {
             ));
         }
         let assembler = Assembler::new(&model);
-        let reactions = vec![Vector6::zeros(); count];
+        // Before the first step: the reactions of the starting configuration at rest (static ones for a
+        // static state).
+        let reactions = crate::response::Response::new(&model, &state.configuration).nodal_reactions;
         let nodal = NodalProperties::new(&model);
         let round_off = 1e-13
             * (model.rod.section.translational_stiffness.max()
@@ -327,7 +329,8 @@ impl Integrator {
         self.dissipated
     }
 
-    /// Force and moment the rod exerted on each node's support over the last step, in e.
+    /// Force and moment the rod exerted on each node's support over the last step, in e: the step's mean
+    /// (impulse / Δt), a second-order value at the step's midpoint t_n + Δt/2.
     pub fn reactions(&self) -> &[Vector6<f64>] {
         &self.reactions
     }
