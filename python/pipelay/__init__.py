@@ -20,6 +20,7 @@ from pipelay._core import (
     State,
     Vessel,
 )
+from pipelay.results import load, resume
 
 __all__ = [
     "PID",
@@ -35,5 +36,7 @@ __all__ = [
     "Simulation",
     "State",
     "Vessel",
+    "load",
+    "resume",
 ]
 __version__ = "0.1.0"

@@ -50,6 +50,11 @@ pub fn matrix3(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Matrix3<f64
     Ok(Matrix3::from_row_slice(&flat))
 }
 
+/// All values of an array of any shape, flattened (row-major).
+pub fn flat(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<f64>> {
+    Ok(float_array(value, argument)?.0)
+}
+
 /// A 6×6 matrix (row-major as numpy gives it).
 pub fn float_matrix6(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<nalgebra::Matrix6<f64>> {
     let (flat, shape) = float_array(value, argument)?;

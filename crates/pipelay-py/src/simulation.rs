@@ -1,12 +1,15 @@
 //! Python classes Simulation and Results: time stepping with a progress bar, the GIL released while the
 //! engine steps, and the recorded time series.
 use crate::callables::take_interrupt;
+use crate::convert::flat;
 use crate::errors::{input, to_py};
 use crate::state::State;
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3, Vector6};
 use numpy::{PyArray1, PyArrayMethods};
-use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator};
+use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator, VesselMotion};
 use pipelay::history::History;
 use pipelay::model::Model;
+use pipelay::rod::dynamic_element::GaussPoint;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -140,6 +143,193 @@ impl Simulation {
         }
     }
 
+    /// The integrator's complete state as arrays (time, Δt, positions, quaternions, velocities, body angular
+    /// velocities, Gauss-point rotations and strains, vessel motion): what `checkpoint` writes.
+    fn _checkpoint<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let state = self.integrator.state();
+        let dict = PyDict::new(py);
+        let rows = |name: &str, data: Vec<f64>, width: usize| -> PyResult<()> {
+            let count = data.len() / width.max(1);
+            dict.set_item(name, shaped(py, &data, &[count, width])?)
+        };
+        rows("time", vec![state.time], 1)?;
+        rows("dt", vec![self.time_step()], 1)?;
+        rows(
+            "positions",
+            state
+                .configuration
+                .positions
+                .iter()
+                .flat_map(|p| p.iter().copied())
+                .collect(),
+            3,
+        )?;
+        rows(
+            "quaternions",
+            state
+                .configuration
+                .rotations
+                .iter()
+                .flat_map(|q| q.coords.iter().copied())
+                .collect(),
+            4,
+        )?;
+        rows(
+            "velocities",
+            state
+                .velocities
+                .iter()
+                .flat_map(|v| v.iter().copied())
+                .collect(),
+            3,
+        )?;
+        rows(
+            "body_angular_velocities",
+            state
+                .body_angular_velocities
+                .iter()
+                .flat_map(|v| v.iter().copied())
+                .collect(),
+            3,
+        )?;
+        rows(
+            "gauss_rotations",
+            state
+                .gauss
+                .iter()
+                .flat_map(|g| g.rotation.iter().copied())
+                .collect(),
+            9,
+        )?;
+        rows(
+            "gauss_strains",
+            state
+                .gauss
+                .iter()
+                .flat_map(|g| g.strain.iter().copied())
+                .collect(),
+            3,
+        )?;
+        rows(
+            "gauss_curvatures",
+            state
+                .gauss
+                .iter()
+                .flat_map(|g| g.curvature.iter().copied())
+                .collect(),
+            3,
+        )?;
+        if let Some(v) = &state.vessel {
+            let parts = [
+                v.velocity,
+                v.integral,
+                v.hold_thrust,
+                v.thrust,
+                v.pipe_force,
+            ];
+            rows(
+                "vessel",
+                parts.iter().flat_map(|p| p.iter().copied()).collect(),
+                6,
+            )?;
+        }
+        Ok(dict)
+    }
+
+    /// A simulation of `model` restored from `_checkpoint` arrays: it continues exactly as the original.
+    #[staticmethod]
+    fn _restore(model: &crate::model::Model, arrays: &Bound<'_, PyDict>) -> PyResult<Simulation> {
+        let get = |key: &str| -> PyResult<Vec<f64>> {
+            match arrays.get_item(key)? {
+                Some(value) => flat(&value, key),
+                None => Err(input(key, "missing", "must be present in the checkpoint")),
+            }
+        };
+        let model = model.0.clone();
+        let nodes = model.rod.node_count();
+        let elements = model.rod.element_count();
+        let vectors = |key: &str, count: usize| -> PyResult<Vec<Vector3<f64>>> {
+            let data = get(key)?;
+            if data.len() != 3 * count {
+                return Err(input(
+                    key,
+                    format!("{} values", data.len()),
+                    &format!("must hold {count} × 3 values for this model"),
+                ));
+            }
+            Ok(data
+                .chunks_exact(3)
+                .map(Vector3::from_column_slice)
+                .collect())
+        };
+        let quaternions = get("quaternions")?;
+        if quaternions.len() != 4 * nodes {
+            return Err(input(
+                "quaternions",
+                format!("{} values", quaternions.len()),
+                "must hold (n + 1) × 4 values",
+            ));
+        }
+        let rotations = quaternions
+            .chunks_exact(4)
+            .map(|q| UnitQuaternion::new_unchecked(Quaternion::new(q[3], q[0], q[1], q[2])))
+            .collect();
+        let gauss_rotations = get("gauss_rotations")?;
+        if gauss_rotations.len() != 9 * elements {
+            return Err(input(
+                "gauss_rotations",
+                format!("{} values", gauss_rotations.len()),
+                "must hold n × 9 values",
+            ));
+        }
+        let strains = vectors("gauss_strains", elements)?;
+        let curvatures = vectors("gauss_curvatures", elements)?;
+        let gauss = gauss_rotations
+            .chunks_exact(9)
+            .zip(strains.iter().zip(&curvatures))
+            .map(|(r, (strain, curvature))| GaussPoint {
+                rotation: Matrix3::from_column_slice(r),
+                strain: *strain,
+                curvature: *curvature,
+            })
+            .collect();
+        let vessel = match arrays.get_item("vessel")? {
+            Some(value) => {
+                let data = flat(&value, "vessel")?;
+                if data.len() != 30 {
+                    return Err(input(
+                        "vessel",
+                        format!("{} values", data.len()),
+                        "must hold 5 × 6 values",
+                    ));
+                }
+                let part = |k: usize| Vector6::from_column_slice(&data[6 * k..6 * k + 6]);
+                Some(VesselMotion {
+                    velocity: part(0),
+                    integral: part(1),
+                    hold_thrust: part(2),
+                    thrust: part(3),
+                    pipe_force: part(4),
+                })
+            }
+            None => None,
+        };
+        let time = get("time")?.first().copied().unwrap_or(0.0);
+        let dt = get("dt")?.first().copied().unwrap_or(f64::NAN);
+        let state = DynamicState {
+            time,
+            configuration: pipelay::assembly::Configuration {
+                positions: vectors("positions", nodes)?,
+                rotations,
+            },
+            velocities: vectors("velocities", nodes)?,
+            body_angular_velocities: vectors("body_angular_velocities", nodes)?,
+            gauss,
+            vessel,
+        };
+        Simulation::new(model, state, dt)
+    }
+
     /// Current time (s).
     #[getter]
     fn time(&self) -> f64 {
@@ -185,6 +375,12 @@ pub struct Results {
 }
 
 impl Results {
+    /// Results from a finished history.
+    pub fn from_history(history: History) -> Self {
+        let last_node = history.nodes.saturating_sub(1);
+        Results { history, last_node }
+    }
+
     fn series<'py>(&self, py: Python<'py>, data: &[f64]) -> PyResult<Option<Bound<'py, PyAny>>> {
         if data.is_empty() {
             return Ok(None);
@@ -343,6 +539,55 @@ impl Results {
 
     fn __len__(&self) -> usize {
         self.history.len()
+    }
+
+    /// Results rebuilt from arrays (as written by `to_netcdf`): `nodes` (n + 1) and a mapping of the names
+    /// time, positions, rotations, velocities, section_forces, reaction_A, reaction_B, pipe_kinetic,
+    /// pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, supplied_work, dissipated, iterations and,
+    /// with a vessel, eta, nu, tau, chi. Used by `pl.load`.
+    #[staticmethod]
+    fn _from_arrays(nodes: usize, arrays: &Bound<'_, PyDict>) -> PyResult<Results> {
+        let get = |key: &str| -> PyResult<Vec<f64>> {
+            match arrays.get_item(key)? {
+                Some(value) => flat(&value, key),
+                None => Err(input(key, "missing", "must be present in the results")),
+            }
+        };
+        let optional = |key: &str| -> PyResult<Vec<f64>> {
+            match arrays.get_item(key)? {
+                Some(value) => flat(&value, key),
+                None => Ok(Vec::new()),
+            }
+        };
+        let mut h = History::empty(nodes);
+        h.time = get("time")?;
+        h.positions = get("positions")?;
+        h.rotations = get("rotations")?;
+        h.velocities = get("velocities")?;
+        h.section_forces = get("section_forces")?;
+        h.reaction_a = get("reaction_A")?;
+        h.reaction_b = get("reaction_B")?;
+        h.kinetic = get("pipe_kinetic")?;
+        h.strain = get("pipe_strain")?;
+        h.gravity = get("pipe_gravity")?;
+        h.vessel_kinetic = get("vessel_kinetic")?;
+        h.vessel_potential = get("vessel_potential")?;
+        h.supplied_work = get("supplied_work")?;
+        h.dissipated = get("dissipated")?;
+        h.iterations = get("iterations")?.iter().map(|&i| i as usize).collect();
+        h.eta = optional("eta")?;
+        h.nu = optional("nu")?;
+        h.tau = optional("tau")?;
+        h.chi = optional("chi")?;
+        h.check()
+            .map_err(|message| input("results", message, "arrays must have matching lengths"))?;
+        Ok(Results::from_history(h))
+    }
+
+    /// Number of nodes n + 1.
+    #[getter]
+    fn nodes(&self) -> usize {
+        self.last_node + 1
     }
 
     fn __repr__(&self) -> String {

@@ -275,7 +275,8 @@ impl Integrator {
         let assembler = Assembler::new(&model);
         // Before the first step: the reactions of the starting configuration at rest (static ones for a
         // static state).
-        let reactions = crate::response::Response::new(&model, &state.configuration).nodal_reactions;
+        let reactions =
+            crate::response::Response::new(&model, &state.configuration).nodal_reactions;
         let nodal = NodalProperties::new(&model);
         let round_off = 1e-13
             * (model.rod.section.translational_stiffness.max()

@@ -54,6 +54,52 @@ impl History {
         history
     }
 
+    /// An empty history of a rod with `nodes` nodes (to be filled field by field, e.g. from a file).
+    pub fn empty(nodes: usize) -> Self {
+        History {
+            nodes,
+            ..History::default()
+        }
+    }
+
+    /// Checks that every series has T records of the right width; names the first field that does not.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        let t = self.len();
+        let n = self.nodes;
+        let vessel = !self.eta.is_empty();
+        let fields: [(&str, usize, usize); 19] = [
+            ("positions", self.positions.len(), n * 3),
+            ("rotations", self.rotations.len(), n * 9),
+            ("velocities", self.velocities.len(), n * 3),
+            (
+                "section_forces",
+                self.section_forces.len(),
+                n.saturating_sub(1) * 6,
+            ),
+            ("reaction_A", self.reaction_a.len(), 6),
+            ("reaction_B", self.reaction_b.len(), 6),
+            ("pipe_kinetic", self.kinetic.len(), 1),
+            ("pipe_strain", self.strain.len(), 1),
+            ("pipe_gravity", self.gravity.len(), 1),
+            ("vessel_kinetic", self.vessel_kinetic.len(), 1),
+            ("vessel_potential", self.vessel_potential.len(), 1),
+            ("supplied_work", self.supplied_work.len(), 1),
+            ("dissipated", self.dissipated.len(), 1),
+            ("iterations", self.iterations.len(), 1),
+            ("eta", self.eta.len(), if vessel { 6 } else { 0 }),
+            ("nu", self.nu.len(), if vessel { 6 } else { 0 }),
+            ("tau", self.tau.len(), if vessel { 6 } else { 0 }),
+            ("chi", self.chi.len(), if vessel { 6 } else { 0 }),
+            ("time", self.time.len(), 1),
+        ];
+        match fields.iter().find(|(_, len, width)| *len != t * width) {
+            Some((name, len, width)) => {
+                Err(format!("{name}: {len} values, expected {t} × {width}"))
+            }
+            None => Ok(()),
+        }
+    }
+
     /// Number of records T.
     pub fn len(&self) -> usize {
         self.time.len()

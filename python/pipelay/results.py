@@ -1,0 +1,176 @@
+"""Results as labelled arrays and files: xarray datasets, netCDF (written atomically), exact reloading, and
+checkpoints that let a long run be resumed exactly.
+
+The netCDF layout (`Results.to_xarray`): dimensions ``time``, ``node`` (n + 1), ``element`` (n), ``axis`` (x, y,
+z of frame e), ``column`` (of a rotation matrix) and ``dof`` (6 components: force/moment or η/ν entries);
+every variable carries ``units`` and ``long_name`` attributes.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from pipelay._core import InputError, Model, Results, Simulation
+
+__all__ = ["checkpoint", "load", "resume", "to_netcdf", "to_xarray"]
+
+AXES = ["x", "y", "z"]
+FORCE_DOFS = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"]
+
+# name: (dimensions, units, description)
+LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
+    "positions": (("time", "node", "axis"), "m", "node positions in frame e (e3 down)"),
+    "rotations": (("time", "node", "axis", "column"), "1", "nodal rotation matrices R_t^e"),
+    "velocities": (("time", "node", "axis"), "m s-1", "node velocities"),
+    "section_forces": (
+        ("time", "element", "dof"),
+        "N, N m",
+        "material force [N1, N2, N3] (N) and moment [M1, M2, M3] (N m) at element midpoints",
+    ),
+    "tension": (("time", "element"), "N", "axial force N1 at element midpoints, positive in tension"),
+    "reaction_A": (("time", "dof"), "N, N m", "force and moment of the rod on the support at end A, frame e"),
+    "reaction_B": (("time", "dof"), "N, N m", "force and moment of the rod on the support at end B, frame e"),
+    "pipe_kinetic": (("time",), "J", "pipe kinetic energy"),
+    "pipe_strain": (("time",), "J", "pipe strain energy"),
+    "pipe_gravity": (("time",), "J", "potential of the pipe's submerged weight"),
+    "vessel_kinetic": (("time",), "J", "vessel kinetic energy"),
+    "vessel_potential": (("time",), "J", "vessel hydrostatic restoring energy"),
+    "total_energy": (("time",), "J", "storage function E = pipe + vessel energy"),
+    "supplied_work": (("time",), "J", "work supplied since the start of the run"),
+    "dissipated": (("time",), "J", "energy dissipated since the start of the run"),
+    "iterations": (("time",), "1", "Newton iterations of the step leading to the record"),
+    "eta": (("time", "dof"), "m, rad", "vessel pose [x, y, z, phi, theta, psi] in frame e"),
+    "nu": (("time", "dof"), "m s-1, rad s-1", "vessel velocity [u, v, w, p, q, r], body frame"),
+    "tau": (("time", "dof"), "N, N m", "thrust applied, body frame"),
+    "chi": (("time", "dof"), "N, N m", "force and moment of the pipe on the vessel, body frame"),
+}
+ENERGY_KEYS = ["pipe_kinetic", "pipe_strain", "pipe_gravity", "vessel_kinetic", "vessel_potential"]
+
+
+def _arrays(results: Results) -> dict[str, np.ndarray]:
+    """Every recorded array of `results`, by its netCDF name."""
+    energy = results.energy
+    arrays: dict[str, np.ndarray] = {
+        "positions": results.positions,
+        "rotations": results.rotations,
+        "velocities": results.velocities,
+        "section_forces": results.section_forces,
+        "tension": results.tension,
+        "reaction_A": results.reaction("A"),
+        "reaction_B": results.reaction("B"),
+        **{key: energy[key] for key in ENERGY_KEYS},
+        "total_energy": energy["total"],
+        "supplied_work": results.supplied_work,
+        "dissipated": results.dissipated,
+        "iterations": results.iterations,
+    }
+    for key in ("eta", "nu", "tau", "chi"):
+        value = getattr(results, key)
+        if value is not None:
+            arrays[key] = value
+    return arrays
+
+
+def to_xarray(results: Results) -> Any:
+    """The results as an ``xarray.Dataset`` (dimensions time, node, element, axis, column, dof; units in the
+    variables' attributes)."""
+    import xarray as xr
+
+    arrays = _arrays(results)
+    nodes = results.positions.shape[1]
+    variables = {
+        name: xr.Variable(LAYOUT[name][0], value, {"units": LAYOUT[name][1], "long_name": LAYOUT[name][2]})
+        for name, value in arrays.items()
+    }
+    coords = {
+        "time": ("time", results.time, {"units": "s", "long_name": "time"}),
+        "node": ("node", np.arange(nodes), {"long_name": "node index (0: end A, n: end B)"}),
+        "element": ("element", np.arange(nodes - 1), {"long_name": "element index"}),
+        "axis": ("axis", AXES),
+        "column": ("column", AXES),
+        "dof": ("dof", np.arange(6), {"long_name": "component: force/moment or eta/nu entry"}),
+    }
+    attrs = {
+        "title": "pipelay simulation results",
+        "conventions": "SI units; frame e: origin at the seabed end, e1 lay direction, e3 down",
+        "created": datetime.now(UTC).isoformat(timespec="seconds"),
+        "force_dofs": " ".join(FORCE_DOFS),
+    }
+    return xr.Dataset(variables, coords=coords, attrs=attrs)
+
+
+def _atomic_write(path: Path, write: Any) -> None:
+    """Calls ``write(temporary_path)`` and renames the file into place: readers never see half a file."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    os.close(handle)
+    try:
+        write(Path(temporary))
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+
+
+def to_netcdf(results: Results, path: str | os.PathLike[str]) -> Path:
+    """Writes the results to a netCDF-4 file (h5netcdf) atomically: a temporary file, then a rename."""
+    dataset = to_xarray(results)
+    target = Path(path)
+    _atomic_write(target, lambda temporary: dataset.to_netcdf(temporary, engine="h5netcdf"))
+    return target
+
+
+def load(path: str | os.PathLike[str]) -> Results:
+    """Reads results written by ``Results.to_netcdf`` back, bit for bit."""
+    import xarray as xr
+
+    target = Path(path)
+    if not target.is_file():
+        raise InputError(f"path: no results file at {str(target)!r}")
+    with xr.open_dataset(target, engine="h5netcdf") as dataset:
+        arrays = {name: dataset[name].values for name in dataset.data_vars if name in LAYOUT}
+        arrays["time"] = dataset["time"].values
+        nodes = int(dataset.sizes["node"])
+    return Results._from_arrays(nodes, arrays)
+
+
+def checkpoint(simulation: Simulation, path: str | os.PathLike[str]) -> Path:
+    """Saves the simulation's complete state (atomically, numpy ``.npz``) so that ``resume`` continues it
+    exactly as if it had not stopped."""
+    arrays = simulation._checkpoint()
+    target = Path(path)
+
+    def write(temporary: Path) -> None:
+        with open(temporary, "wb") as stream:
+            np.savez(stream, **arrays)
+
+    _atomic_write(target, write)
+    return target
+
+
+def resume(model: Model, path: str | os.PathLike[str]) -> Simulation:
+    """The simulation saved by ``checkpoint``, continued on `model` (the same model it was saved from)."""
+    target = Path(path)
+    if not target.is_file():
+        raise InputError(f"path: no checkpoint file at {str(target)!r}")
+    with np.load(target) as data:
+        arrays = {key: data[key] for key in data.files}
+    return Simulation._restore(model, arrays)
+
+
+def _attach() -> None:
+    """Makes these functions methods of the engine's classes: ``Results.to_xarray``, ``Results.to_netcdf``,
+    ``Simulation.checkpoint``."""
+    Results.to_xarray = to_xarray  # type: ignore[attr-defined]
+    Results.to_netcdf = to_netcdf  # type: ignore[attr-defined]
+    Simulation.checkpoint = checkpoint  # type: ignore[attr-defined]
+
+
+_attach()
