@@ -155,6 +155,14 @@ impl Simulation {
         rows("time", vec![state.time], 1)?;
         rows("dt", vec![self.time_step()], 1)?;
         rows(
+            "ledger",
+            vec![
+                self.integrator.supplied_work(),
+                self.integrator.dissipated(),
+            ],
+            2,
+        )?;
+        rows(
             "positions",
             state
                 .configuration
@@ -327,7 +335,12 @@ impl Simulation {
             gauss,
             vessel,
         };
-        Simulation::new(model, state, dt)
+        let ledger = get("ledger")?;
+        let mut simulation = Simulation::new(model, state, dt)?;
+        if let [supplied, dissipated] = ledger[..] {
+            simulation.integrator.restore_ledger(supplied, dissipated);
+        }
+        Ok(simulation)
     }
 
     /// Current time (s).

@@ -325,6 +325,12 @@ impl Integrator {
         self.supplied_work
     }
 
+    /// Restores the work and dissipation ledger (J), e.g. from a checkpoint.
+    pub fn restore_ledger(&mut self, supplied_work: f64, dissipated: f64) {
+        self.supplied_work = supplied_work;
+        self.dissipated = dissipated;
+    }
+
     /// Energy dissipated since the start (J): drag on the relative velocity and rotational damping.
     pub fn dissipated(&self) -> f64 {
         self.dissipated

@@ -1,0 +1,180 @@
+"""The ``pipelay`` command line.
+
+    pipelay run SCENARIO -o RESULTS.nc [--plots DIR] [--checkpoint FILE] [--resume FILE] [--no-progress]
+    pipelay static SCENARIO [--plots DIR]
+    pipelay check SCENARIO
+    pipelay plot RESULTS.nc --plots DIR
+
+Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
+still written), 2 bad input (the message names the scenario key; no traceback), 130 interrupted by Ctrl-C
+(the results computed so far are written, and a checkpoint if asked for).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import pipelay as pl
+from pipelay import plots
+from pipelay.results import checkpoint, load, resume, to_netcdf
+from pipelay.scenario import Scenario, load_scenario
+
+INTERRUPTED = 130
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="pipelay", description="Offshore pipelay simulation from scenario files."
+    )
+    commands = parser.add_subparsers(dest="command", required=True)
+    run = commands.add_parser("run", help="statics, then a simulation to solver.t_end; writes netCDF results")
+    run.add_argument("scenario", type=Path, help="scenario file (TOML)")
+    run.add_argument("-o", "--output", type=Path, required=True, help="results file (netCDF)")
+    run.add_argument("--plots", type=Path, help="directory for figures")
+    run.add_argument(
+        "--checkpoint", type=Path, help="write the final (or interrupted) state here to resume later"
+    )
+    run.add_argument("--resume", type=Path, help="continue from a checkpoint instead of the static state")
+    run.add_argument("--no-progress", action="store_true", help="no progress bar")
+    static = commands.add_parser("static", help="static equilibrium: prints tensions, reactions, vessel pose")
+    static.add_argument("scenario", type=Path, help="scenario file (TOML)")
+    static.add_argument("--plots", type=Path, help="directory for the tension and bending figure")
+    check = commands.add_parser("check", help="validate a scenario file without solving")
+    check.add_argument("scenario", type=Path, help="scenario file (TOML)")
+    plot = commands.add_parser("plot", help="figures from a results file")
+    plot.add_argument("results", type=Path, help="results file (netCDF) written by `pipelay run`")
+    plot.add_argument("--plots", type=Path, required=True, help="directory for figures")
+    return parser
+
+
+def _reference(scenario: Scenario) -> list[float] | None:
+    """The controller's η_ref, for the vessel figure."""
+    controller = scenario.source.get("controller")
+    return (
+        list(controller["reference"]) if isinstance(controller, dict) and "reference" in controller else None
+    )
+
+
+def _depth(scenario: Scenario) -> float | None:
+    sea = scenario.model.sea
+    return sea.depth if sea is not None else None
+
+
+def _summary(state: pl.State) -> str:
+    """Top tension, end reactions and vessel pose of a state, one per line."""
+    lines = [
+        f"top tension |F_B|       {np.linalg.norm(state.reaction('B')[:3]) / 1e3:12.1f} kN",
+        f"largest axial force     {np.max(state.tension) / 1e3:12.1f} kN",
+        f"reaction at A (force)   {np.array2string(state.reaction('A')[:3] / 1e3, precision=1)} kN",
+    ]
+    if state.eta is not None:
+        lines.append(f"vessel η                {np.array2string(state.eta, precision=3)}")
+        lines.append(
+            f"thrust τ (surge, sway, yaw) {np.array2string(state.tau[[0, 1, 5]] / 1e3, precision=1)} kN, kN m"
+        )
+    return "\n".join(lines)
+
+
+def _write(results: pl.Results, args: argparse.Namespace, scenario: Scenario) -> None:
+    path = to_netcdf(results, args.output)
+    print(f"results: {path} ({len(results)} records, t = {results.time[0]:g} … {results.time[-1]:g} s)")
+    if args.plots:
+        for figure in plots.all_figures(
+            results, args.plots, reference=_reference(scenario), depth=_depth(scenario)
+        ):
+            print(f"figure: {figure}")
+
+
+def _run(args: argparse.Namespace) -> int:
+    scenario = load_scenario(args.scenario)
+    if scenario.t_end is None:
+        raise pl.InputError(
+            "solver.t_end: needed by `pipelay run` (s); use `pipelay static` for statics only"
+        )
+    model = scenario.model
+    if args.resume:
+        simulation = resume(model, args.resume)
+    else:
+        state = model.static(steps=scenario.static_steps, start=scenario.static_start)
+        simulation = model.simulation(state=state, dt=scenario.dt)
+    status = 0
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            results = simulation.run(
+                scenario.t_end, progress=not args.no_progress, record_every=scenario.record_every
+            )
+        except pl.ConvergenceError as failure:
+            print(f"pipelay: solve failed: {failure}", file=sys.stderr)
+            results = failure.results
+            status = 1
+    if any("interrupted" in str(w.message) for w in caught):
+        print(
+            f"pipelay: interrupted at t = {simulation.time:g} s; keeping the results so far", file=sys.stderr
+        )
+        status = INTERRUPTED
+    _write(results, args, scenario)
+    if args.checkpoint:
+        print(f"checkpoint: {checkpoint(simulation, args.checkpoint)} (t = {simulation.time:g} s)")
+    return status
+
+
+def _static(args: argparse.Namespace) -> int:
+    scenario = load_scenario(args.scenario)
+    state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
+    print(f"static equilibrium: {state.iterations} Newton iterations in {state.steps} load step(s)")
+    print(_summary(state))
+    if args.plots:
+        path = Path(args.plots) / "tension_bending.png"
+        plots.tension_and_bending(state, path=path)
+        print(f"figure: {path}")
+    return 0
+
+
+def _check(args: argparse.Namespace) -> int:
+    scenario = load_scenario(args.scenario)
+    rod = scenario.model.rod
+    vessel = "with a vessel" if "vessel" in scenario.source else "without a vessel"
+    run = (
+        f"simulation to {scenario.t_end:g} s with dt = {scenario.dt:g} s"
+        if scenario.t_end
+        else "statics only"
+    )
+    print(f"{args.scenario}: valid: {rod.elements} elements, {rod.length:g} m, {vessel}; {run}")
+    return 0
+
+
+def _plot(args: argparse.Namespace) -> int:
+    results = load(args.results)
+    for figure in plots.all_figures(results, args.plots):
+        print(f"figure: {figure}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``pipelay`` command; returns the exit code."""
+    args = _parser().parse_args(argv)
+    command = {"run": _run, "static": _static, "check": _check, "plot": _plot}[args.command]
+    try:
+        return command(args)
+    except pl.InputError as error:
+        print(f"pipelay: error: {error}", file=sys.stderr)
+        return 2
+    except pl.ConvergenceError as error:
+        print(f"pipelay: solve failed: {error}", file=sys.stderr)
+        return 1
+    except OSError as error:
+        print(f"pipelay: error: {error}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("pipelay: interrupted", file=sys.stderr)
+        return INTERRUPTED
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
