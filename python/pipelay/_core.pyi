@@ -1,7 +1,9 @@
 """Type stubs of the compiled engine module (SI units; frame e with e3 pointing down)."""
 
+import os
 from collections.abc import Callable, Sequence
-from typing import Literal, TypeAlias, final
+from pathlib import Path
+from typing import Any, Literal, TypeAlias, final
 
 import numpy as np
 import numpy.typing as npt
@@ -297,6 +299,8 @@ class Simulation:
         """Linear momentum (kg·m/s)."""
     def angular_momentum(self) -> tuple[float, float, float]:
         """Angular momentum about the origin (kg·m²/s)."""
+    def checkpoint(self, path: str | os.PathLike[str]) -> Path:
+        """Save the complete state (atomically); pl.resume continues it exactly."""
 
 @final
 class Results:
@@ -348,6 +352,13 @@ class Results:
         """The pipe's force and moment on the vessel χ (T, 6), body frame, None without a vessel."""
     def passivity_margin(self) -> float:
         """max over t of E(t) − E(0) − W(t) (J): at round-off for this passive scheme."""
+    @property
+    def nodes(self) -> int:
+        """Number of nodes n + 1."""
+    def to_xarray(self) -> Any:
+        """The results as an xarray.Dataset (dimensions time, node, element, axis, column, dof; units)."""
+    def to_netcdf(self, path: str | os.PathLike[str]) -> Path:
+        """Write a netCDF-4 file atomically; pl.load reads it back exactly."""
     def __len__(self) -> int: ...
 
 @final

@@ -168,9 +168,22 @@ def resume(model: Model, path: str | os.PathLike[str]) -> Simulation:
 def _attach() -> None:
     """Makes these functions methods of the engine's classes: ``Results.to_xarray``, ``Results.to_netcdf``,
     ``Simulation.checkpoint``."""
-    Results.to_xarray = to_xarray  # type: ignore[attr-defined]
-    Results.to_netcdf = to_netcdf  # type: ignore[attr-defined]
-    Simulation.checkpoint = checkpoint  # type: ignore[attr-defined]
+
+    def results_to_xarray(self: Results) -> Any:
+        """The results as an xarray.Dataset (dimensions time, node, element, axis, column, dof; units)."""
+        return to_xarray(self)
+
+    def results_to_netcdf(self: Results, path: str | os.PathLike[str]) -> Path:
+        """Write a netCDF-4 file atomically; pl.load reads it back exactly."""
+        return to_netcdf(self, path)
+
+    def simulation_checkpoint(self: Simulation, path: str | os.PathLike[str]) -> Path:
+        """Save the complete state (atomically); pl.resume continues it exactly."""
+        return checkpoint(self, path)
+
+    Results.to_xarray = results_to_xarray  # type: ignore[attr-defined]
+    Results.to_netcdf = results_to_netcdf  # type: ignore[attr-defined]
+    Simulation.checkpoint = simulation_checkpoint  # type: ignore[attr-defined]
 
 
 _attach()
