@@ -1,0 +1,358 @@
+"""Figures of a pipelay run: pipe shapes, vessel motion, top tension, tension and bending along the pipe, and
+the energy balance.
+
+Every function returns a :class:`matplotlib.figure.Figure` drawn on its own Agg canvas (pyplot is not used, so
+neither the user's backend nor pyplot's list of open figures is touched) and, when ``path`` is given, also
+saves it there (PNG at 120 dpi; another suffix such as ``.pdf`` selects that format).
+
+Frame e has e3 pointing down: elevations are plotted as −z (m above the seabed end, z = 0), and the sea
+surface, the plane z = −depth, is at elevation depth.
+
+Usage::
+
+    from pipelay import plots
+
+    plots.shape(results, times=(0.0, 30.0, 200.0), depth=800.0, path="shape.png")
+    plots.all_figures(results, "figures", depth=800.0)
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+import numpy.typing as npt
+from matplotlib.axes import Axes
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+from pipelay._core import Results, State
+
+__all__ = ["all_figures", "energy", "shape", "tension_and_bending", "top_tension", "vessel_motion"]
+
+DPI = 120
+"""Resolution of saved figures (dots per inch)."""
+
+_LINESTYLES = ("-", "--", "-.", ":")
+_PathLike = str | os.PathLike[str]
+_End = Literal["A", "B"]
+
+
+def _figure(
+    width: float, height: float, rows: int, columns: int, sharex: bool = False
+) -> tuple[Figure, list[Axes]]:
+    """A figure of width × height (inches) on an Agg canvas with a rows × columns grid of axes, listed row
+    by row."""
+    figure = Figure(figsize=(width, height), layout="constrained")
+    FigureCanvasAgg(figure)
+    axes: list[Axes] = figure.subplots(rows, columns, sharex=sharex, squeeze=False).ravel().tolist()
+    return figure, axes
+
+
+def _finish(figure: Figure, axes: list[Axes], path: _PathLike | None) -> Figure:
+    """Grid and ×10ⁿ tick labels for large or small values on every axes; save to `path` (PNG at DPI unless
+    its suffix says otherwise) when given."""
+    for axis in axes:
+        axis.grid(alpha=0.3)
+        axis.ticklabel_format(axis="y", style="sci", scilimits=(-3, 4), useMathText=True)
+    if path is not None:
+        figure.savefig(path, dpi=DPI)
+    return figure
+
+
+def _records(time: npt.NDArray[np.float64], times: Sequence[float] | None) -> list[int]:
+    """Indices of the records nearest to `times` (s), in order and without repeats.
+
+    None selects the first, middle and last records."""
+    if times is None:
+        wanted = [0, (len(time) - 1) // 2, len(time) - 1]
+    elif len(times) == 0:
+        raise ValueError("times is empty: give at least one time (s), or None for the first, middle and last")
+    else:
+        wanted = [int(np.argmin(np.abs(time - t))) for t in times]
+    return list(dict.fromkeys(wanted))
+
+
+def _time_label(t: float) -> str:
+    """Legend text of a record's time t (s)."""
+    return f"t = {t:g} s"
+
+
+def _style(j: int) -> dict[str, Any]:
+    """Line style of the j-th curve of a set of times: a line style cycle, with dots at the data points."""
+    return {"linestyle": _LINESTYLES[j % len(_LINESTYLES)], "marker": ".", "markersize": 4.0}
+
+
+def _rotation_body_to_e(eta: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """Rotation matrices R_b^e (T, 3, 3) from the zyx Euler angles φ, θ, ψ (rad) of η (T, 6) (Fossen)."""
+    cf, sf = np.cos(eta[:, 3]), np.sin(eta[:, 3])
+    ct, st = np.cos(eta[:, 4]), np.sin(eta[:, 4])
+    cp, sp = np.cos(eta[:, 5]), np.sin(eta[:, 5])
+    return np.stack(
+        [
+            np.stack([cp * ct, -sp * cf + cp * st * sf, sp * sf + cp * cf * st], axis=-1),
+            np.stack([sp * ct, cp * cf + sf * st * sp, -cp * sf + st * sp * cf], axis=-1),
+            np.stack([-st, ct * sf, ct * cf], axis=-1),
+        ],
+        axis=-2,
+    )
+
+
+def _end_force(results: Results, end: _End) -> tuple[npt.NDArray[np.float64], str]:
+    """Force (T, 3) (N, in e) of the pipe on what holds `end`, and what that is ("vessel" or "support").
+
+    At the end attached to a vessel (the end node sits at the vessel's origin η[:3]) the force is the pipe's
+    force on the vessel χ, turned from the body frame into e; elsewhere it is the support reaction."""
+    if end not in ("A", "B"):
+        raise ValueError(f"end must be 'A' (node 0, seabed end) or 'B' (node n, top end), got {end!r}")
+    eta = results.eta
+    chi = results.chi
+    if eta is not None and chi is not None:
+        node = results.positions[:, 0 if end == "A" else -1]
+        if np.allclose(node, eta[:, :3], atol=1e-6):
+            return np.einsum("tij,tj->ti", _rotation_body_to_e(eta), chi[:, :3]), "vessel"
+    return results.reaction(end)[:, :3], "support"
+
+
+def shape(
+    results: Results,
+    times: Sequence[float] | None = None,
+    path: _PathLike | None = None,
+    depth: float | None = None,
+) -> Figure:
+    """Side view (x against elevation −z) and plan view (x against y) of the pipe at chosen times.
+
+    Args:
+        results: a run.
+        times: times (s); each shows the nearest record, labelled with that record's time. None: the first,
+            middle and last records.
+        path: where to save the figure, if anywhere.
+        depth: water depth (m); when given, the side view shows the sea surface (−z = depth) and the seabed
+            (z = 0).
+
+    Returns:
+        The figure, two axes: side view, plan view (m).
+    """
+    figure, axes = _figure(11.0, 4.5, 1, 2)
+    side, plan = axes
+    time = results.time
+    positions = results.positions
+    for j, k in enumerate(_records(time, times)):
+        p = positions[k]
+        side.plot(p[:, 0], -p[:, 2], label=_time_label(time[k]), **_style(j))
+        plan.plot(p[:, 0], p[:, 1], label=_time_label(time[k]), **_style(j))
+    if depth is not None:
+        side.axhline(depth, color="tab:cyan", linewidth=1.5, label=f"sea surface (−z = {depth:g} m)")
+        side.axhline(0.0, color="saddlebrown", linewidth=1.5, label="seabed (z = 0)")
+    side.set_xlabel("x (m)")
+    side.set_ylabel("elevation above seabed −z (m)")
+    side.set_title("Side view")
+    plan.set_xlabel("x (m)")
+    plan.set_ylabel("y (m)")
+    plan.set_title("Plan view (y axis scaled to fit)")
+    side.legend(fontsize=8, loc="best")
+    plan.legend(fontsize=8, loc="best")
+    figure.suptitle("Pipe shape")
+    return _finish(figure, axes, path)
+
+
+def vessel_motion(
+    results: Results, reference: npt.ArrayLike | None = None, path: _PathLike | None = None
+) -> Figure:
+    """The vessel pose η(t) in six panels: x, y, z (m) on the left, φ, θ, ψ (degrees) on the right.
+
+    Args:
+        results: a run with a vessel.
+        reference: η_ref (6,) or (T, 6) in m and rad, drawn dotted; NaN entries are not drawn (give NaN for
+            the degrees of freedom the controller leaves free).
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, six axes, row by row: x, φ; y, θ; z, ψ.
+
+    Raises:
+        ValueError: the results have no vessel, or `reference` has the wrong shape.
+    """
+    eta = results.eta
+    if eta is None:
+        raise ValueError(
+            "vessel_motion needs results of a model with a vessel (Model.attach_vessel); these have none"
+        )
+    time = results.time
+    target = None
+    if reference is not None:
+        given = np.asarray(reference, dtype=float)
+        if given.shape not in ((6,), eta.shape):
+            raise ValueError(
+                f"reference must be η_ref of shape (6,) or {eta.shape} (m and rad), got shape {given.shape}"
+            )
+        target = np.broadcast_to(given, eta.shape)
+    labels = ("x (m)", "y (m)", "z (m, down positive)", "roll φ (deg)", "pitch θ (deg)", "yaw ψ (deg)")
+    figure, axes = _figure(10.0, 8.0, 3, 2, sharex=True)
+    for k, axis in enumerate(axes[0::2] + axes[1::2]):  # x, y, z down the left column, φ, θ, ψ the right
+        scale = 1.0 if k < 3 else 180.0 / np.pi
+        axis.plot(time, scale * eta[:, k], color="k", label="η")
+        if target is not None and np.any(np.isfinite(target[:, k])):
+            axis.plot(time, scale * target[:, k], color="tab:blue", linestyle=":", linewidth=2, label="η_ref")
+            axis.legend(fontsize=8, loc="best")
+        axis.set_ylabel(labels[k])
+    for axis in axes[-2:]:
+        axis.set_xlabel("time t (s)")
+    figure.suptitle("Vessel motion η(t)")
+    return _finish(figure, axes, path)
+
+
+def top_tension(results: Results, end: _End = "B", path: _PathLike | None = None) -> Figure:
+    """The force of the pipe at an end against time (kN): magnitude, horizontal and vertical components.
+
+    At the end attached to a vessel this is the pipe's force on the vessel (χ turned into frame e), elsewhere
+    the reaction on the support.
+
+    Args:
+        results: a run.
+        end: "A" (node 0, seabed end) or "B" (node n, top end).
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, one axes.
+    """
+    force, holder = _end_force(results, end)
+    time = results.time
+    figure, axes = _figure(9.0, 4.5, 1, 1)
+    (axis,) = axes
+    axis.plot(time, np.linalg.norm(force, axis=1) / 1e3, color="k", linewidth=2, label="magnitude |F|")
+    axis.plot(time, np.hypot(force[:, 0], force[:, 1]) / 1e3, "--", label="horizontal |(F₁, F₂)|")
+    axis.plot(time, force[:, 2] / 1e3, "-.", label="vertical F₃ (down positive)")
+    axis.set_xlabel("time t (s)")
+    axis.set_ylabel("force F (kN)")
+    axis.set_title(f"Force of the pipe on the {holder} at end {end}")
+    axis.legend(fontsize=8, loc="best")
+    return _finish(figure, axes, path)
+
+
+def tension_and_bending(
+    results_or_state: Results | State, times: Sequence[float] | None = None, path: _PathLike | None = None
+) -> Figure:
+    """Tension N₁ (kN) and bending moment |(M₂, M₃)| (kN·m) along the pipe, at element midpoints.
+
+    The arc length s of the midpoints (m, from end A) is measured along the pipe's positions at each time.
+
+    Args:
+        results_or_state: a State, or a run.
+        times: for a run, times (s); each shows the nearest record, labelled with that record's time. None:
+            the first, middle and last records. Must be None for a State.
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, two axes: tension, bending moment.
+    """
+    if isinstance(results_or_state, State):
+        if times is not None:
+            raise ValueError("times selects records of a Results; a State has a single time: give times=None")
+        curves = [
+            (_time_label(results_or_state.time), results_or_state.positions, results_or_state.section_forces)
+        ]
+    else:
+        time = results_or_state.time
+        positions = results_or_state.positions
+        forces = results_or_state.section_forces
+        curves = [(_time_label(time[k]), positions[k], forces[k]) for k in _records(time, times)]
+    figure, axes = _figure(9.0, 7.0, 2, 1, sharex=True)
+    tension, bending = axes
+    for j, (label, p, f) in enumerate(curves):
+        segment = np.linalg.norm(np.diff(p, axis=0), axis=1)
+        s = np.cumsum(segment) - 0.5 * segment
+        tension.plot(s, f[:, 0] / 1e3, label=label, **_style(j))
+        bending.plot(s, np.hypot(f[:, 4], f[:, 5]) / 1e3, label=label, **_style(j))
+    tension.axhline(0.0, color="0.5", linewidth=0.8)
+    tension.set_ylabel("tension N₁ (kN)")
+    tension.set_title("Tension (negative: compression)")
+    bending.set_ylabel("bending moment |(M₂, M₃)| (kN·m)")
+    bending.set_title("Bending moment")
+    bending.set_xlabel("arc length s from end A (m)")
+    for axis in (tension, bending):
+        axis.legend(fontsize=8, loc="best")
+    return _finish(figure, axes, path)
+
+
+def energy(results: Results, path: _PathLike | None = None) -> Figure:
+    """The energy balance against time.
+
+    Top: the changes of the energy parts and of the total since the start, the supplied work W and the
+    dissipation D, in kJ, or in MJ when any reaches 1 MJ. Bottom: the balance residual E − E(0) − (W − D) (J),
+    round-off for pipelay's energy-consistent integrator.
+
+    Args:
+        results: a run; the vessel's parts are shown when it has a vessel.
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, two axes: energies, residual.
+    """
+    time = results.time
+    parts = results.energy
+    work = results.supplied_work
+    dissipated = results.dissipated
+    names = {"pipe_kinetic": "pipe kinetic", "pipe_strain": "pipe strain", "pipe_gravity": "pipe gravity"}
+    if results.eta is not None:
+        names |= {"vessel_kinetic": "vessel kinetic", "vessel_potential": "vessel potential"}
+    change = parts["total"] - parts["total"][0]
+    curves = {f"Δ {label}": parts[key] - parts[key][0] for key, label in names.items()}
+    largest = max(np.max(np.abs(c)) for c in (change, work, dissipated, *curves.values()))
+    scale, unit = (1e6, "MJ") if largest >= 1e6 else (1e3, "kJ")
+    balance = change - (work - dissipated)
+
+    figure, axes = _figure(9.0, 7.0, 2, 1, sharex=True)
+    top, bottom = axes
+    top.plot(time, change / scale, color="0.6", linewidth=4.0, label="Δ total E − E(0)")
+    for label, curve in curves.items():
+        top.plot(time, curve / scale, label=label)
+    top.plot(time, work / scale, "k--", label="supplied work W")
+    top.plot(time, dissipated / scale, "k:", label="dissipated D")
+    top.set_ylabel(f"energy ({unit})")
+    top.set_title("Energy: changes since the start, supplied work and dissipation")
+    top.legend(fontsize=8, loc="best")
+    bottom.plot(time, balance, color="tab:red")
+    bottom.set_xlabel("time t (s)")
+    bottom.set_ylabel("E − E(0) − (W − D) (J)")
+    bottom.set_title(f"Balance residual (largest |·| {np.max(np.abs(balance)):.2e} J)")
+    return _finish(figure, axes, path)
+
+
+def all_figures(
+    results: Results,
+    directory: _PathLike,
+    reference: npt.ArrayLike | None = None,
+    depth: float | None = None,
+) -> list[Path]:
+    """Write every figure that applies to `results` into `directory` (created if missing).
+
+    Files: shape.png, vessel_motion.png (only with a vessel), top_tension.png (end B), tension_bending.png,
+    energy.png, with the default times.
+
+    Args:
+        results: a run.
+        directory: the output folder.
+        reference: η_ref for `vessel_motion` (m, rad; NaN entries not drawn); unused without a vessel.
+        depth: water depth (m) for `shape`'s sea surface and seabed lines.
+
+    Returns:
+        The paths written, in the order above.
+    """
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    written = [out / "shape.png"]
+    shape(results, path=written[-1], depth=depth)
+    if results.eta is not None:
+        written.append(out / "vessel_motion.png")
+        vessel_motion(results, reference=reference, path=written[-1])
+    written.append(out / "top_tension.png")
+    top_tension(results, path=written[-1])
+    written.append(out / "tension_bending.png")
+    tension_and_bending(results, path=written[-1])
+    written.append(out / "energy.png")
+    energy(results, path=written[-1])
+    return written
