@@ -29,11 +29,9 @@ import math
 import time
 from pathlib import Path
 
-import matplotlib
 import numpy as np
 import pipelay as pl
-
-matplotlib.use("Agg")
+from pipelay import plots
 
 LENGTH, DEPTH = 1200.0, 800.0  # m
 OUTER, INNER, STEEL = 0.60, 0.57, 7850.0  # m, m, kg/m³
@@ -90,55 +88,6 @@ def run(name: str, controller: pl.PID, elements: int, dt: float) -> tuple[pl.Sta
     return state, results, time.perf_counter() - began
 
 
-def plot_shapes(results: pl.Results, path: Path) -> None:
-    """Fig. 2: side (x, −z) and plan (x, y) views of the pipe at t = 0, 30 and 200 s."""
-    import matplotlib.pyplot as plt
-
-    fig, (side, plan) = plt.subplots(1, 2, figsize=(11.0, 4.5), constrained_layout=True)
-    for t, style, label in (
-        (0.0, "r--", "t = 0 s (static)"),
-        (30.0, "b-.", "t = 30 s"),
-        (200.0, "k-", "t = 200 s"),
-    ):
-        k = int(np.argmin(np.abs(results.time - t)))
-        p = results.positions[k]
-        side.plot(p[:, 0], -p[:, 2], style, label=label)
-        plan.plot(p[:, 0], p[:, 1], style, label=label)
-    side.set_xlabel("x (m)")
-    side.set_ylabel("height above seabed −z (m)")
-    side.set_title("side view")
-    plan.set_xlabel("x (m)")
-    plan.set_ylabel("y (m)")
-    plan.set_title("plan view")
-    for axis in (side, plan):
-        axis.grid(alpha=0.3)
-        axis.legend(fontsize=8)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-
-
-def plot_eta(results: pl.Results, controller: pl.PID, name: str, path: Path) -> None:
-    """Figs. 3–4: η(t) with η_ref dotted for the controlled states."""
-    import matplotlib.pyplot as plt
-
-    labels = ["x (m)", "y (m)", "z (m)", "φ (rad)", "θ (rad)", "ψ (rad)"]
-    controlled = [0, 1, 5] if name == "PID" else [0, 1]
-    fig, axes = plt.subplots(3, 2, figsize=(10.0, 8.0), sharex=True, constrained_layout=True)
-    for k, axis in enumerate(axes.T.flat):
-        axis.plot(results.time, results.eta[:, k], "k")
-        if k in controlled:
-            axis.axhline(controller.reference[k], color="tab:blue", linestyle=":", label="η_ref")
-            axis.legend(fontsize=8)
-        axis.axvline(30.0, color="0.7", linewidth=0.8)
-        axis.set_ylabel(labels[k])
-        axis.grid(alpha=0.3)
-    for axis in axes[-1]:
-        axis.set_xlabel("time t (s)")
-    fig.suptitle(f"{name} controller on at t = 30 s (grey line); w and current from t = 10 s")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-
-
 def main(argv: list[str] | None = None) -> int:
     """Run PD and PID, print the numbers, write the figures."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -157,7 +106,9 @@ def main(argv: list[str] | None = None) -> int:
             print(f"static η₀ (ours)         {state.eta}")
             print(f"static η₀ (paper)        {np.array(ETA_PAPER)}")
             print(f"holding thrust τ₀        {state.tau[0] / 1e3:.1f} kN in surge")
-            plot_shapes(results, args.out / "jensen2009_shapes.png")
+            plots.shape(
+                results, times=(0.0, 30.0, 200.0), path=args.out / "jensen2009_shapes.png", depth=DEPTH
+            )
         final = results.eta[-1]
         offset = final - np.array(ETA_REF)
         print(f"{name:4s} η(200 s)            {final}")
@@ -170,7 +121,12 @@ def main(argv: list[str] | None = None) -> int:
         print(
             f"{name:4s} wall time           {seconds:.3f} s for statics and 200 s simulated (dt = {args.dt} s)"
         )
-        plot_eta(results, controller, name, args.out / f"jensen2009_eta_{name.lower()}.png")
+        # η_ref dotted for the controlled states only (NaN hides the others).
+        controlled = [0, 1, 5] if name == "PID" else [0, 1]
+        reference = [ETA_REF[k] if k in controlled else float("nan") for k in range(6)]
+        plots.vessel_motion(
+            results, reference=reference, path=args.out / f"jensen2009_eta_{name.lower()}.png"
+        )
     print(f"figures in {args.out}")
     return 0
 
