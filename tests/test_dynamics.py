@@ -11,12 +11,18 @@ from __future__ import annotations
 import math
 import os
 import signal
+import sys
 import threading
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pipelay as pl
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+
+import energy_verification
 import pytest
 
 J0_ZEROS = (2.404825557695773, 5.520078110286311, 8.653727912911013)
@@ -98,30 +104,9 @@ def test_hanging_chain_oscillates_at_the_bessel_frequencies() -> None:
 
 def submerged_pipe_with_driven_top() -> pl.Model:
     """A 100 m pipe hanging in 120 m of water under a sheared current, pinned at the seabed, its top driven
-    in surge and heave; drag (0.1, 1.2), added mass 1, rotational damping 50 N·m·s/m."""
-    section = pl.Section.pipe(0.3, 0.02, contents_density=1025.0, drag=(0.1, 1.2), added_mass=(0.0, 1.0))
-    section = pl.Section(
-        EA=section.EA,
-        GA=section.GA,
-        GJ=section.GJ,
-        EI=section.EI,
-        mass=section.mass,
-        inertia=section.inertia,
-        outer_diameter=0.3,
-        drag=(0.1, 1.2),
-        added_mass=(0.0, 1.0),
-        rotational_damping=50.0,
-    )
-    rod = pl.Rod.straight((0.0, 0.0, 0.0), (0.0, 0.0, -100.0), 20, section)
-    sea = pl.Sea(120.0, current=pl.Current.linear((0.5, -0.8, 0.0)))
-    model = pl.Model(rod, sea=sea)
-    model.pin("A")
-    model.drive(
-        "B",
-        position=lambda t: (3.0 * math.sin(0.8 * t), 0.0, -100.0 + 0.5 * math.sin(1.3 * t)),
-        velocity=lambda t: (2.4 * math.cos(0.8 * t), 0.0, 0.65 * math.cos(1.3 * t)),
-    )
-    return model
+    in surge and heave; drag (0.1, 1.2), added mass 1, rotational damping 50 N·m·s/m: the model of
+    examples/energy_verification.py."""
+    return energy_verification.model()
 
 
 def test_energy_balance_holds_every_step_with_drag() -> None:
@@ -190,7 +175,6 @@ def test_a_failing_drive_keeps_the_results_so_far() -> None:
 
 def test_the_engine_releases_the_gil_while_stepping() -> None:
     """A Python thread keeps running while a simulation steps."""
-    model = submerged_pipe_with_driven_top()
     model = flying_rod(200)
     sim = model.simulation(state=model.rest(), dt=0.01)
     ticks = 0

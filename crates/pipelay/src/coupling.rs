@@ -182,6 +182,16 @@ pub fn pid_thrust(
     )
 }
 
+/// The environmental forces acting at time t (body frame).
+fn environment_at(attachment: &VesselAttachment, time: f64) -> Vector6<f64> {
+    attachment
+        .environment
+        .iter()
+        .filter(|w| time >= w.start)
+        .map(|w| w.value)
+        .sum()
+}
+
 /// The vessel's part of the end node's residual in a time step, with its tangent by forward differences
 /// (a 6×6 block), the body-frame thrust and the step's work.
 pub struct DynamicVessel<'a> {
@@ -236,12 +246,7 @@ impl DynamicVessel<'_> {
             }
             None => (self.hold_thrust, Vector6::zeros()),
         };
-        let environment: Vector6<f64> = attachment
-            .environment
-            .iter()
-            .filter(|w| time_mid >= w.start)
-            .map(|w| w.value)
-            .sum();
+        let environment = environment_at(attachment, time_mid);
         let force = thrust + environment - attachment.vessel.damping_force(velocity_mid);
         (force, thrust, error)
     }
@@ -292,12 +297,7 @@ impl DynamicVessel<'_> {
             plus[j] += h;
             tangent.set_column(j, &((evaluate(&plus).0.residual - step.residual) / h));
         }
-        let environment: Vector6<f64> = attachment
-            .environment
-            .iter()
-            .filter(|w| time_mid >= w.start)
-            .map(|w| w.value)
-            .sum();
+        let environment = environment_at(attachment, time_mid);
         let v = step.velocity_mid;
         VesselContribution {
             residual: step.residual,
