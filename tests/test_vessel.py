@@ -91,3 +91,18 @@ def test_a_vessel_needs_a_sea() -> None:
     rod = pl.Rod.straight((0, 0, 0), (10, 0, 0), 2, paper.pipe_section())
     with pytest.raises(pl.InputError, match="sea"):
         pl.Model(rod).attach_vessel("B", pl.Vessel.osv(), eta=np.zeros(6))
+
+
+def test_an_end_cannot_carry_both_a_vessel_and_a_support() -> None:
+    """Clamping the vessel's end, or attaching a vessel to a clamped end, is refused naming the end."""
+    model = paper.scenario(paper.controllers()["PD"])
+    with pytest.raises(pl.InputError, match="end"):
+        model.clamp("B")
+    with pytest.raises(pl.InputError, match="end"):
+        model.attach_vessel("A", pl.Vessel.osv(), eta=np.zeros(6))
+
+
+def test_a_rod_held_by_nothing_has_no_statics() -> None:
+    rod = pl.Rod.straight((0, 0, 0), (10, 0, 0), 2, paper.pipe_section())
+    with pytest.raises(pl.InputError, match="supports"):
+        pl.Model(rod, gravity=9.81).static()

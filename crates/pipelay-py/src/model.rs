@@ -202,6 +202,7 @@ impl Model {
     /// energy–momentum conserving integrator.
     #[pyo3(signature = (state=None, dt=0.05))]
     fn simulation(&self, py: Python<'_>, state: Option<&State>, dt: f64) -> PyResult<Simulation> {
+        pipelay::error::positive("dt", dt, "s").map_err(to_py)?;
         let state = match state {
             Some(s) => s.dynamic_state(&self.0).map_err(to_py)?,
             None => self

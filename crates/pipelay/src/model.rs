@@ -229,9 +229,19 @@ impl Model {
         }
     }
 
-    fn add_support(&mut self, node: usize, kind: SupportKind) {
+    /// Holds `node` by `kind`, replacing an earlier support there; an end that carries a vessel is refused.
+    fn add_support(&mut self, node: usize, kind: SupportKind) -> Result<()> {
+        if self.vessel.as_ref().is_some_and(|v| v.node == node) {
+            let end = if node == 0 { "A" } else { "B" };
+            return Err(Error::input(
+                "end",
+                format!("{end:?}"),
+                "must not carry a vessel: the vessel holds that end (use the other end)",
+            ));
+        }
         self.supports.retain(|s| s.node != node);
         self.supports.push(Support { node, kind });
+        Ok(())
     }
 
     /// Clamps an end: position and rotation held (default: the reference node and frame).
@@ -245,32 +255,16 @@ impl Model {
         let position = self.checked_position(node, position)?;
         let rotation = match rotation {
             None => self.rod.frames[node],
-            Some(r) => {
-                finite("rotation", r.as_slice())?;
-                let error = (r.transpose() * r - Matrix3::identity()).abs().max();
-                if error > 1e-6 || r.determinant() <= 0.0 {
-                    return Err(Error::input(
-                        "rotation",
-                        format!(
-                            "a matrix with |RᵀR − I| = {error:.2e}, det = {:.4}",
-                            r.determinant()
-                        ),
-                        "must be a rotation matrix (orthonormal to 1e-6, det = +1)",
-                    ));
-                }
-                quat_from_matrix(&r)
-            }
+            Some(r) => checked_rotation("rotation", &r)?,
         };
-        self.add_support(node, SupportKind::Clamp { position, rotation });
-        Ok(())
+        self.add_support(node, SupportKind::Clamp { position, rotation })
     }
 
     /// Pins an end: position held (default: the reference node), rotation free.
     pub fn pin(&mut self, end: &str, position: Option<Vector3<f64>>) -> Result<()> {
         let node = self.end_node(end)?;
         let position = self.checked_position(node, position)?;
-        self.add_support(node, SupportKind::Pin { position });
-        Ok(())
+        self.add_support(node, SupportKind::Pin { position })
     }
 
     fn checked_position(
@@ -307,9 +301,7 @@ impl Model {
         };
         support.target(0.0)?;
         support.velocity(0.0)?;
-        self.supports.retain(|s| s.node != node);
-        self.supports.push(support);
-        Ok(())
+        self.add_support(node, support.kind)
     }
 
     /// Attaches a vessel to an end (which must not also be supported). `angle` is β, zyx Euler angles of
@@ -354,7 +346,13 @@ impl Model {
             finite("environment", force.value.as_slice())?;
             finite("environment start", &[force.start])?;
         }
-        self.supports.retain(|s| s.node != node);
+        if self.supports.iter().any(|s| s.node == node) {
+            return Err(Error::input(
+                "end",
+                format!("{end:?}"),
+                "must not be clamped, pinned or driven as well: the vessel holds that end",
+            ));
+        }
         self.vessel = Some(VesselAttachment {
             node,
             surface: -sea.depth,

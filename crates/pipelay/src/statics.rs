@@ -322,6 +322,13 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
     if options.initial_steps == 0 {
         return Err(Error::input("steps", 0, "must be an integer >= 1"));
     }
+    if model.supports.is_empty() && model.vessel.is_none() {
+        return Err(Error::input(
+            "supports",
+            "none",
+            "a static solve needs the rod held: clamp, pin or drive an end, or attach a vessel",
+        ));
+    }
     // Statics is the state at t = 0: supports (drives included) and load scales are taken there.
     let targets = model.support_targets(0.0)?;
     let mut assembler = Assembler::new(model);

@@ -267,9 +267,9 @@ fn assembled_tangent_matches_finite_differences() {
     assert!(worst < 1e-6 * largest, "worst {worst:e} of {largest:e}");
 }
 
-/// A rod that nothing holds cannot be in equilibrium under gravity: the solver says so, it does not panic.
+/// A rod that nothing holds has no static equilibrium: the solver says which input is missing.
 #[test]
-fn unsupported_rod_raises_a_convergence_error() {
+fn unsupported_rod_is_refused() {
     let rod = Rod::straight(
         Vector3::zeros(),
         Vector3::new(10.0, 0.0, 0.0),
@@ -278,6 +278,29 @@ fn unsupported_rod_raises_a_convergence_error() {
     )
     .expect("rod");
     let model = Model::new(rod, None, 9.81).expect("model");
+    match solve(&model, &StaticOptions::default()) {
+        Err(Error::Input { argument, .. }) => assert_eq!(argument, "supports"),
+        other => panic!("expected an input error, got {other:?}"),
+    }
+}
+
+/// A load the supports cannot carry (a pinned–pinned straight rod pushed along its axis far beyond
+/// buckling, then sideways) fails as a ConvergenceError with the load factor reached, not a panic.
+#[test]
+fn impossible_equilibrium_raises_a_convergence_error() {
+    let rod = Rod::straight(
+        Vector3::zeros(),
+        Vector3::new(10.0, 0.0, 0.0),
+        4,
+        beam_section(1e4, 1e8),
+    )
+    .expect("rod");
+    let mut model = Model::new(rod, None, 0.0).expect("model");
+    model.pin("A", None).expect("pin");
+    // A moment at a pinned end that nothing resists.
+    model
+        .point_load(0, Vector3::zeros(), Vector3::new(0.0, 0.0, 1e3), None)
+        .expect("load");
     match solve(&model, &StaticOptions::default()) {
         Err(Error::Convergence { reached, .. }) => assert!(reached < 1.0),
         other => panic!("expected a convergence error, got {other:?}"),
