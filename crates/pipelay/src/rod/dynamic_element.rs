@@ -7,11 +7,12 @@
 //! N = C_T(Γ̄ − Γ0), M = C_R(K̄ − K0), pushed forward as n = Λ̄N, m = cof(Λ̄)M, do work equal to the
 //! change of stored energy: the scheme conserves energy, and (being a weak form tested with rigid motions)
 //! linear and angular momentum.
-use super::element::{midpoint_frame_and_strains, ElementMatrix, ElementReference, ElementVector};
+use super::element::{
+    midpoint_frame_and_strains, nodal_difference, Block3x12, ElementMatrix, ElementReference,
+    ElementVector,
+};
 use crate::so3::{cayley, cayley_tangent, skew};
-use nalgebra::{Matrix3, SMatrix, UnitQuaternion, Vector3};
-
-type Block3x12 = SMatrix<f64, 3, 12>;
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// Stored state of an element's Gauss point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -132,20 +133,8 @@ pub fn step(
 
     if let Some(k) = tangent {
         // Linearisation (exact for the average-strain rule; the midpoint rule reuses it).
-        let mut d_tangent = Block3x12::zeros();
-        d_tangent
-            .fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&(-identity / l0));
-        d_tangent
-            .fixed_view_mut::<3, 3>(0, 6)
-            .copy_from(&(identity / l0));
-        let mut d_theta_prime = Block3x12::zeros();
-        d_theta_prime
-            .fixed_view_mut::<3, 3>(0, 3)
-            .copy_from(&(-identity / l0));
-        d_theta_prime
-            .fixed_view_mut::<3, 3>(0, 9)
-            .copy_from(&(identity / l0));
+        let d_tangent = nodal_difference(0, 1.0 / l0);
+        let d_theta_prime = nodal_difference(3, 1.0 / l0);
         // w = T_c dθ_g with dΛ_{n+1} = ŵΛ_{n+1}.
         let t_c = 0.5 * cayley_tangent(&theta_g);
         let mut d_w = Block3x12::zeros();

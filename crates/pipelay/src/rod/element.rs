@@ -11,7 +11,20 @@ use nalgebra::{Matrix3, SMatrix, SVector, UnitQuaternion, Vector3};
 pub type ElementVector = SVector<f64, 12>;
 /// 12×12 element tangent.
 pub type ElementMatrix = SMatrix<f64, 12, 12>;
-type Block3x12 = SMatrix<f64, 3, 12>;
+pub(crate) type Block3x12 = SMatrix<f64, 3, 12>;
+
+/// The 3×12 map of a nodal difference (u2 − u1)·scale for the 3 unknowns starting at `offset` of each
+/// node (0: position, 3: rotation) in the element ordering [x1, θ1, x2, θ2].
+pub(crate) fn nodal_difference(offset: usize, scale: f64) -> Block3x12 {
+    let mut block = Block3x12::zeros();
+    block.fixed_view_mut::<3, 3>(0, offset).fill_with_identity();
+    block.fixed_view_mut::<3, 3>(0, offset).scale_mut(-scale);
+    block
+        .fixed_view_mut::<3, 3>(0, offset + 6)
+        .fill_with_identity();
+    block.fixed_view_mut::<3, 3>(0, offset + 6).scale_mut(scale);
+    block
+}
 
 /// Reference data of one element: length and the stress-free strains.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -201,13 +214,7 @@ pub fn evaluate(
 
     if let Some(k) = tangent {
         // Linearisation chain, each a 3×12 map of [Δx1, Δθ1, Δx2, Δθ2].
-        let mut d_xprime = Block3x12::zeros();
-        d_xprime
-            .fixed_view_mut::<3, 3>(0, 0)
-            .copy_from(&(-identity / l0));
-        d_xprime
-            .fixed_view_mut::<3, 3>(0, 6)
-            .copy_from(&(identity / l0));
+        let d_xprime = nodal_difference(0, 1.0 / l0);
         let mut d_theta_m = Block3x12::zeros();
         d_theta_m
             .fixed_view_mut::<3, 3>(0, 3)
