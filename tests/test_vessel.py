@@ -57,6 +57,11 @@ def test_static_vessel_holds_the_pipe(runs) -> None:
     pipe = body @ state.chi[:3]
     assert thrust[0] + pipe[0] == pytest.approx(0.0, abs=1e-6 * np.linalg.norm(pipe))
     assert state.tau[0] < 0.0 < pipe[0]
+    # At the vessel's end the reaction is the pipe's force on the vessel, in e.
+    np.testing.assert_allclose(state.reaction("B")[:3], pipe, rtol=1e-12, atol=1e-6)
+    results = runs["PD"][1]
+    body = results.rotations[-1, -1]
+    np.testing.assert_allclose(results.reaction("B")[-1, :3], body @ results.chi[-1, :3], rtol=1e-12, atol=1e-6)
     assert -800.1 < state.eta[2] < -799.9 and 0.0 < state.eta[4] < 0.2
 
 

@@ -86,35 +86,15 @@ def _style(j: int) -> dict[str, Any]:
     return {"linestyle": _LINESTYLES[j % len(_LINESTYLES)], "marker": ".", "markersize": 4.0}
 
 
-def _rotation_body_to_e(eta: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-    """Rotation matrices R_b^e (T, 3, 3) from the zyx Euler angles φ, θ, ψ (rad) of η (T, 6) (Fossen)."""
-    cf, sf = np.cos(eta[:, 3]), np.sin(eta[:, 3])
-    ct, st = np.cos(eta[:, 4]), np.sin(eta[:, 4])
-    cp, sp = np.cos(eta[:, 5]), np.sin(eta[:, 5])
-    return np.stack(
-        [
-            np.stack([cp * ct, -sp * cf + cp * st * sf, sp * sf + cp * cf * st], axis=-1),
-            np.stack([sp * ct, cp * cf + sf * st * sp, -cp * sf + st * sp * cf], axis=-1),
-            np.stack([-st, ct * sf, ct * cf], axis=-1),
-        ],
-        axis=-2,
-    )
-
-
 def _end_force(results: Results, end: _End) -> tuple[npt.NDArray[np.float64], str]:
-    """Force (T, 3) (N, in e) of the pipe on what holds `end`, and what that is ("vessel" or "support").
-
-    At the end attached to a vessel (the end node sits at the vessel's origin η[:3]) the force is the pipe's
-    force on the vessel χ, turned from the body frame into e; elsewhere it is the support reaction."""
+    """Force (T, 3) (N, in e) of the pipe on what holds `end` (its reaction), and what that is: "vessel" when
+    the end node sits at the vessel's origin η[:3], else "support"."""
     if end not in ("A", "B"):
         raise ValueError(f"end must be 'A' (node 0, seabed end) or 'B' (node n, top end), got {end!r}")
     eta = results.eta
-    chi = results.chi
-    if eta is not None and chi is not None:
-        node = results.positions[:, 0 if end == "A" else -1]
-        if np.allclose(node, eta[:, :3], atol=1e-6):
-            return np.einsum("tij,tj->ti", _rotation_body_to_e(eta), chi[:, :3]), "vessel"
-    return results.reaction(end)[:, :3], "support"
+    node = results.positions[:, 0 if end == "A" else -1]
+    holder = "vessel" if eta is not None and np.allclose(node, eta[:, :3], atol=1e-6) else "support"
+    return results.reaction(end)[:, :3], holder
 
 
 def shape(
@@ -208,8 +188,8 @@ def vessel_motion(
 def top_tension(results: Results, end: _End = "B", path: _PathLike | None = None) -> Figure:
     """The force of the pipe at an end against time (kN): magnitude, horizontal and vertical components.
 
-    At the end attached to a vessel this is the pipe's force on the vessel (χ turned into frame e), elsewhere
-    the reaction on the support.
+    At the end attached to a vessel this is the pipe's force on the vessel, elsewhere the reaction on the
+    support (both `results.reaction(end)`).
 
     Args:
         results: a run.

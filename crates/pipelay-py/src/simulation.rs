@@ -458,8 +458,8 @@ impl Results {
     }
     /// Force (N) and moment (N·m) the rod exerts on the support at end "A" or "B" (T, 6), in e. Each record is
     /// the mean over the step that ended at that time (second-order accurate at the step's midpoint
-    /// t − Δt/2); the first record is the reaction of the starting state. At an end held by a vessel there is
-    /// no support (the reaction is about zero): the pipe's force on the vessel is `chi`.
+    /// t − Δt/2); the first record is the reaction of the starting state. At an end held by a vessel: the
+    /// rod's force and moment on the vessel, in e (`chi` is the same in the body frame).
     fn reaction<'py>(&self, py: Python<'py>, end: &str) -> PyResult<Bound<'py, PyAny>> {
         let data = match end {
             "A" => &self.history.reaction_a,

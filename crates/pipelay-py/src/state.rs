@@ -190,8 +190,8 @@ impl State {
         let tension: Vec<f64> = self.section_forces.iter().map(|f| f[0]).collect();
         to_numpy(py, &tension)
     }
-    /// Force (N) and moment (N·m) (6,) the rod exerts on the support at end "A" or "B", in e (about zero at a
-    /// vessel's end, which has no support: see `chi`).
+    /// Force (N) and moment (N·m) (6,) the rod exerts on the support at end "A" or "B", in e; at a vessel's end,
+    /// on the vessel (`chi` is the same in the body frame).
     fn reaction<'py>(&self, py: Python<'py>, end: &str) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let node = self.end_node(end)?;
         Ok(to_numpy(py, self.reactions[node].as_slice()))

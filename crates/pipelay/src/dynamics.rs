@@ -795,6 +795,8 @@ impl Integrator {
             let time_mid = self.state.time + 0.5 * dt;
             motion.velocity = step.velocity_next;
             motion.thrust = step.thrust;
+            // The rod's force on the vessel, −(vessel's force on the rod), is the vessel end's reaction.
+            self.reactions[attachment.node] = -self.rod_force_at_vessel;
             if let Some(controller) = attachment
                 .controller
                 .as_ref()

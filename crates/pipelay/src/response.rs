@@ -9,7 +9,7 @@ use nalgebra::Vector6;
 pub struct Response {
     /// Material force N and moment M at each element midpoint: [N1, N2, N3, M1, M2, M3].
     pub section_forces: Vec<Vector6<f64>>,
-    /// Force and moment the rod exerts on each node's support, in e: −(f_int − f_ext) at that node.
+    /// Force and moment the rod exerts on each node's support (or vessel), in e: −(f_int − f_ext) at that node.
     pub nodal_reactions: Vec<Vector6<f64>>,
     /// Strain energy (J).
     pub strain_energy: f64,
@@ -70,11 +70,15 @@ impl Response {
             })
             .collect();
         let summary = assembler.assemble(model, config, 1.0, false, None);
-        let nodal_reactions = assembler
+        let mut nodal_reactions: Vec<Vector6<f64>> = assembler
             .residual
             .chunks_exact(NODE_DOFS)
             .map(|r| -Vector6::from_column_slice(r))
             .collect();
+        // At a vessel's node the "support" is the vessel: the rod pushes on it with −(vessel's force on the rod).
+        if let Some(attachment) = &model.vessel {
+            nodal_reactions[attachment.node] = -assembler.vessel_force;
+        }
         let vessel = model.vessel.as_ref().map(|attachment| {
             let node = attachment.node;
             let body = crate::coupling::body_rotation(attachment, &config.rotations[node]);
