@@ -61,7 +61,9 @@ def test_static_vessel_holds_the_pipe(runs) -> None:
     np.testing.assert_allclose(state.reaction("B")[:3], pipe, rtol=1e-12, atol=1e-6)
     results = runs["PD"][1]
     body = results.rotations[-1, -1]
-    np.testing.assert_allclose(results.reaction("B")[-1, :3], body @ results.chi[-1, :3], rtol=1e-12, atol=1e-6)
+    np.testing.assert_allclose(
+        results.reaction("B")[-1, :3], body @ results.chi[-1, :3], rtol=1e-12, atol=1e-6
+    )
     assert -800.1 < state.eta[2] < -799.9 and 0.0 < state.eta[4] < 0.2
 
 
