@@ -272,11 +272,12 @@ impl Integrator {
                 format!("must belong to this model ({count} nodes)"),
             ));
         }
-        let assembler = Assembler::new(&model);
+        let mut assembler = Assembler::new(&model);
         // Before the first step: the reactions of the starting configuration at rest (static ones for a
-        // static state).
+        // static state), from the integrator's own assembler.
         let reactions =
-            crate::response::Response::new(&model, &state.configuration).nodal_reactions;
+            crate::response::Response::with_assembler(&model, &state.configuration, &mut assembler)
+                .nodal_reactions;
         let nodal = NodalProperties::new(&model);
         let round_off = 1e-13
             * (model.rod.section.translational_stiffness.max()

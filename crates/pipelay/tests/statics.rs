@@ -12,6 +12,8 @@ use pipelay::statics::{solve, Start, StaticOptions};
 use pipelay::Error;
 use std::f64::consts::PI;
 
+mod common;
+
 fn beam_section(ei: f64, ga: f64) -> Section {
     Section::new(1e9, [ga; 2], ei, [ei; 2], 1.0, SectionExtras::default()).expect("valid section")
 }
@@ -100,25 +102,8 @@ fn small_tip_load_matches_timoshenko_beam_theory() {
 }
 
 fn hanging_pipe(n: usize, ei: f64, clamped: bool) -> Model {
-    let section = Section::pipe(
-        0.6,
-        0.015,
-        7850.0,
-        207e9,
-        0.3,
-        1025.0,
-        [0.0, 1.0],
-        [0.0, 1.0],
-    )
-    .expect("pipe");
-    let section = Section {
-        rotational_stiffness: Vector3::new(ei, ei, ei),
-        ..section
-    };
-    let rod =
-        Rod::straight(Vector3::zeros(), Vector3::new(1200.0, 0.0, 0.0), n, section).expect("rod");
-    let sea = Sea::new(800.0, 1025.0, None).expect("sea");
-    let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
+    let mut model = common::flooded_pipe(n);
+    model.rod.section.rotational_stiffness = Vector3::new(ei, ei, ei);
     let top = Vector3::new(850.0, 0.0, -800.0);
     if clamped {
         model.clamp("A", None, None).expect("clamp");

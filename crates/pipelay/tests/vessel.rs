@@ -8,22 +8,10 @@ use pipelay::section::Section;
 use pipelay::statics::{solve, StaticOptions};
 use pipelay::vessel::Vessel;
 
+mod common;
+
 fn pipe_with_vessel(n: usize) -> Model {
-    let section = Section::pipe(
-        0.6,
-        0.015,
-        7850.0,
-        207e9,
-        0.3,
-        1025.0,
-        [0.0, 1.0],
-        [0.0, 1.0],
-    )
-    .expect("pipe");
-    let rod =
-        Rod::straight(Vector3::zeros(), Vector3::new(1200.0, 0.0, 0.0), n, section).expect("rod");
-    let sea = Sea::new(800.0, 1025.0, None).expect("sea");
-    let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
+    let mut model = common::flooded_pipe(n);
     model.pin("A", None).expect("pin");
     model
         .attach_vessel(

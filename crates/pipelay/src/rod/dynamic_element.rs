@@ -227,19 +227,13 @@ mod tests {
     #[test]
     fn tangent_matches_finite_differences() {
         let (chord, gauss, reference, c_t, c_r) = case();
+        let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
+            step(&chord, u, &gauss, &reference, &c_t, &c_r, rule, k)
+        };
         for scale in [0.0, 0.5, 2.0] {
             let u = increments(scale);
             let mut k = ElementMatrix::zeros();
-            step(
-                &chord,
-                &u,
-                &gauss,
-                &reference,
-                &c_t,
-                &c_r,
-                StressRule::AverageStrain,
-                Some(&mut k),
-            );
+            run(&u, StressRule::AverageStrain, Some(&mut k));
             let h = 1e-6;
             let mut worst: f64 = 0.0;
             for j in 0..12 {
@@ -247,28 +241,8 @@ mod tests {
                 up[j] += h;
                 let mut um = u;
                 um[j] -= h;
-                let fp = step(
-                    &chord,
-                    &up,
-                    &gauss,
-                    &reference,
-                    &c_t,
-                    &c_r,
-                    StressRule::AverageStrain,
-                    None,
-                )
-                .forces;
-                let fm = step(
-                    &chord,
-                    &um,
-                    &gauss,
-                    &reference,
-                    &c_t,
-                    &c_r,
-                    StressRule::AverageStrain,
-                    None,
-                )
-                .forces;
+                let fp = run(&up, StressRule::AverageStrain, None).forces;
+                let fm = run(&um, StressRule::AverageStrain, None).forces;
                 worst = worst.max(((fp - fm) / (2.0 * h) - k.column(j)).abs().max());
             }
             assert!(worst < 1e-7 * k.abs().max(), "scale {scale}: {worst:e}");
@@ -279,18 +253,12 @@ mod tests {
     #[test]
     fn work_equals_the_change_of_stored_energy() {
         let (chord, gauss, reference, c_t, c_r) = case();
+        let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
+            step(&chord, u, &gauss, &reference, &c_t, &c_r, rule, k)
+        };
         for scale in [0.1, 1.0, 3.0] {
             let u = increments(scale);
-            let s = step(
-                &chord,
-                &u,
-                &gauss,
-                &reference,
-                &c_t,
-                &c_r,
-                StressRule::AverageStrain,
-                None,
-            );
+            let s = run(&u, StressRule::AverageStrain, None);
             let work = s.forces.dot(&u);
             let change =
                 s.next.energy(&reference, &c_t, &c_r) - gauss.energy(&reference, &c_t, &c_r);
@@ -298,16 +266,7 @@ mod tests {
                 (work - change).abs() < 1e-13 * change.abs().max(1.0),
                 "{work} vs {change}"
             );
-            let mid = step(
-                &chord,
-                &u,
-                &gauss,
-                &reference,
-                &c_t,
-                &c_r,
-                StressRule::MidpointConfiguration,
-                None,
-            );
+            let mid = run(&u, StressRule::MidpointConfiguration, None);
             if scale >= 1.0 {
                 assert!((mid.forces.dot(&u) - change).abs() > 1e-6 * change.abs());
             }
@@ -319,17 +278,11 @@ mod tests {
     #[test]
     fn internal_forces_are_balanced() {
         let (chord, gauss, reference, c_t, c_r) = case();
+        let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
+            step(&chord, u, &gauss, &reference, &c_t, &c_r, rule, k)
+        };
         let u = increments(1.0);
-        let s = step(
-            &chord,
-            &u,
-            &gauss,
-            &reference,
-            &c_t,
-            &c_r,
-            StressRule::AverageStrain,
-            None,
-        );
+        let s = run(&u, StressRule::AverageStrain, None);
         let f1 = s.forces.fixed_rows::<3>(0).into_owned();
         let f2 = s.forces.fixed_rows::<3>(6).into_owned();
         // Moment arms at the mid-step positions φ_{n+½}; node 1 at the origin at step n.
