@@ -7,9 +7,9 @@ use crate::state::State;
 use crate::structure::{Rod, Sea};
 use crate::vessel::{PyForce, PyPid, Vessel};
 use nalgebra::{Matrix3, Vector3};
-use pipelay::assembly::Configuration;
-use pipelay::response::Response;
-use pipelay::statics::{self, Start, StaticOptions};
+use pipelay::solver::assembly::Configuration;
+use pipelay::solver::response::Response;
+use pipelay::solver::statics::{self, Start, StaticOptions};
 use pyo3::prelude::*;
 
 /// A rod with its sea, gravity, supports and loads.

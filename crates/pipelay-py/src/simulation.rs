@@ -6,10 +6,10 @@ use crate::errors::{input, to_py};
 use crate::state::State;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3, Vector6};
 use numpy::{PyArray1, PyArrayMethods};
-use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator, VesselMotion};
-use pipelay::history::History;
 use pipelay::model::Model;
 use pipelay::rod::dynamic_element::GaussPoint;
+use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator, VesselMotion};
+use pipelay::solver::history::History;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -326,7 +326,7 @@ impl Simulation {
         let dt = get("dt")?.first().copied().unwrap_or(f64::NAN);
         let state = DynamicState {
             time,
-            configuration: pipelay::assembly::Configuration {
+            configuration: pipelay::solver::assembly::Configuration {
                 positions: vectors("positions", nodes)?,
                 rotations,
             },

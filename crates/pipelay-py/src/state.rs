@@ -3,10 +3,10 @@ use crate::convert::{matrices_to_numpy, points_to_numpy, to_numpy};
 use crate::errors::input;
 use nalgebra::{Matrix3, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2, PyArray3};
-use pipelay::assembly::Configuration;
-use pipelay::dynamics::{DynamicState, Energy, Integrator};
 use pipelay::model::Model;
-use pipelay::response::Response;
+use pipelay::solver::assembly::Configuration;
+use pipelay::solver::dynamics::{DynamicState, Energy, Integrator};
+use pipelay::solver::response::Response;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -85,12 +85,14 @@ impl State {
             vessel: match (&integrator.model().vessel, &state.vessel) {
                 (Some(attachment), Some(motion)) => {
                     let node = attachment.node;
-                    let body = pipelay::coupling::body_rotation(
+                    let body = pipelay::vessel::coupling::body_rotation(
                         attachment,
                         &state.configuration.rotations[node],
                     );
-                    let eta =
-                        pipelay::coupling::eta_of(&state.configuration.positions[node], &body);
+                    let eta = pipelay::vessel::coupling::eta_of(
+                        &state.configuration.positions[node],
+                        &body,
+                    );
                     Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
                 }
                 _ => None,

@@ -2,8 +2,8 @@
 use crate::convert::{array, points, points_to_numpy, scalar_or_array, vector, vector3};
 use crate::errors::to_py;
 use numpy::PyArray2;
-use pipelay::hydro::{self, CurrentProfile};
-use pipelay::section::{self, SectionExtras};
+use pipelay::environment::sea::{self, CurrentProfile};
+use pipelay::rod::section::{self, SectionExtras};
 use pyo3::prelude::*;
 
 /// Cross-section properties (SI units). GA, EI: one number (both principal axes) or a pair (axis 2, axis 3).
@@ -236,7 +236,7 @@ impl Rod {
 /// A steady current; build it with `Current.uniform`, `Current.linear` or `Current.profile`.
 #[pyclass(module = "pipelay", name = "Current", frozen)]
 #[derive(Clone)]
-pub struct Current(pub hydro::Current);
+pub struct Current(pub sea::Current);
 
 #[pymethods]
 impl Current {
@@ -245,7 +245,7 @@ impl Current {
     #[pyo3(signature = (velocity, start=0.0))]
     fn uniform(velocity: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
         let v = vector3(velocity, "velocity")?;
-        hydro::Current::new(CurrentProfile::Uniform(v), start)
+        sea::Current::new(CurrentProfile::Uniform(v), start)
             .map(Current)
             .map_err(to_py)
     }
@@ -255,7 +255,7 @@ impl Current {
     #[pyo3(signature = (surface_velocity, start=0.0))]
     fn linear(surface_velocity: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
         let surface = vector3(surface_velocity, "surface_velocity")?;
-        hydro::Current::new(CurrentProfile::Linear { surface }, start)
+        sea::Current::new(CurrentProfile::Linear { surface }, start)
             .map(Current)
             .map_err(to_py)
     }
@@ -270,7 +270,7 @@ impl Current {
     ) -> PyResult<Self> {
         let depths = vector(depths, "depths")?;
         let velocities = points(velocities, "velocities")?;
-        hydro::Current::new(CurrentProfile::Table { depths, velocities }, start)
+        sea::Current::new(CurrentProfile::Table { depths, velocities }, start)
             .map(Current)
             .map_err(to_py)
     }
@@ -291,14 +291,14 @@ impl Current {
 /// Water: depth (m; the surface is z = −depth), density (kg/m³) and an optional current.
 #[pyclass(module = "pipelay", name = "Sea", frozen)]
 #[derive(Clone)]
-pub struct Sea(pub hydro::Sea);
+pub struct Sea(pub sea::Sea);
 
 #[pymethods]
 impl Sea {
     #[new]
     #[pyo3(signature = (depth, density=1025.0, current=None))]
     fn new(depth: f64, density: f64, current: Option<&Current>) -> PyResult<Self> {
-        hydro::Sea::new(depth, density, current.map(|c| c.0.clone()))
+        sea::Sea::new(depth, density, current.map(|c| c.0.clone()))
             .map(Sea)
             .map_err(to_py)
     }

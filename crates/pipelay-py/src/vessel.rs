@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 /// C(ν) follows from M_RB and M_A (Fossen's m2c form).
 #[pyclass(module = "pipelay", name = "Vessel", frozen)]
 #[derive(Clone)]
-pub struct Vessel(pub pipelay::vessel::Vessel);
+pub struct Vessel(pub pipelay::vessel::rigid_body::Vessel);
 
 fn matrix_to_numpy<'py>(py: Python<'py>, m: &Matrix6<f64>) -> Bound<'py, PyArray2<f64>> {
     let rows: Vec<Vec<f64>> = (0..6)
@@ -38,7 +38,7 @@ impl Vessel {
         let quadratic = quadratic_damping
             .map(|m| float_matrix6(m, "quadratic_damping"))
             .transpose()?;
-        pipelay::vessel::Vessel::new(mass, damping, restoring, rigid, quadratic)
+        pipelay::vessel::rigid_body::Vessel::new(mass, damping, restoring, rigid, quadratic)
             .map(Vessel)
             .map_err(to_py)
     }
@@ -46,7 +46,7 @@ impl Vessel {
     /// The 83 m offshore supply vessel of Fossen's MSS toolbox (osv.m; 6-DOF, about CO).
     #[staticmethod]
     fn osv() -> Self {
-        Vessel(pipelay::vessel::Vessel::osv())
+        Vessel(pipelay::vessel::rigid_body::Vessel::osv())
     }
 
     /// M = M_RB + M_A (6, 6) (kg, kg·m, kg·m²).

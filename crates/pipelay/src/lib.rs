@@ -1,24 +1,20 @@
 //! pipelay engine: geometrically exact (Simo–Reissner) rods for offshore pipelay analysis.
 //!
-//! Layers, bottom up: [`so3`] and [`euler`] (rotations), [`section`], [`rod`] (reference and element),
-//! [`hydro`] (sea, current, drag), [`model`] (supports, loads), [`assembly`] and [`linsolve`]
-//! (global system), [`statics`] (Newton with load stepping), [`dynamics`] (energy–momentum time
-//! stepping), [`response`] (what users read off a state).
-pub mod assembly;
-pub mod catenary;
-pub mod coupling;
-pub mod dynamics;
+//! The folders show the architecture, bottom up:
+//! - [`so3`] (rotations) and [`error`]: what every layer uses;
+//! - [`rod`]: the cross-section, the stress-free reference and the element (statics and dynamics);
+//! - [`environment`]: the sea, its current and Morison drag;
+//! - [`vessel`]: the DP vessel as a rigid body, its Euler angles, its coupling to the pipe and its control;
+//! - [`model`]: what is simulated: rod, environment, supports, loads, vessel;
+//! - [`solver`]: assembly and linear solves, statics, dynamics, the response and the record of a run.
+//!
+//! Data flows one way: a lower layer never imports a higher one.
+pub mod environment;
 pub mod error;
-pub mod euler;
-pub mod history;
-pub mod hydro;
-pub mod linsolve;
 pub mod model;
-pub mod response;
 pub mod rod;
-pub mod section;
 pub mod so3;
-pub mod statics;
+pub mod solver;
 pub mod vessel;
 
 pub use error::{Error, Result};

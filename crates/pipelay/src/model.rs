@@ -1,6 +1,6 @@
 //! A model: the rod, the sea, gravity, supports (eqs. 20–21) and point loads.
+use crate::environment::sea::Sea;
 use crate::error::{finite, non_negative, Error, Result};
-use crate::hydro::Sea;
 use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
@@ -309,7 +309,7 @@ impl Model {
     pub fn attach_vessel(
         &mut self,
         end: &str,
-        vessel: crate::vessel::Vessel,
+        vessel: crate::vessel::rigid_body::Vessel,
         eta: nalgebra::Vector6<f64>,
         angle: Vector3<f64>,
         controller: Option<Pid>,
@@ -357,7 +357,7 @@ impl Model {
             node,
             surface: -sea.depth,
             vessel,
-            angle: crate::euler::rotation(&angle),
+            angle: crate::vessel::euler::rotation(&angle),
             eta,
             controller,
             environment,
@@ -444,7 +444,7 @@ pub struct EnvironmentForce {
 #[derive(Debug, Clone, PartialEq)]
 pub struct VesselAttachment {
     pub node: usize,
-    pub vessel: crate::vessel::Vessel,
+    pub vessel: crate::vessel::rigid_body::Vessel,
     /// R_b^t(β): the body frame in the pipe-end frame.
     pub angle: nalgebra::Matrix3<f64>,
     /// Starting pose η = [x, y, z, φ, θ, ψ] in e.

@@ -1,13 +1,13 @@
 //! Invariants of the energy–momentum integrator: conservation in vacuum, order of accuracy, and the
 //! discrete energy balance with drag, damping, gravity, current and a driven support.
 use nalgebra::Vector3;
-use pipelay::assembly::Configuration;
-use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator};
-use pipelay::hydro::{Current, CurrentProfile, Sea};
+use pipelay::environment::sea::{Current, CurrentProfile, Sea};
 use pipelay::model::Model;
 use pipelay::rod::dynamic_element::StressRule;
+use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;
-use pipelay::section::{Section, SectionExtras};
+use pipelay::solver::assembly::Configuration;
+use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
 use std::sync::Arc;
 
 /// Hat function rising to 1 at t = 2.5 and back to 0 at t = 5.

@@ -1,14 +1,14 @@
 //! Validation of the static solver against analytic solutions (the validation ladder's first rung).
 use nalgebra::Vector3;
-use pipelay::assembly::{Assembler, Configuration, NODE_DOFS};
-use pipelay::catenary::Catenary;
-use pipelay::hydro::{Current, CurrentProfile, Sea};
+use pipelay::environment::sea::{Current, CurrentProfile, Sea};
 use pipelay::model::Model;
-use pipelay::response::Response;
+use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;
-use pipelay::section::{Section, SectionExtras};
 use pipelay::so3::{exp_quat, log_quat};
-use pipelay::statics::{solve, Start, StaticOptions};
+use pipelay::solver::assembly::{Assembler, Configuration, NODE_DOFS};
+use pipelay::solver::catenary::Catenary;
+use pipelay::solver::response::Response;
+use pipelay::solver::statics::{solve, Start, StaticOptions};
 use pipelay::Error;
 use std::f64::consts::PI;
 

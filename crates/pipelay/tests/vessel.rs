@@ -1,12 +1,12 @@
 //! The vessel on the pipe: statics with holding thrust, free decay, energy of the coupled system.
 use nalgebra::{Vector3, Vector6};
-use pipelay::hydro::Sea;
+use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
-use pipelay::response::Response;
+use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
-use pipelay::section::Section;
-use pipelay::statics::{solve, StaticOptions};
-use pipelay::vessel::Vessel;
+use pipelay::solver::response::Response;
+use pipelay::solver::statics::{solve, StaticOptions};
+use pipelay::vessel::rigid_body::Vessel;
 
 mod common;
 
@@ -46,7 +46,7 @@ fn static_vessel_holds_the_pipe() {
             && vessel.eta[5].abs() < 1e-8
     );
     // In e, the horizontal thrust balances the pipe's horizontal pull (restoring is vertical).
-    let body = pipelay::euler::rotation(&vessel.eta.fixed_rows::<3>(3).into_owned());
+    let body = pipelay::vessel::euler::rotation(&vessel.eta.fixed_rows::<3>(3).into_owned());
     let thrust = body * vessel.thrust.fixed_rows::<3>(0);
     let pipe = body * vessel.pipe_force.fixed_rows::<3>(0);
     assert!(
@@ -68,9 +68,9 @@ fn static_vessel_holds_the_pipe() {
     );
 }
 
-use pipelay::assembly::Configuration;
-use pipelay::dynamics::{DynamicOptions, DynamicState, Integrator};
-use pipelay::section::SectionExtras;
+use pipelay::rod::section::SectionExtras;
+use pipelay::solver::assembly::Configuration;
+use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
 
 /// A vessel carrying only a tiny, light rod: the vessel's own dynamics.
 fn lone_vessel(vessel: Vessel, heave: f64, pitch: f64) -> Integrator {
@@ -95,8 +95,9 @@ fn lone_vessel(vessel: Vessel, heave: f64, pitch: f64) -> Integrator {
     let mut config = Configuration::reference(&model);
     let attachment = model.vessel.as_ref().expect("attached");
     config.positions[1] = eta.fixed_rows::<3>(0).into_owned();
-    config.rotations[1] =
-        nalgebra::UnitQuaternion::from_matrix(&pipelay::coupling::node_rotation(attachment, &eta));
+    config.rotations[1] = nalgebra::UnitQuaternion::from_matrix(
+        &pipelay::vessel::coupling::node_rotation(attachment, &eta),
+    );
     config.positions[0] = config.positions[1] - config.rotations[1] * Vector3::x();
     config.rotations[0] = config.rotations[1];
     let mut state = DynamicState::at_rest(&model, config, 0.0).expect("state");

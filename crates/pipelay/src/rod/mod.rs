@@ -1,9 +1,10 @@
 //! The rod: its stress-free reference (nodes, nodal frames, elements) and the element it is made of.
 pub mod dynamic_element;
 pub mod element;
+pub mod section;
 
 use crate::error::{finite, Error, Result};
-use crate::section::Section;
+use crate::rod::section::Section;
 use crate::so3::{minimal_rotation, quat_from_matrix};
 use element::ElementReference;
 use nalgebra::{UnitQuaternion, Vector3};

@@ -1,9 +1,9 @@
 //! The 1200 m flooded steel pipe of the validation tests (0.6 m × 15 mm, 800 m of water), straight along e1.
 use nalgebra::Vector3;
-use pipelay::hydro::Sea;
+use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
+use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
-use pipelay::section::Section;
 
 /// The flooded pipe with `n` elements in 800 m of water, held by nothing yet.
 pub fn flooded_pipe(n: usize) -> Model {

@@ -1,5 +1,5 @@
 //! The record of a simulation: states at chosen steps, reactions at the ends, energy and its ledger.
-use crate::dynamics::Integrator;
+use crate::solver::dynamics::Integrator;
 use nalgebra::Vector6;
 
 /// Time series of a run, stored flat (row-major: time first) for cheap hand-over to arrays.
@@ -141,9 +141,11 @@ impl History {
         self.vessel_potential.push(energy.vessel_potential);
         if let (Some(attachment), Some(motion)) = (&integrator.model().vessel, &state.vessel) {
             let node = attachment.node;
-            let body =
-                crate::coupling::body_rotation(attachment, &state.configuration.rotations[node]);
-            let eta = crate::coupling::eta_of(&state.configuration.positions[node], &body);
+            let body = crate::vessel::coupling::body_rotation(
+                attachment,
+                &state.configuration.rotations[node],
+            );
+            let eta = crate::vessel::coupling::eta_of(&state.configuration.positions[node], &body);
             self.eta.extend_from_slice(eta.as_slice());
             self.nu.extend_from_slice(motion.velocity.as_slice());
             self.tau.extend_from_slice(motion.thrust.as_slice());

@@ -3,12 +3,12 @@
 //!
 //! Statics: heave, roll and pitch find their equilibrium against the hydrostatic restoring; surge, sway and
 //! yaw are held at η by stiff springs whose force is the holding thrust (or, with a controller active at
-//! t = 0, by the controller's K_p). Dynamics: the vessel's momentum-form step of [`crate::vessel`], with
+//! t = 0, by the controller's K_p). Dynamics: the vessel's momentum-form step of [`crate::vessel::rigid_body`], with
 //! damping, thrust (hold or PID) and environment as a body-frame generalised force at the step midpoint.
-use crate::euler;
 use crate::model::{Pid, VesselAttachment};
 use crate::so3::{cayley, exp, log};
-use crate::vessel::{vessel_step, VesselState};
+use crate::vessel::euler;
+use crate::vessel::rigid_body::{vessel_step, VesselState};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// Stiffness of the holding springs relative to the vessel's heave restoring G33 (translation) and pitch
@@ -111,8 +111,9 @@ pub fn static_forces(
     let body = body_rotation(attachment, node_rotation);
     let e3 = Vector3::z();
     // Restoring toward the target: V = ½(q − q_t)ᵀG_r(q − q_t), q = (z − z0, (Λe2)·e3, −(Λe1)·e3).
-    let q = crate::vessel::Vessel::restoring_coordinates(position, &body, target.surface);
-    let q_target = crate::vessel::Vessel::restoring_coordinates(
+    let q =
+        crate::vessel::rigid_body::Vessel::restoring_coordinates(position, &body, target.surface);
+    let q_target = crate::vessel::rigid_body::Vessel::restoring_coordinates(
         &target.position,
         &target.rotation,
         target.surface,

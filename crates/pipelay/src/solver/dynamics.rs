@@ -14,14 +14,14 @@
 //! Added mass is isotropic here: C_a,normal ρ_w π/4 d_o² added to the translational mass per length in
 //! every direction (keeps the mass constant and the scheme exactly energy–momentum; over-estimates the
 //! axial added mass of a pipe).
-use crate::assembly::{Assembler, Configuration, NODE_DOFS};
-use crate::coupling::{body_rotation, clamp_integral, DynamicVessel, VesselContribution};
+use crate::environment::sea::morison_drag;
 use crate::error::{positive, Error, Result};
-use crate::hydro::morison_drag;
 use crate::model::Model;
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
+use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
+use crate::vessel::coupling::{body_rotation, clamp_integral, DynamicVessel, VesselContribution};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// How many times a step may be halved when Newton fails in it.
@@ -106,7 +106,7 @@ impl DynamicState {
             velocities[support.node] = support.velocity(time)?;
         }
         let vessel = model.vessel.as_ref().map(|_| {
-            let held = crate::response::Response::new(model, &configuration).vessel;
+            let held = crate::solver::response::Response::new(model, &configuration).vessel;
             let (hold_thrust, pipe_force) = held
                 .map_or((Vector6::zeros(), Vector6::zeros()), |v| {
                     (v.thrust, v.pipe_force)
@@ -275,9 +275,12 @@ impl Integrator {
         let mut assembler = Assembler::new(&model);
         // Before the first step: the reactions of the starting configuration at rest (static ones for a
         // static state), from the integrator's own assembler.
-        let reactions =
-            crate::response::Response::with_assembler(&model, &state.configuration, &mut assembler)
-                .nodal_reactions;
+        let reactions = crate::solver::response::Response::with_assembler(
+            &model,
+            &state.configuration,
+            &mut assembler,
+        )
+        .nodal_reactions;
         let nodal = NodalProperties::new(&model);
         let round_off = 1e-13
             * (model.rod.section.translational_stiffness.max()
@@ -366,7 +369,7 @@ impl Integrator {
                 let node = attachment.node;
                 let body = body_rotation(attachment, &state.configuration.rotations[node]);
                 (
-                    crate::vessel::kinetic_energy(&attachment.vessel, &motion.velocity),
+                    crate::vessel::rigid_body::kinetic_energy(&attachment.vessel, &motion.velocity),
                     attachment.vessel.restoring_energy(
                         &state.configuration.positions[node],
                         &body,
@@ -428,7 +431,7 @@ impl Integrator {
         &mut self,
         steps: usize,
         record_every: usize,
-        history: &mut crate::history::History,
+        history: &mut crate::solver::history::History,
         counter: &mut usize,
     ) -> Result<()> {
         for _ in 0..steps {

@@ -1,7 +1,7 @@
 //! What users read off a configuration: section forces, tension, support reactions and energy.
-use crate::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::model::Model;
 use crate::rod::element::evaluate;
+use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
 use nalgebra::Vector6;
 
 /// Derived quantities of a configuration at full load.
@@ -81,7 +81,7 @@ impl Response {
         }
         let vessel = model.vessel.as_ref().map(|attachment| {
             let node = attachment.node;
-            let body = crate::coupling::body_rotation(attachment, &config.rotations[node]);
+            let body = crate::vessel::coupling::body_rotation(attachment, &config.rotations[node]);
             let position = config.positions[node];
             let force = assembler.vessel_force;
             let mut pipe_force = Vector6::zeros();
@@ -92,7 +92,7 @@ impl Response {
                 .fixed_rows_mut::<3>(3)
                 .copy_from(&(-(body.transpose() * force.fixed_rows::<3>(3))));
             VesselResponse {
-                eta: crate::coupling::eta_of(&position, &body),
+                eta: crate::vessel::coupling::eta_of(&position, &body),
                 thrust: assembler.vessel_thrust,
                 pipe_force,
                 restoring_energy: attachment.vessel.restoring_energy(

@@ -4,12 +4,12 @@
 //! The path from the stress-free reference has two stages along one parameter s ∈ [0, 2]: first the
 //! loads grow (λ = s) with the supports at the reference, so that a hanging line is in tension before
 //! its ends move; then the supports move to their prescribed positions and rotations (μ = s − 1).
-use crate::assembly::{Assembler, Configuration, NODE_DOFS};
-use crate::catenary::Catenary;
 use crate::error::{Error, Result};
 use crate::model::{Model, SupportTarget};
-use crate::response::Response;
 use crate::so3::{exp_quat, log_quat, minimal_rotation, quat_from_matrix};
+use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
+use crate::solver::catenary::Catenary;
+use crate::solver::response::Response;
 use nalgebra::Vector3;
 
 /// Where Newton starts.
@@ -348,7 +348,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         guess_targets.push(SupportTarget {
             node: attachment.node,
             position: upright.fixed_rows::<3>(0).into_owned(),
-            rotation: Some(quat_from_matrix(&crate::coupling::node_rotation(
+            rotation: Some(quat_from_matrix(&crate::vessel::coupling::node_rotation(
                 attachment, &upright,
             ))),
         });

@@ -1,0 +1,2 @@
+//! What the pipe is immersed in: the sea, its current and the drag it exerts.
+pub mod sea;

@@ -1,0 +1,9 @@
+//! Solving the model: global assembly and linear solves, statics (with the catenary start), the
+//! energy–momentum time step, what users read off a state, and the record of a run.
+pub mod assembly;
+pub mod catenary;
+pub mod dynamics;
+pub mod history;
+pub mod linsolve;
+pub mod response;
+pub mod statics;
