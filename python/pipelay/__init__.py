@@ -22,6 +22,15 @@ from pipelay._core import (
 )
 from pipelay.results import load, resume
 
+
+def _simulation(self: Model, state: State | None = None, dt: float = 0.05) -> Simulation:
+    """A time simulation from `state` (default: ``self.static()``) with time step `dt` (s), using the
+    energy–momentum conserving integrator; the same as ``Simulation(self, state, dt)``."""
+    return Simulation(self, state, dt)
+
+
+Model.simulation = _simulation  # type: ignore[attr-defined]
+
 __all__ = [
     "PID",
     "ConvergenceError",

@@ -276,6 +276,7 @@ class Force:
 class Simulation:
     """A time simulation of a model (energy–momentum conserving integrator)."""
 
+    def __new__(cls, model: Model, state: State | None = None, dt: float = 0.05) -> Simulation: ...
     def step(self) -> None:
         """Advance one time step dt."""
     def run(self, t_end: float, progress: bool = True, record_every: int = 1) -> Results:

@@ -2,7 +2,6 @@
 use crate::callables::{matrix_function, scalar_function, vector_function};
 use crate::convert::{array, matrix3, vector3};
 use crate::errors::{input, to_py};
-use crate::simulation::Simulation;
 use crate::state::State;
 use crate::structure::{Rod, Sea};
 use crate::vessel::{PyForce, PyPid, Vessel};
@@ -108,7 +107,7 @@ impl Model {
     /// elastic catenary when both ends are held and the pipe sinks, else the reference), "reference" or
     /// "catenary". Raises ConvergenceError with the load factor reached. The GIL is released while solving.
     #[pyo3(signature = (steps=None, start="auto"))]
-    fn r#static(&self, py: Python<'_>, steps: Option<i64>, start: &str) -> PyResult<State> {
+    pub fn r#static(&self, py: Python<'_>, steps: Option<i64>, start: &str) -> PyResult<State> {
         let start = match start {
             "auto" => Start::Auto,
             "reference" => Start::Reference,
@@ -196,21 +195,6 @@ impl Model {
                 forces,
             )
             .map_err(to_py)
-    }
-
-    /// A time simulation from `state` (default: `self.static()`) with time step `dt` (s), using the
-    /// energy–momentum conserving integrator.
-    #[pyo3(signature = (state=None, dt=0.05))]
-    fn simulation(&self, py: Python<'_>, state: Option<&State>, dt: f64) -> PyResult<Simulation> {
-        pipelay::error::positive("dt", dt, "s").map_err(to_py)?;
-        let state = match state {
-            Some(s) => s.dynamic_state(&self.0).map_err(to_py)?,
-            None => self
-                .r#static(py, None, "auto")?
-                .dynamic_state(&self.0)
-                .map_err(to_py)?,
-        };
-        Simulation::new(self.0.clone(), state, dt)
     }
 
     /// The rod.

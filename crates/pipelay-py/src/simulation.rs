@@ -21,7 +21,8 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    pub fn new(model: Model, state: DynamicState, dt: f64) -> PyResult<Self> {
+    /// A simulation of `model` from `state` with time step `dt` (s).
+    pub fn from_state(model: Model, state: DynamicState, dt: f64) -> PyResult<Self> {
         let options = DynamicOptions {
             time_step: dt,
             ..DynamicOptions::default()
@@ -43,6 +44,27 @@ fn shaped<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound
 
 #[pymethods]
 impl Simulation {
+    /// A time simulation of `model` from `state` (default: `model.static()`) with time step `dt` (s), using the
+    /// energy–momentum conserving integrator. `Model.simulation(state, dt)` is the same.
+    #[new]
+    #[pyo3(signature = (model, state=None, dt=0.05))]
+    fn new(
+        py: Python<'_>,
+        model: &crate::model::Model,
+        state: Option<&State>,
+        dt: f64,
+    ) -> PyResult<Self> {
+        pipelay::error::positive("dt", dt, "s").map_err(to_py)?;
+        let state = match state {
+            Some(s) => s.dynamic_state(&model.0).map_err(to_py)?,
+            None => model
+                .r#static(py, None, "auto")?
+                .dynamic_state(&model.0)
+                .map_err(to_py)?,
+        };
+        Simulation::from_state(model.0.clone(), state, dt)
+    }
+
     /// Advances one time step dt. Raises ConvergenceError if Newton fails (the state is then unchanged).
     fn step(&mut self, py: Python<'_>) -> PyResult<()> {
         let integrator = &mut self.integrator;
@@ -80,7 +102,7 @@ impl Simulation {
             ));
         }
         let steps = ((t_end - start) / dt - 1e-9).ceil().max(0.0) as usize;
-        let mut history = History::starting_at(&self.integrator);
+        let mut history = History::starting_at(&self.integrator.snapshot(0));
         let bar = if progress && steps >= 200 {
             let tqdm = py.import("tqdm")?.getattr("tqdm")?;
             let kwargs = PyDict::new(py);
@@ -336,7 +358,7 @@ impl Simulation {
             vessel,
         };
         let ledger = get("ledger")?;
-        let mut simulation = Simulation::new(model, state, dt)?;
+        let mut simulation = Simulation::from_state(model, state, dt)?;
         if let [supplied, dissipated] = ledger[..] {
             simulation.integrator.restore_ledger(supplied, dissipated);
         }

@@ -82,21 +82,7 @@ impl State {
             section_forces: integrator.section_forces(),
             reactions: integrator.reactions().to_vec(),
             energy: integrator.energy(),
-            vessel: match (&integrator.model().vessel, &state.vessel) {
-                (Some(attachment), Some(motion)) => {
-                    let node = attachment.node;
-                    let body = pipelay::vessel::coupling::body_rotation(
-                        attachment,
-                        &state.configuration.rotations[node],
-                    );
-                    let eta = pipelay::vessel::coupling::eta_of(
-                        &state.configuration.positions[node],
-                        &body,
-                    );
-                    Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
-                }
-                _ => None,
-            },
+            vessel: integrator.vessel_values(),
             dynamic: Some(state.clone()),
             time: state.time,
             load_factor: 1.0,

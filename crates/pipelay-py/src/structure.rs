@@ -2,7 +2,8 @@
 use crate::convert::{array, points, points_to_numpy, scalar_or_array, vector, vector3};
 use crate::errors::to_py;
 use numpy::PyArray2;
-use pipelay::environment::sea::{self, CurrentProfile};
+use pipelay::environment::current::{self, CurrentProfile};
+use pipelay::environment::sea;
 use pipelay::rod::section::{self, SectionExtras};
 use pyo3::prelude::*;
 
@@ -236,7 +237,7 @@ impl Rod {
 /// A steady current; build it with `Current.uniform`, `Current.linear` or `Current.profile`.
 #[pyclass(module = "pipelay", name = "Current", frozen)]
 #[derive(Clone)]
-pub struct Current(pub sea::Current);
+pub struct Current(pub current::Current);
 
 #[pymethods]
 impl Current {
@@ -245,7 +246,7 @@ impl Current {
     #[pyo3(signature = (velocity, start=0.0))]
     fn uniform(velocity: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
         let v = vector3(velocity, "velocity")?;
-        sea::Current::new(CurrentProfile::Uniform(v), start)
+        current::Current::new(CurrentProfile::Uniform(v), start)
             .map(Current)
             .map_err(to_py)
     }
@@ -255,7 +256,7 @@ impl Current {
     #[pyo3(signature = (surface_velocity, start=0.0))]
     fn linear(surface_velocity: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
         let surface = vector3(surface_velocity, "surface_velocity")?;
-        sea::Current::new(CurrentProfile::Linear { surface }, start)
+        current::Current::new(CurrentProfile::Linear { surface }, start)
             .map(Current)
             .map_err(to_py)
     }
@@ -270,7 +271,7 @@ impl Current {
     ) -> PyResult<Self> {
         let depths = vector(depths, "depths")?;
         let velocities = points(velocities, "velocities")?;
-        sea::Current::new(CurrentProfile::Table { depths, velocities }, start)
+        current::Current::new(CurrentProfile::Table { depths, velocities }, start)
             .map(Current)
             .map_err(to_py)
     }

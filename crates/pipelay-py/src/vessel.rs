@@ -3,7 +3,8 @@ use crate::convert::{array, float_matrix6, to_numpy};
 use crate::errors::{input, to_py};
 use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
-use pipelay::model::{EnvironmentForce, Pid};
+use pipelay::vessel::control::Pid;
+use pipelay::vessel::EnvironmentForce;
 use pyo3::prelude::*;
 
 /// A DP vessel (eq. 10): M = M_RB + M_A, linear damping D and restoring G (6×6, about CO, surge…yaw);

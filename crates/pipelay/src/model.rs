@@ -3,6 +3,8 @@ use crate::environment::sea::Sea;
 use crate::error::{finite, non_negative, Error, Result};
 use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
+use crate::vessel::control::Pid;
+use crate::vessel::{EnvironmentForce, VesselAttachment};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use std::fmt;
 use std::sync::Arc;
@@ -413,44 +415,4 @@ impl Model {
             None => (0.0, 0.0),
         }
     }
-}
-
-/// A PID controller on the vessel's η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref,
-/// active from `start`; thrust acts in surge, sway and yaw only.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Pid {
-    pub kp: nalgebra::Matrix6<f64>,
-    pub kd: nalgebra::Matrix6<f64>,
-    pub ki: nalgebra::Matrix6<f64>,
-    /// η_ref = [x, y, z, φ, θ, ψ] in e (m, rad).
-    pub reference: nalgebra::Vector6<f64>,
-    /// Time the controller starts (s).
-    pub start: f64,
-    /// Bound on each component of ∫η̃ (keeps the PID passive, §III.B); `None`: unbounded.
-    pub integral_limit: Option<nalgebra::Vector6<f64>>,
-    /// Bounds on the thrust in surge (N), sway (N) and yaw (N·m); `None`: unbounded.
-    pub thrust_limit: Option<Vector3<f64>>,
-}
-
-/// A constant environmental force and moment on the vessel (body frame), from `start` (s).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EnvironmentForce {
-    pub value: nalgebra::Vector6<f64>,
-    pub start: f64,
-}
-
-/// A vessel holding one end of the rod (eq. 5): the rod's end node is the vessel's reference point CO,
-/// and the rod's end frame is R_t^e(L) = R_b^e R_b^tᵀ with the fixed clamp angle R_b^t(β).
-#[derive(Debug, Clone, PartialEq)]
-pub struct VesselAttachment {
-    pub node: usize,
-    pub vessel: crate::vessel::rigid_body::Vessel,
-    /// R_b^t(β): the body frame in the pipe-end frame.
-    pub angle: nalgebra::Matrix3<f64>,
-    /// Starting pose η = [x, y, z, φ, θ, ψ] in e.
-    pub eta: nalgebra::Vector6<f64>,
-    pub controller: Option<Pid>,
-    pub environment: Vec<EnvironmentForce>,
-    /// Elevation of the calm sea surface z_0 = −depth, where restoring vanishes (m).
-    pub surface: f64,
 }

@@ -1,7 +1,8 @@
 //! Invariants of the energy–momentum integrator: conservation in vacuum, order of accuracy, and the
 //! discrete energy balance with drag, damping, gravity, current and a driven support.
 use nalgebra::Vector3;
-use pipelay::environment::sea::{Current, CurrentProfile, Sea};
+use pipelay::environment::current::{Current, CurrentProfile};
+use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::rod::dynamic_element::StressRule;
 use pipelay::rod::section::{Section, SectionExtras};

@@ -1,6 +1,7 @@
 //! Validation of the static solver against analytic solutions (the validation ladder's first rung).
 use nalgebra::Vector3;
-use pipelay::environment::sea::{Current, CurrentProfile, Sea};
+use pipelay::environment::current::{Current, CurrentProfile};
+use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;

@@ -1,12 +1,12 @@
 //! Global assembly: the residual r = f_int − f_ext over all nodal DOFs and the tangent K = ∂r/∂q on
 //! the free DOFs, scattered into a fixed sparse pattern (node-major [x_a, θ_a], block tridiagonal).
-use crate::environment::sea::element_current_drag;
+use crate::environment::drag::element_current_drag;
 use crate::model::Model;
-use crate::model::VesselAttachment;
 use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::solver::linsolve::SparseLu;
 use crate::vessel::coupling::{static_forces, StaticTarget};
+use crate::vessel::VesselAttachment;
 use nalgebra::{Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// Degrees of freedom per node: position (3) and spatial spin (3).

@@ -14,14 +14,17 @@
 //! Added mass is isotropic here: C_a,normal ρ_w π/4 d_o² added to the translational mass per length in
 //! every direction (keeps the mass constant and the scheme exactly energy–momentum; over-estimates the
 //! axial added mass of a pipe).
-use crate::environment::sea::morison_drag;
+use crate::environment::drag::morison_drag;
 use crate::error::{positive, Error, Result};
 use crate::model::Model;
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
-use crate::vessel::coupling::{body_rotation, clamp_integral, DynamicVessel, VesselContribution};
+pub use crate::solver::energy::Energy;
+use crate::solver::history::{History, Snapshot};
+use crate::vessel::control::clamp_integral;
+use crate::vessel::coupling::{body_rotation, DynamicVessel, VesselContribution};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// How many times a step may be halved when Newton fails in it.
@@ -137,26 +140,6 @@ impl DynamicState {
             .zip(&self.body_angular_velocities)
             .map(|(q, w)| q * w)
             .collect()
-    }
-}
-
-/// Energy of the rod (J).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Energy {
-    pub kinetic: f64,
-    pub strain: f64,
-    /// Potential of the submerged weight, zero at z = 0.
-    pub gravity: f64,
-    /// Vessel kinetic energy ½νᵀMν.
-    pub vessel_kinetic: f64,
-    /// Vessel restoring potential ½qᵀG q.
-    pub vessel_potential: f64,
-}
-
-impl Energy {
-    /// The storage function E = E_P + E_V (eq. 24).
-    pub fn total(&self) -> f64 {
-        self.kinetic + self.strain + self.gravity + self.vessel_kinetic + self.vessel_potential
     }
 }
 
@@ -346,6 +329,34 @@ impl Integrator {
         &self.reactions
     }
 
+    /// With a vessel: its η, ν, the thrust τ and the pipe's force χ of the current state.
+    pub fn vessel_values(&self) -> Option<[Vector6<f64>; 4]> {
+        let state = &self.state;
+        let (attachment, motion) = (self.model.vessel.as_ref()?, state.vessel.as_ref()?);
+        let node = attachment.node;
+        let body = body_rotation(attachment, &state.configuration.rotations[node]);
+        let eta = crate::vessel::coupling::eta_of(&state.configuration.positions[node], &body);
+        Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
+    }
+
+    /// The current state as a record, reached after `iterations` Newton iterations.
+    pub fn snapshot(&self, iterations: usize) -> Snapshot<'_> {
+        let state = &self.state;
+        Snapshot {
+            time: state.time,
+            positions: &state.configuration.positions,
+            rotations: &state.configuration.rotations,
+            velocities: &state.velocities,
+            section_forces: self.section_forces(),
+            reactions: &self.reactions,
+            energy: self.energy(),
+            vessel: self.vessel_values(),
+            supplied_work: self.supplied_work,
+            dissipated: self.dissipated,
+            iterations,
+        }
+    }
+
     /// Energy of the current state.
     pub fn energy(&self) -> Energy {
         let section = &self.model.rod.section;
@@ -431,14 +442,14 @@ impl Integrator {
         &mut self,
         steps: usize,
         record_every: usize,
-        history: &mut crate::solver::history::History,
+        history: &mut History,
         counter: &mut usize,
     ) -> Result<()> {
         for _ in 0..steps {
             let report = self.step()?;
             *counter += 1;
             if *counter % record_every.max(1) == 0 {
-                history.record(self, report.iterations);
+                history.record(&self.snapshot(report.iterations));
             }
         }
         Ok(())

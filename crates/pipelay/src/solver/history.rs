@@ -1,6 +1,31 @@
 //! The record of a simulation: states at chosen steps, reactions at the ends, energy and its ledger.
-use crate::solver::dynamics::Integrator;
-use nalgebra::Vector6;
+//!
+//! A record is made from a [`Snapshot`], a view of one state that the integrator hands over: the history
+//! knows nothing of how states are computed.
+use crate::solver::energy::Energy;
+use nalgebra::{UnitQuaternion, Vector3, Vector6};
+
+/// What one record holds, borrowed from the state it describes.
+#[derive(Debug, Clone)]
+pub struct Snapshot<'a> {
+    /// Time (s).
+    pub time: f64,
+    pub positions: &'a [Vector3<f64>],
+    pub rotations: &'a [UnitQuaternion<f64>],
+    pub velocities: &'a [Vector3<f64>],
+    /// Material force and moment at the elements' Gauss points.
+    pub section_forces: Vec<Vector6<f64>>,
+    /// Force and moment the rod exerts on each node's support (N, N·m).
+    pub reactions: &'a [Vector6<f64>],
+    pub energy: Energy,
+    /// With a vessel: η, ν, τ and χ.
+    pub vessel: Option<[Vector6<f64>; 4]>,
+    /// Work supplied and energy dissipated since the integrator started (J).
+    pub supplied_work: f64,
+    pub dissipated: f64,
+    /// Newton iterations of the step that led to this state.
+    pub iterations: usize,
+}
 
 /// Time series of a run, stored flat (row-major: time first) for cheap hand-over to arrays.
 #[derive(Debug, Clone, Default)]
@@ -42,15 +67,15 @@ pub struct History {
 }
 
 impl History {
-    /// An empty history whose first record is the integrator's current state.
-    pub fn starting_at(integrator: &Integrator) -> Self {
+    /// An empty history whose first record is `first`; its ledger counts from there.
+    pub fn starting_at(first: &Snapshot) -> Self {
         let mut history = History {
-            nodes: integrator.model().rod.node_count(),
-            supplied_offset: integrator.supplied_work(),
-            dissipated_offset: integrator.dissipated(),
+            nodes: first.positions.len(),
+            supplied_offset: first.supplied_work,
+            dissipated_offset: first.dissipated,
             ..History::default()
         };
-        history.record(integrator, 0);
+        history.record(first);
         history
     }
 
@@ -110,15 +135,14 @@ impl History {
         self.time.is_empty()
     }
 
-    /// Appends the integrator's current state.
-    pub fn record(&mut self, integrator: &Integrator, iterations: usize) {
-        let state = integrator.state();
-        self.time.push(state.time);
-        for (p, v) in state.configuration.positions.iter().zip(&state.velocities) {
+    /// Appends a record.
+    pub fn record(&mut self, snapshot: &Snapshot) {
+        self.time.push(snapshot.time);
+        for (p, v) in snapshot.positions.iter().zip(snapshot.velocities) {
             self.positions.extend_from_slice(p.as_slice());
             self.velocities.extend_from_slice(v.as_slice());
         }
-        for q in &state.configuration.rotations {
+        for q in snapshot.rotations {
             let m = q.to_rotation_matrix().into_inner();
             for i in 0..3 {
                 for j in 0..3 {
@@ -126,35 +150,29 @@ impl History {
                 }
             }
         }
-        for f in integrator.section_forces() {
+        for f in &snapshot.section_forces {
             self.section_forces.extend_from_slice(f.as_slice());
         }
-        let reactions = integrator.reactions();
-        let ends: [&Vector6<f64>; 2] = [&reactions[0], &reactions[self.nodes - 1]];
-        self.reaction_a.extend_from_slice(ends[0].as_slice());
-        self.reaction_b.extend_from_slice(ends[1].as_slice());
-        let energy = integrator.energy();
+        let reactions = snapshot.reactions;
+        self.reaction_a.extend_from_slice(reactions[0].as_slice());
+        self.reaction_b
+            .extend_from_slice(reactions[reactions.len() - 1].as_slice());
+        let energy = &snapshot.energy;
         self.kinetic.push(energy.kinetic);
         self.strain.push(energy.strain);
         self.gravity.push(energy.gravity);
         self.vessel_kinetic.push(energy.vessel_kinetic);
         self.vessel_potential.push(energy.vessel_potential);
-        if let (Some(attachment), Some(motion)) = (&integrator.model().vessel, &state.vessel) {
-            let node = attachment.node;
-            let body = crate::vessel::coupling::body_rotation(
-                attachment,
-                &state.configuration.rotations[node],
-            );
-            let eta = crate::vessel::coupling::eta_of(&state.configuration.positions[node], &body);
+        if let Some([eta, nu, tau, chi]) = &snapshot.vessel {
             self.eta.extend_from_slice(eta.as_slice());
-            self.nu.extend_from_slice(motion.velocity.as_slice());
-            self.tau.extend_from_slice(motion.thrust.as_slice());
-            self.chi.extend_from_slice(motion.pipe_force.as_slice());
+            self.nu.extend_from_slice(nu.as_slice());
+            self.tau.extend_from_slice(tau.as_slice());
+            self.chi.extend_from_slice(chi.as_slice());
         }
         self.supplied_work
-            .push(integrator.supplied_work() - self.supplied_offset);
+            .push(snapshot.supplied_work - self.supplied_offset);
         self.dissipated
-            .push(integrator.dissipated() - self.dissipated_offset);
-        self.iterations.push(iterations);
+            .push(snapshot.dissipated - self.dissipated_offset);
+        self.iterations.push(snapshot.iterations);
     }
 }

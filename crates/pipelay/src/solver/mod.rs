@@ -3,6 +3,7 @@
 pub mod assembly;
 pub mod catenary;
 pub mod dynamics;
+pub mod energy;
 pub mod history;
 pub mod linsolve;
 pub mod response;

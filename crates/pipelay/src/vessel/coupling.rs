@@ -5,10 +5,11 @@
 //! yaw are held at η by stiff springs whose force is the holding thrust (or, with a controller active at
 //! t = 0, by the controller's K_p). Dynamics: the vessel's momentum-form step of [`crate::vessel::rigid_body`], with
 //! damping, thrust (hold or PID) and environment as a body-frame generalised force at the step midpoint.
-use crate::model::{Pid, VesselAttachment};
+use super::control::{clamp_integral, eta_error, pid_thrust, thrust_only, Pid};
+use super::euler;
+use super::rigid_body::{vessel_step, VesselState};
+use super::VesselAttachment;
 use crate::so3::{cayley, exp, log};
-use crate::vessel::euler;
-use crate::vessel::rigid_body::{vessel_step, VesselState};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// Stiffness of the holding springs relative to the vessel's heave restoring G33 (translation) and pitch
@@ -34,39 +35,6 @@ pub fn eta_of(position: &Vector3<f64>, body: &Matrix3<f64>) -> Vector6<f64> {
     Vector6::new(
         position.x, position.y, position.z, angles.x, angles.y, angles.z,
     )
-}
-
-/// Wraps an angle to (−π, π].
-fn wrap(angle: f64) -> f64 {
-    let two_pi = std::f64::consts::TAU;
-    let a = angle.rem_euclid(two_pi);
-    if a > std::f64::consts::PI {
-        a - two_pi
-    } else {
-        a
-    }
-}
-
-/// η − η_ref with angles wrapped.
-pub fn eta_error(eta: &Vector6<f64>, reference: &Vector6<f64>) -> Vector6<f64> {
-    let mut e = eta - reference;
-    for k in 3..6 {
-        e[k] = wrap(e[k]);
-    }
-    e
-}
-
-/// Keeps thrust to surge, sway and yaw, within the limits.
-fn thrust_only(mut tau: Vector6<f64>, limit: Option<&Vector3<f64>>) -> Vector6<f64> {
-    tau[2] = 0.0;
-    tau[3] = 0.0;
-    tau[4] = 0.0;
-    if let Some(limit) = limit {
-        for (k, l) in [(0, limit.x), (1, limit.y), (5, limit.z)] {
-            tau[k] = tau[k].clamp(-l, l);
-        }
-    }
-    tau
 }
 
 /// The target pose of the vessel in statics at support motion μ: from the end node's reference pose to η's
@@ -111,9 +79,8 @@ pub fn static_forces(
     let body = body_rotation(attachment, node_rotation);
     let e3 = Vector3::z();
     // Restoring toward the target: V = ½(q − q_t)ᵀG_r(q − q_t), q = (z − z0, (Λe2)·e3, −(Λe1)·e3).
-    let q =
-        crate::vessel::rigid_body::Vessel::restoring_coordinates(position, &body, target.surface);
-    let q_target = crate::vessel::rigid_body::Vessel::restoring_coordinates(
+    let q = super::rigid_body::Vessel::restoring_coordinates(position, &body, target.surface);
+    let q_target = super::rigid_body::Vessel::restoring_coordinates(
         &target.position,
         &target.rotation,
         target.surface,
@@ -164,23 +131,6 @@ fn controller_static(
     let eta = eta_of(position, body);
     let tau = pid_thrust(controller, &eta, &Vector6::zeros(), &Vector6::zeros());
     (body * tau.fixed_rows::<3>(0), body * tau.fixed_rows::<3>(3))
-}
-
-/// τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i z) (body frame), thrust in surge, sway, yaw within the limits.
-pub fn pid_thrust(
-    controller: &Pid,
-    eta: &Vector6<f64>,
-    velocity: &Vector6<f64>,
-    integral: &Vector6<f64>,
-) -> Vector6<f64> {
-    let error = eta_error(eta, &controller.reference);
-    let jacobian = euler::jacobian(eta).unwrap_or_else(Matrix6::identity);
-    let rate = jacobian * velocity;
-    let tau_pid = controller.kp * error + controller.kd * rate + controller.ki * integral;
-    thrust_only(
-        -jacobian.transpose() * tau_pid,
-        controller.thrust_limit.as_ref(),
-    )
 }
 
 /// The environmental forces acting at time t (body frame).
@@ -311,13 +261,5 @@ impl DynamicVessel<'_> {
             supplied: dt * v.dot(&(thrust + environment)),
             dissipated: dt * v.dot(&attachment.vessel.damping_force(&v)),
         }
-    }
-}
-
-/// ∫η̃ within the controller's bound.
-pub fn clamp_integral(controller: &Pid, integral: &Vector6<f64>) -> Vector6<f64> {
-    match &controller.integral_limit {
-        Some(limit) => integral.zip_map(limit, |z, l| z.clamp(-l, l)),
-        None => *integral,
     }
 }

@@ -1,4 +1,30 @@
 //! The DP vessel: a rigid body (eq. 10), its Euler angles, its coupling to the pipe's end and its control.
+pub mod control;
 pub mod coupling;
 pub mod euler;
 pub mod rigid_body;
+
+use control::Pid;
+
+/// A constant environmental force and moment on the vessel (body frame), from `start` (s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EnvironmentForce {
+    pub value: nalgebra::Vector6<f64>,
+    pub start: f64,
+}
+
+/// A vessel holding one end of the rod (eq. 5): the rod's end node is the vessel's reference point CO,
+/// and the rod's end frame is R_t^e(L) = R_b^e R_b^tᵀ with the fixed clamp angle R_b^t(β).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VesselAttachment {
+    pub node: usize,
+    pub vessel: rigid_body::Vessel,
+    /// R_b^t(β): the body frame in the pipe-end frame.
+    pub angle: nalgebra::Matrix3<f64>,
+    /// Starting pose η = [x, y, z, φ, θ, ψ] in e.
+    pub eta: nalgebra::Vector6<f64>,
+    pub controller: Option<Pid>,
+    pub environment: Vec<EnvironmentForce>,
+    /// Elevation of the calm sea surface z_0 = −depth, where restoring vanishes (m).
+    pub surface: f64,
+}
