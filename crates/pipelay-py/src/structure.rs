@@ -299,7 +299,7 @@ impl Sea {
     #[new]
     #[pyo3(signature = (depth, density=1025.0, current=None))]
     fn new(depth: f64, density: f64, current: Option<&Current>) -> PyResult<Self> {
-        sea::Sea::new(depth, density, current.map(|c| c.0.clone()))
+        sea::Sea::new(depth, density, current.map(|c| c.0.clone()), None)
             .map(Sea)
             .map_err(to_py)
     }

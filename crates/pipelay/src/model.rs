@@ -193,6 +193,10 @@ impl Model {
     /// A free rod, optionally in a sea.
     pub fn new(rod: Rod, sea: Option<Sea>, gravity: f64) -> Result<Self> {
         non_negative("gravity", gravity, "m/s²")?;
+        if let Some(sea) = &sea {
+            let horizontal: Vec<_> = rod.nodes.iter().map(|p| p.xy()).collect();
+            sea.check_seabed_below_surface(&horizontal)?;
+        }
         Ok(Model {
             rod,
             sea,
@@ -402,6 +406,11 @@ impl Model {
             .as_ref()
             .map_or(0.0, |sea| sea.density * section.displaced_area);
         (section.mass - buoyancy_mass) * self.gravity
+    }
+
+    /// The seabed, if the model has one.
+    pub fn seabed(&self) -> Option<&crate::environment::seabed::Seabed> {
+        self.sea.as_ref().and_then(|sea| sea.seabed.as_ref())
     }
 
     /// Morison drag coefficients k = ½ρ_w C_D d_o (axial, normal), zero without a sea.

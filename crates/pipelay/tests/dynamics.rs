@@ -180,7 +180,7 @@ fn energy_balance_holds_every_step_with_drag_and_a_driven_top() {
         0.0,
     )
     .expect("current");
-    let sea = Sea::new(120.0, 1025.0, Some(current)).expect("sea");
+    let sea = Sea::new(120.0, 1025.0, Some(current), None).expect("sea");
     let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
     model.pin("A", None).expect("pin");
     model

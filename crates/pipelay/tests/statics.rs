@@ -204,7 +204,7 @@ fn assembled_tangent_matches_finite_differences() {
         0.0,
     )
     .expect("current");
-    let sea = Sea::new(50.0, 1025.0, Some(current)).expect("sea");
+    let sea = Sea::new(50.0, 1025.0, Some(current), None).expect("sea");
     let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
     model.clamp("A", None, None).expect("clamp");
     let mut config = Configuration::reference(&model);

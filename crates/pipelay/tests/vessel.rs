@@ -86,7 +86,7 @@ fn lone_vessel(vessel: Vessel, heave: f64, pitch: f64) -> Integrator {
         section,
     )
     .expect("rod");
-    let sea = Sea::new(10.0, 1025.0, None).expect("sea");
+    let sea = Sea::new(10.0, 1025.0, None, None).expect("sea");
     let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
     let eta = Vector6::new(0.0, 0.0, -10.0 + heave, 0.0, pitch, 0.0);
     model

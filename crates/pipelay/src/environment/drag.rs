@@ -79,7 +79,7 @@ mod tests {
             0.0,
         )
         .expect("valid current");
-        let sea = Sea::new(800.0, 1025.0, Some(current)).expect("valid sea");
+        let sea = Sea::new(800.0, 1025.0, Some(current), None).expect("valid sea");
         let x1 = Vector3::new(10.0, 2.0, -300.0);
         let x2 = Vector3::new(14.0, -1.0, -310.0);
         let (_, d1, d2) = element_current_drag(&x1, &x2, &sea, 0.0, 0.2, 1.7);

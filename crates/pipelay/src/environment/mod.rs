@@ -1,4 +1,7 @@
-//! What the pipe is immersed in: the sea, its current and the drag it exerts.
+//! What the pipe is immersed in and rests on: the sea, its current and the drag it exerts, the seabed and
+//! its shape.
+pub mod bathymetry;
 pub mod current;
 pub mod drag;
 pub mod sea;
+pub mod seabed;

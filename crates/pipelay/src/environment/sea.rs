@@ -1,26 +1,58 @@
-//! The sea: depth, water density and current.
+//! The sea: depth, water density, current and the seabed.
 use super::current::Current;
-use crate::error::{non_negative, positive, Result};
-use nalgebra::Vector3;
+use super::seabed::Seabed;
+use crate::error::{non_negative, positive, Error, Result};
+use nalgebra::{Vector2, Vector3};
 
-/// Water depth, density and current. The seabed is z = 0, the surface z = −depth.
+/// Water depth, density, current and seabed. The surface is z = −depth (e3 down); the depth is measured from
+/// z = 0, the level of the seabed end's reference.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sea {
     pub depth: f64,
     pub density: f64,
     pub current: Option<Current>,
+    /// Contact with the seabed; `None`: the pipe passes through it.
+    pub seabed: Option<Seabed>,
 }
 
 impl Sea {
     /// Checks and builds a sea.
-    pub fn new(depth: f64, density: f64, current: Option<Current>) -> Result<Self> {
+    pub fn new(
+        depth: f64,
+        density: f64,
+        current: Option<Current>,
+        seabed: Option<Seabed>,
+    ) -> Result<Self> {
         positive("depth", depth, "m")?;
         non_negative("density", density, "kg/m³")?;
-        Ok(Sea {
+        let sea = Sea {
             depth,
             density,
             current,
-        })
+            seabed,
+        };
+        sea.check_seabed_below_surface(&[Vector2::zeros()])?;
+        Ok(sea)
+    }
+
+    /// Checks that the seabed lies below the surface at the horizontal points `points` (and everywhere on a
+    /// grid).
+    pub fn check_seabed_below_surface(&self, points: &[Vector2<f64>]) -> Result<()> {
+        let Some(seabed) = &self.seabed else {
+            return Ok(());
+        };
+        let shallowest = seabed.bathymetry.shallowest(points);
+        if shallowest <= -self.depth {
+            return Err(Error::input(
+                "bathymetry",
+                format!("a seabed reaching z = {shallowest} m"),
+                format!(
+                    "must lie below the sea surface z = −depth = {} m (e3 points down)",
+                    -self.depth
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// Current velocity and depth gradient at elevation z and time t.

@@ -20,6 +20,6 @@ pub fn flooded_pipe(n: usize) -> Model {
     .expect("pipe");
     let rod =
         Rod::straight(Vector3::zeros(), Vector3::new(1200.0, 0.0, 0.0), n, section).expect("rod");
-    let sea = Sea::new(800.0, 1025.0, None).expect("sea");
+    let sea = Sea::new(800.0, 1025.0, None, None).expect("sea");
     Model::new(rod, Some(sea), 9.81).expect("model")
 }
