@@ -7,6 +7,7 @@ Rod end "A" is node 0 (seabed end), "B" is node n (top end).
 
 from pipelay._core import (
     PID,
+    Bathymetry,
     ConvergenceError,
     Current,
     Force,
@@ -15,9 +16,11 @@ from pipelay._core import (
     Results,
     Rod,
     Sea,
+    Seabed,
     Section,
     Simulation,
     State,
+    Touchdown,
     Vessel,
 )
 from pipelay.results import load, resume
@@ -33,6 +36,7 @@ Model.simulation = _simulation  # type: ignore[attr-defined]
 
 __all__ = [
     "PID",
+    "Bathymetry",
     "ConvergenceError",
     "Current",
     "Force",
@@ -41,9 +45,11 @@ __all__ = [
     "Results",
     "Rod",
     "Sea",
+    "Seabed",
     "Section",
     "Simulation",
     "State",
+    "Touchdown",
     "Vessel",
     "load",
     "resume",

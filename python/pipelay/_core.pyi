@@ -14,6 +14,7 @@ _End: TypeAlias = Literal["A", "B"]
 
 __all__ = [
     "PID",
+    "Bathymetry",
     "ConvergenceError",
     "Current",
     "Force",
@@ -22,9 +23,11 @@ __all__ = [
     "Results",
     "Rod",
     "Sea",
+    "Seabed",
     "Section",
     "Simulation",
     "State",
+    "Touchdown",
     "Vessel",
 ]
 
@@ -140,9 +143,16 @@ class Current:
 
 @final
 class Sea:
-    """Water: depth (m; the surface is z = −depth), density (kg/m³) and an optional current."""
+    """Water: depth (m; the surface is z = −depth), density (kg/m³), an optional current and an optional
+    seabed."""
 
-    def __new__(cls, depth: float, density: float = 1025.0, current: Current | None = None) -> Sea: ...
+    def __new__(
+        cls,
+        depth: float,
+        density: float = 1025.0,
+        current: Current | None = None,
+        seabed: Seabed | None = None,
+    ) -> Sea: ...
     @property
     def depth(self) -> float:
         """Water depth (m)."""
@@ -152,6 +162,65 @@ class Sea:
     @property
     def current(self) -> Current | None:
         """The current, if any."""
+    @property
+    def seabed(self) -> Seabed | None:
+        """The seabed, if any."""
+
+@final
+class Bathymetry:
+    """The seabed's shape (elevations z in frame e, e3 down: larger z is deeper)."""
+
+    @staticmethod
+    def flat(z: float = 0.0) -> Bathymetry:
+        """The horizontal plane at elevation z (m)."""
+    @staticmethod
+    def plane(z: float = 0.0, gradient: _ArrayLike | None = None) -> Bathymetry:
+        """The plane b(x, y) = z + gradient[0]·x + gradient[1]·y (m)."""
+    @staticmethod
+    def grid(x: _ArrayLike, y: _ArrayLike, z: _ArrayLike) -> Bathymetry:
+        """Elevations z (nx, ny) on a grid x (nx,), y (ny,), interpolated bilinearly (m)."""
+    def elevation(self, x: float, y: float) -> float:
+        """Seabed elevation b(x, y) (m, e3 down)."""
+
+@final
+class Seabed:
+    """Seabed contact: stiffness k (Pa/m; force per length k·d·penetration), damping (Pa·s/m), Coulomb
+    friction (axial, lateral), mobilisation distance (m) and bathymetry."""
+
+    def __new__(
+        cls,
+        stiffness: float = 1e5,
+        damping: float = 0.0,
+        friction: float | _ArrayLike | None = None,
+        mobilisation: float = 0.01,
+        bathymetry: Bathymetry | None = None,
+    ) -> Seabed: ...
+    @property
+    def stiffness(self) -> float:
+        """Normal stiffness k (Pa/m)."""
+    @property
+    def damping(self) -> float:
+        """Normal damping (Pa·s/m)."""
+    @property
+    def friction(self) -> tuple[float, float]:
+        """Friction coefficients (axial, lateral)."""
+    @property
+    def mobilisation(self) -> float:
+        """Mobilisation distance (m)."""
+    @property
+    def bathymetry(self) -> Bathymetry:
+        """The seabed's shape."""
+
+@final
+class Touchdown:
+    """Where the pipe leaves the seabed, seen from end A."""
+
+    @property
+    def arc_length(self) -> float:
+        """Arc length along the reference from end A (m)."""
+    @property
+    def position(self) -> _FloatArray:
+        """Position (3,) (m, in e)."""
 
 @final
 class State:
@@ -201,6 +270,15 @@ class State:
         """Accepted load steps."""
     def reaction(self, end: _End) -> _FloatArray:
         """Force (N) and moment (N·m) (6,) the rod exerts on the support at `end`, in e."""
+    @property
+    def touchdown(self) -> Touchdown | None:
+        """Where the pipe leaves the seabed (None: no seabed or no contact)."""
+    @property
+    def seabed_reaction(self) -> _FloatArray | None:
+        """The seabed's force on each node (n + 1, 3) (N, in e); None without a seabed."""
+    @property
+    def laid_length(self) -> float | None:
+        """Reference length of pipe on the seabed (m); None without a seabed."""
     def energy(self) -> dict[str, float]:
         """Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total."""
 
@@ -327,6 +405,15 @@ class Results:
         """Axial force at element midpoints (T, n) (N)."""
     def reaction(self, end: _End) -> _FloatArray:
         """Force and moment the rod exerts on the support at `end` (T, 6), in e."""
+    @property
+    def touchdown(self) -> _FloatArray | None:
+        """Touchdown positions (T, 3) (m), NaN rows without contact; None without a seabed."""
+    @property
+    def touchdown_arc_length(self) -> _FloatArray | None:
+        """Touchdown arc length from end A (T,) (m), NaN without contact; None without a seabed."""
+    @property
+    def laid_length(self) -> _FloatArray | None:
+        """Reference length of pipe on the seabed (T,) (m); None without a seabed."""
     @property
     def energy(self) -> dict[str, _FloatArray]:
         """Energy parts (T,) each (J), keys as State.energy()."""

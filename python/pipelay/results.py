@@ -41,7 +41,19 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "pipe_gravity": (("time",), "J", "potential of the pipe's submerged weight"),
     "vessel_kinetic": (("time",), "J", "vessel kinetic energy"),
     "vessel_potential": (("time",), "J", "vessel hydrostatic restoring energy"),
-    "total_energy": (("time",), "J", "storage function E = pipe + vessel energy"),
+    "seabed_energy": (("time",), "J", "energy stored in the seabed contact (normal and friction springs)"),
+    "total_energy": (("time",), "J", "storage function E = pipe + vessel + seabed energy"),
+    "touchdown": (
+        ("time", "axis"),
+        "m",
+        "touchdown point (last point on the seabed seen from end A), NaN: none",
+    ),
+    "touchdown_arc_length": (
+        ("time",),
+        "m",
+        "touchdown arc length along the reference from end A, NaN: none",
+    ),
+    "laid_length": (("time",), "m", "reference length of pipe on the seabed"),
     "supplied_work": (("time",), "J", "work supplied since the start of the run"),
     "dissipated": (("time",), "J", "energy dissipated since the start of the run"),
     "iterations": (("time",), "1", "Newton iterations of the step leading to the record"),
@@ -65,12 +77,13 @@ def _arrays(results: Results) -> dict[str, np.ndarray]:
         "reaction_A": results.reaction("A"),
         "reaction_B": results.reaction("B"),
         **{key: energy[key] for key in ENERGY_KEYS},
+        "seabed_energy": energy["seabed"],
         "total_energy": energy["total"],
         "supplied_work": results.supplied_work,
         "dissipated": results.dissipated,
         "iterations": results.iterations,
     }
-    for key in ("eta", "nu", "tau", "chi"):
+    for key in ("touchdown", "touchdown_arc_length", "laid_length", "eta", "nu", "tau", "chi"):
         value = getattr(results, key)
         if value is not None:
             arrays[key] = value

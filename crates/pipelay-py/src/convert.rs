@@ -5,7 +5,7 @@ use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::prelude::*;
 
 /// A float array of any shape from `value`, flattened, with its shape.
-fn float_array(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
+pub fn float_array(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<(Vec<f64>, Vec<usize>)> {
     let numpy = value.py().import("numpy")?;
     let array = numpy
         .call_method1("asarray", (value, "float64"))

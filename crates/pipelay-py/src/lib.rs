@@ -3,6 +3,7 @@ mod callables;
 mod convert;
 mod errors;
 mod model;
+mod seabed;
 mod simulation;
 mod state;
 mod structure;
@@ -22,6 +23,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<structure::Rod>()?;
     m.add_class::<structure::Current>()?;
     m.add_class::<structure::Sea>()?;
+    m.add_class::<seabed::Seabed>()?;
+    m.add_class::<seabed::Bathymetry>()?;
+    m.add_class::<seabed::Touchdown>()?;
     m.add_class::<model::Model>()?;
     m.add_class::<state::State>()?;
     m.add_class::<simulation::Simulation>()?;

@@ -249,6 +249,13 @@ impl Simulation {
                 .collect(),
             3,
         )?;
+        if self.integrator.model().seabed().is_some() {
+            rows(
+                "friction_slips",
+                state.slips.iter().flat_map(|e| e.iter().copied()).collect(),
+                2,
+            )?;
+        }
         if let Some(v) = &state.vessel {
             let parts = [
                 v.velocity,
@@ -344,6 +351,22 @@ impl Simulation {
             }
             None => None,
         };
+        let slips = match arrays.get_item("friction_slips")? {
+            Some(value) => {
+                let data = flat(&value, "friction_slips")?;
+                if data.len() != 2 * nodes {
+                    return Err(input(
+                        "friction_slips",
+                        format!("{} values", data.len()),
+                        "must hold (n + 1) × 2 values",
+                    ));
+                }
+                data.chunks_exact(2)
+                    .map(nalgebra::Vector2::from_column_slice)
+                    .collect()
+            }
+            None => vec![nalgebra::Vector2::zeros(); nodes],
+        };
         let time = get("time")?.first().copied().unwrap_or(0.0);
         let dt = get("dt")?.first().copied().unwrap_or(f64::NAN);
         let state = DynamicState {
@@ -356,6 +379,7 @@ impl Simulation {
             body_angular_velocities: vectors("body_angular_velocities", nodes)?,
             gauss,
             vessel,
+            slips,
         };
         let ledger = get("ledger")?;
         let mut simulation = Simulation::from_state(model, state, dt)?;
@@ -496,19 +520,33 @@ impl Results {
         };
         shaped(py, data, &[self.history.len(), 6])
     }
+    /// Touchdown positions (T, 3) (m, in e), NaN rows where the pipe does not touch the seabed; None without a
+    /// seabed.
+    #[getter]
+    fn touchdown<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if self.history.touchdown_arc_length.is_empty() {
+            return Ok(None);
+        }
+        shaped(py, &self.history.touchdown, &[self.history.len(), 3]).map(Some)
+    }
+    /// Touchdown arc length along the reference from end A (T,) (m), NaN where the pipe does not touch; None
+    /// without a seabed.
+    #[getter]
+    fn touchdown_arc_length<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        (!self.history.touchdown_arc_length.is_empty())
+            .then(|| PyArray1::from_slice(py, &self.history.touchdown_arc_length))
+    }
+    /// Reference length of pipe on the seabed (T,) (m); None without a seabed.
+    #[getter]
+    fn laid_length<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        (!self.history.laid_length.is_empty())
+            .then(|| PyArray1::from_slice(py, &self.history.laid_length))
+    }
     /// Energy parts (T,) each (J): keys as State.energy().
     #[getter]
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let h = &self.history;
-        let total: Vec<f64> = (0..h.len())
-            .map(|i| {
-                h.kinetic[i]
-                    + h.strain[i]
-                    + h.gravity[i]
-                    + h.vessel_kinetic[i]
-                    + h.vessel_potential[i]
-            })
-            .collect();
+        let total: Vec<f64> = (0..h.len()).map(|i| h.total_energy(i)).collect();
         let dict = PyDict::new(py);
         dict.set_item("pipe_kinetic", PyArray1::from_slice(py, &h.kinetic))?;
         dict.set_item("pipe_strain", PyArray1::from_slice(py, &h.strain))?;
@@ -521,6 +559,7 @@ impl Results {
             "vessel_potential",
             PyArray1::from_slice(py, &h.vessel_potential),
         )?;
+        dict.set_item("seabed", PyArray1::from_slice(py, &h.seabed))?;
         dict.set_item("total", PyArray1::from_slice(py, &total))?;
         Ok(dict)
     }
@@ -565,11 +604,8 @@ impl Results {
     /// supplied work). Never above solver tolerance for a passive system.
     fn passivity_margin(&self) -> f64 {
         let h = &self.history;
-        let total = |i: usize| {
-            h.kinetic[i] + h.strain[i] + h.gravity[i] + h.vessel_kinetic[i] + h.vessel_potential[i]
-        };
         (0..h.len())
-            .map(|i| total(i) - total(0) - h.supplied_work[i])
+            .map(|i| h.total_energy(i) - h.total_energy(0) - h.supplied_work[i])
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
@@ -611,6 +647,13 @@ impl Results {
         h.supplied_work = get("supplied_work")?;
         h.dissipated = get("dissipated")?;
         h.iterations = get("iterations")?.iter().map(|&i| i as usize).collect();
+        h.seabed = optional("seabed_energy")?;
+        if h.seabed.is_empty() {
+            h.seabed = vec![0.0; h.time.len()];
+        }
+        h.touchdown = optional("touchdown")?;
+        h.touchdown_arc_length = optional("touchdown_arc_length")?;
+        h.laid_length = optional("laid_length")?;
         h.eta = optional("eta")?;
         h.nu = optional("nu")?;
         h.tau = optional("tau")?;

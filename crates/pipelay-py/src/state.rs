@@ -1,14 +1,22 @@
 //! Python class State: one configuration of a model and what follows from it.
 use crate::convert::{matrices_to_numpy, points_to_numpy, to_numpy};
 use crate::errors::input;
-use nalgebra::{Matrix3, Vector3, Vector6};
+use nalgebra::{Matrix3, Vector2, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2, PyArray3};
 use pipelay::model::Model;
 use pipelay::solver::assembly::Configuration;
+use pipelay::solver::contact::Touchdown;
 use pipelay::solver::dynamics::{DynamicState, Energy, Integrator};
 use pipelay::solver::response::Response;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+
+/// Seabed contact of a state.
+struct SeabedState {
+    forces: Vec<Vector3<f64>>,
+    touchdown: Touchdown,
+    slips: Vec<Vector2<f64>>,
+}
 
 /// A configuration of the model and what follows from it (SI units, frame e).
 #[pyclass(module = "pipelay", name = "State", frozen)]
@@ -23,6 +31,8 @@ pub struct State {
     vessel: Option<[Vector6<f64>; 4]>,
     /// The integrator's own state (Gauss points included), when the state comes from a simulation.
     dynamic: Option<DynamicState>,
+    /// With a seabed: its force on each node, the touchdown and the friction slips.
+    seabed: Option<SeabedState>,
     /// Time (s): 0 for static states.
     #[pyo3(get)]
     time: f64,
@@ -60,7 +70,13 @@ impl State {
                 gravity: response.gravity_energy,
                 vessel_kinetic: 0.0,
                 vessel_potential: response.vessel.map_or(0.0, |v| v.restoring_energy),
+                seabed: response.seabed.as_ref().map_or(0.0, |s| s.energy),
             },
+            seabed: response.seabed.as_ref().map(|s| SeabedState {
+                forces: s.forces.clone(),
+                touchdown: s.touchdown,
+                slips: s.slips.clone(),
+            }),
             vessel: response
                 .vessel
                 .map(|v| [v.eta, Vector6::zeros(), v.thrust, v.pipe_force]),
@@ -83,6 +99,14 @@ impl State {
             reactions: integrator.reactions().to_vec(),
             energy: integrator.energy(),
             vessel: integrator.vessel_values(),
+            seabed: match (integrator.seabed_forces(), integrator.touchdown()) {
+                (Some(forces), Some(touchdown)) => Some(SeabedState {
+                    forces: forces.to_vec(),
+                    touchdown,
+                    slips: state.slips.clone(),
+                }),
+                _ => None,
+            },
             dynamic: Some(state.clone()),
             time: state.time,
             load_factor: 1.0,
@@ -105,7 +129,14 @@ impl State {
         }
         match &self.dynamic {
             Some(state) => Ok(state.clone()),
-            None => DynamicState::at_rest(model, self.configuration.clone(), self.time),
+            None => {
+                DynamicState::at_rest(model, self.configuration.clone(), self.time).map(|state| {
+                    match &self.seabed {
+                        Some(seabed) => state.with_slips(&seabed.slips),
+                        None => state,
+                    }
+                })
+            }
         }
     }
 
@@ -130,6 +161,7 @@ fn energy_dict<'py>(py: Python<'py>, energy: &Energy) -> PyResult<Bound<'py, PyD
     dict.set_item("pipe_gravity", energy.gravity)?;
     dict.set_item("vessel_kinetic", energy.vessel_kinetic)?;
     dict.set_item("vessel_potential", energy.vessel_potential)?;
+    dict.set_item("seabed", energy.seabed)?;
     dict.set_item("total", energy.total())?;
     Ok(dict)
 }
@@ -204,7 +236,24 @@ impl State {
     fn chi<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
         self.vessel.as_ref().map(|v| to_numpy(py, v[3].as_slice()))
     }
-    /// Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total.
+    /// Where the pipe leaves the seabed, seen from end A (a pl.Touchdown), or None: no seabed, or no contact.
+    #[getter]
+    fn touchdown(&self) -> Option<crate::seabed::Touchdown> {
+        let (arc, position) = self.seabed.as_ref()?.touchdown.point?;
+        Some(crate::seabed::Touchdown::new(arc, position))
+    }
+    /// The seabed's force on each node (n + 1, 3) (N, in e): normal, friction and damping; None without a seabed.
+    #[getter]
+    fn seabed_reaction<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.seabed.as_ref().map(|s| points_to_numpy(py, &s.forces))
+    }
+    /// Reference length of pipe resting on the seabed (m); None without a seabed.
+    #[getter]
+    fn laid_length(&self) -> Option<f64> {
+        self.seabed.as_ref().map(|s| s.touchdown.laid_length)
+    }
+    /// Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, seabed,
+    /// total.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         energy_dict(py, &self.energy)
     }

@@ -289,7 +289,8 @@ impl Current {
     }
 }
 
-/// Water: depth (m; the surface is z = −depth), density (kg/m³) and an optional current.
+/// Water: depth (m; the surface is z = −depth), density (kg/m³), an optional current and an optional seabed
+/// (without one the pipe passes through the bottom).
 #[pyclass(module = "pipelay", name = "Sea", frozen)]
 #[derive(Clone)]
 pub struct Sea(pub sea::Sea);
@@ -297,11 +298,21 @@ pub struct Sea(pub sea::Sea);
 #[pymethods]
 impl Sea {
     #[new]
-    #[pyo3(signature = (depth, density=1025.0, current=None))]
-    fn new(depth: f64, density: f64, current: Option<&Current>) -> PyResult<Self> {
-        sea::Sea::new(depth, density, current.map(|c| c.0.clone()), None)
-            .map(Sea)
-            .map_err(to_py)
+    #[pyo3(signature = (depth, density=1025.0, current=None, seabed=None))]
+    fn new(
+        depth: f64,
+        density: f64,
+        current: Option<&Current>,
+        seabed: Option<&crate::seabed::Seabed>,
+    ) -> PyResult<Self> {
+        sea::Sea::new(
+            depth,
+            density,
+            current.map(|c| c.0.clone()),
+            seabed.map(|s| s.0.clone()),
+        )
+        .map(Sea)
+        .map_err(to_py)
     }
     /// Water depth (m).
     #[getter]
@@ -317,5 +328,10 @@ impl Sea {
     #[getter]
     fn current(&self) -> Option<Current> {
         self.0.current.clone().map(Current)
+    }
+    /// The seabed, if any.
+    #[getter]
+    fn seabed(&self) -> Option<crate::seabed::Seabed> {
+        self.0.seabed.clone().map(crate::seabed::Seabed)
     }
 }

@@ -4,10 +4,11 @@ use crate::environment::drag::element_current_drag;
 use crate::model::Model;
 use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
+use crate::solver::contact::{ContactRule, SeabedContact, TangentSink};
 use crate::solver::linsolve::SparseLu;
 use crate::vessel::coupling::{static_forces, StaticTarget};
 use crate::vessel::VesselAttachment;
-use nalgebra::{Matrix6, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Matrix6, UnitQuaternion, Vector2, Vector3, Vector6};
 
 /// Degrees of freedom per node: position (3) and spatial spin (3).
 pub const NODE_DOFS: usize = 6;
@@ -101,6 +102,36 @@ pub struct Assembler {
     pub vessel_force: Vector6<f64>,
     /// Size of the vessel's static force in the last assembly (N).
     pub external_vessel_norm: f64,
+    /// Seabed contact, if the model has a seabed.
+    pub contact: Option<SeabedContact>,
+    /// Where statics' contact starts from: the positions and elastic friction slips of the last converged
+    /// load step (initially the reference, without slip).
+    pub contact_start: Vec<Vector3<f64>>,
+    pub contact_slips: Vec<Vector2<f64>>,
+}
+
+/// The tangent's values seen through the element and node scatter maps.
+struct Scatter<'a> {
+    values: &'a mut [f64],
+    elements: &'a [[u32; 144]],
+    nodes: &'a [[u32; 36]],
+}
+
+fn scatter_add(values: &mut [f64], map: &[u32], block: &[f64]) {
+    for (slot, value) in map.iter().zip(block) {
+        if *slot != FIXED {
+            values[*slot as usize] += value;
+        }
+    }
+}
+
+impl TangentSink for Scatter<'_> {
+    fn add_element(&mut self, element: usize, block: &ElementMatrix) {
+        scatter_add(self.values, &self.elements[element], block.as_slice());
+    }
+    fn add_node(&mut self, node: usize, block: &Matrix6<f64>) {
+        scatter_add(self.values, &self.nodes[node], block.as_slice());
+    }
 }
 
 /// Relative size of the shift added to the rotational diagonal of the tangent. It removes the exact
@@ -176,7 +207,19 @@ impl Assembler {
                 map
             })
             .collect();
+        let contact = model.seabed().map(|seabed| {
+            let lengths: Vec<f64> = model.rod.elements.iter().map(|e| e.length).collect();
+            SeabedContact::new(
+                seabed,
+                &lengths,
+                model.rod.section.outer_diameter,
+                model.submerged_weight(),
+            )
+        });
         Assembler {
+            contact,
+            contact_start: model.rod.nodes.clone(),
+            contact_slips: vec![Vector2::zeros(); model.rod.node_count()],
             vessel_motion: 1.0,
             vessel_thrust: Vector6::zeros(),
             vessel_force: Vector6::zeros(),
@@ -294,6 +337,13 @@ impl Assembler {
         if let Some(attachment) = &model.vessel {
             self.add_static_vessel(model, attachment, config, with_tangent);
         }
+        if let Some(mut contact) = self.contact.take() {
+            contact.set_static_nodes(&self.contact_start, &config.positions, &config.rotations);
+            let slips = std::mem::take(&mut self.contact_slips);
+            self.add_contact(&mut contact, ContactRule::Static, &slips, with_tangent);
+            self.contact_slips = slips;
+            self.contact = Some(contact);
+        }
         if with_tangent {
             self.shift_rotations();
         }
@@ -366,19 +416,37 @@ impl Assembler {
 
     /// Adds an element's 12×12 tangent block (free entries only).
     pub fn add_element_matrix(&mut self, element: usize, k: &ElementMatrix) {
-        for (slot, value) in self.scatter[element].iter().zip(k.iter()) {
-            if *slot != FIXED {
-                self.values[*slot as usize] += value;
-            }
-        }
+        scatter_add(&mut self.values, &self.scatter[element], k.as_slice());
     }
 
     /// Adds a node's 6×6 tangent block (free entries only).
     pub fn add_node_matrix(&mut self, node: usize, k: &Matrix6<f64>) {
-        for (slot, value) in self.node_scatter[node].iter().zip(k.iter()) {
-            if *slot != FIXED {
-                self.values[*slot as usize] += value;
-            }
+        scatter_add(&mut self.values, &self.node_scatter[node], k.as_slice());
+    }
+
+    /// Evaluates `contact` at the nodes set in it, from elastic slips `slips`, and adds its residual and (with
+    /// `with_tangent`) its tangent. Returns the contact forces' work over the step (J).
+    pub fn add_contact(
+        &mut self,
+        contact: &mut SeabedContact,
+        rule: ContactRule,
+        slips: &[Vector2<f64>],
+        with_tangent: bool,
+    ) -> f64 {
+        let mut sink = Scatter {
+            values: &mut self.values,
+            elements: &self.scatter,
+            nodes: &self.node_scatter,
+        };
+        let sink: Option<&mut dyn TangentSink> = if with_tangent { Some(&mut sink) } else { None };
+        contact.evaluate(rule, slips, &mut self.residual, sink)
+    }
+
+    /// Makes `config` (and the friction it mobilised) the start of statics' next load step.
+    pub fn commit_contact(&mut self, config: &Configuration) {
+        if let Some(contact) = &self.contact {
+            self.contact_start.clone_from(&config.positions);
+            self.contact_slips.clone_from(&contact.slip_end);
         }
     }
 

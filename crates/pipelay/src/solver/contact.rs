@@ -158,11 +158,12 @@ fn friction_step(
     }
 }
 
-/// Where a contact evaluation puts its tangent: element 12×12 blocks and node 6×6 blocks.
-pub type TangentSink<'a> = (
-    &'a mut dyn FnMut(usize, &ElementMatrix),
-    &'a mut dyn FnMut(usize, &Matrix6<f64>),
-);
+/// Where a contact evaluation puts its tangent: element 12×12 blocks and node 6×6 blocks (ordering
+/// [x1, θ1, x2, θ2] and [x, θ]), added to what is there.
+pub trait TangentSink {
+    fn add_element(&mut self, element: usize, block: &ElementMatrix);
+    fn add_node(&mut self, node: usize, block: &Matrix6<f64>);
+}
 
 /// The state of one node entering a contact evaluation.
 #[derive(Debug, Clone, Copy, Default)]
@@ -183,6 +184,8 @@ pub struct SeabedContact {
     bathymetry: Bathymetry,
     /// ½ k d L0 per element (N/m).
     element_scale: Vec<f64>,
+    /// ½ k d (N/m²).
+    half_kd: f64,
     /// c d ℓ_a per node (N·s/m).
     damping: Vec<f64>,
     /// Friction stiffness diag(μ_a, μ_l) w ℓ_a / δ_m per node (N/m); zero without friction.
@@ -235,6 +238,7 @@ impl SeabedContact {
         SeabedContact {
             bathymetry: seabed.bathymetry.clone(),
             element_scale: lengths.iter().map(|l| 0.5 * kd * l).collect(),
+            half_kd: 0.5 * kd,
             damping: tributary
                 .iter()
                 .map(|l| seabed.damping * diameter * l)
@@ -331,7 +335,7 @@ impl SeabedContact {
         rule: ContactRule,
         slips_start: &[Vector2<f64>],
         residual: &mut [f64],
-        mut tangent: Option<TangentSink<'_>>,
+        mut tangent: Option<&mut dyn TangentSink>,
     ) -> f64 {
         let energy_momentum = matches!(rule, ContactRule::EnergyMomentum { .. });
         // 1. Nodal penetrations and the gradients of δ that carry the forces.
@@ -497,15 +501,15 @@ impl SeabedContact {
             for k in 0..3 {
                 residual[6 * a + k] -= force[k];
             }
-            if let Some((_, add_node)) = tangent.as_mut() {
+            if let Some(sink) = tangent.as_mut() {
                 if block != Matrix6::zeros() {
-                    add_node(a, &block);
+                    sink.add_node(a, &block);
                 }
             }
         }
         self.energy_end = energy_end + self.spring_energy(&self.slip_end);
         // 4. Element blocks: normal contact coupling and friction's dependence on the normal force.
-        if let Some((add_element, _)) = tangent.as_mut() {
+        if let Some(sink) = tangent.as_mut() {
             let mut k = ElementMatrix::zeros();
             for e in 0..self.element_scale.len() {
                 let jacobian = &self.element_jacobian[e];
@@ -523,10 +527,25 @@ impl SeabedContact {
                         k.fixed_view_mut::<3, 3>(6 * i, 6 * j).copy_from(&block);
                     }
                 }
-                add_element(e, &k);
+                sink.add_element(e, &k);
             }
         }
         work
+    }
+
+    /// Where the pipe at `positions` leaves the seabed (seen from end A) and how much of it lies on it.
+    pub fn touchdown(&self, positions: &[Vector3<f64>]) -> Touchdown {
+        let lengths: Vec<f64> = self
+            .element_scale
+            .iter()
+            .map(|s| s / self.half_kd)
+            .collect();
+        let (point, laid_length) = touchdown(&self.penetrations(positions), &lengths);
+        let point = point.map(|(e, xi)| {
+            let arc = lengths[..e].iter().sum::<f64>() + xi * lengths[e];
+            (arc, positions[e] * (1.0 - xi) + positions[e + 1] * xi)
+        });
+        Touchdown { point, laid_length }
     }
 
     /// The elastic slip e per node after the last evaluation.
@@ -541,6 +560,15 @@ impl SeabedContact {
             .map(|p| self.bathymetry.penetration(p).value)
             .collect()
     }
+}
+
+/// The touchdown of a configuration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Touchdown {
+    /// Arc length along the reference from end A (m) and position (m) of the last point in contact.
+    pub point: Option<(f64, Vector3<f64>)>,
+    /// Reference length of pipe in contact with the seabed (m).
+    pub laid_length: f64,
 }
 
 /// Where the pipe leaves the seabed for good, seen from end A: the last point with penetration ≥ 0, found on
@@ -621,6 +649,25 @@ mod tests {
     use crate::environment::bathymetry::Bathymetry;
     use crate::so3::exp;
 
+    struct Dense(nalgebra::DMatrix<f64>);
+
+    impl TangentSink for Dense {
+        fn add_element(&mut self, e: usize, block: &ElementMatrix) {
+            for i in 0..12 {
+                for j in 0..12 {
+                    self.0[(6 * e + i, 6 * e + j)] += block[(i, j)];
+                }
+            }
+        }
+        fn add_node(&mut self, a: usize, block: &Matrix6<f64>) {
+            for i in 0..6 {
+                for j in 0..6 {
+                    self.0[(6 * a + i, 6 * a + j)] += block[(i, j)];
+                }
+            }
+        }
+    }
+
     fn seabed(bathymetry: Bathymetry, damping: f64) -> Seabed {
         Seabed::new(2e5, damping, [0.5, 0.8], 0.02, bathymetry).expect("valid seabed")
     }
@@ -698,33 +745,11 @@ mod tests {
                         900.0,
                     );
                     let steps = nodes(scale);
-                    let mut k = nalgebra::DMatrix::<f64>::zeros(24, 24);
-                    let mut k_nodes = nalgebra::DMatrix::<f64>::zeros(24, 24);
+                    let mut sink = Dense(nalgebra::DMatrix::<f64>::zeros(24, 24));
                     contact.nodes.copy_from_slice(&steps);
                     let mut r = vec![0.0; 24];
-                    {
-                        let mut add_element = |e: usize, m: &ElementMatrix| {
-                            for i in 0..12 {
-                                for j in 0..12 {
-                                    k[(6 * e + i, 6 * e + j)] += m[(i, j)];
-                                }
-                            }
-                        };
-                        let mut add_node = |a: usize, m: &Matrix6<f64>| {
-                            for i in 0..6 {
-                                for j in 0..6 {
-                                    k_nodes[(6 * a + i, 6 * a + j)] += m[(i, j)];
-                                }
-                            }
-                        };
-                        contact.evaluate(
-                            rule,
-                            &slips,
-                            &mut r,
-                            Some((&mut add_element, &mut add_node)),
-                        );
-                    }
-                    k += k_nodes;
+                    contact.evaluate(rule, &slips, &mut r, Some(&mut sink));
+                    let k = sink.0;
                     let h = 1e-6;
                     let mut worst: f64 = 0.0;
                     for a in 0..4 {

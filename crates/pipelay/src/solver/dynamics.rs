@@ -21,11 +21,12 @@ use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
+use crate::solver::contact::{ContactRule, NodeStep, SeabedContact, Touchdown};
 pub use crate::solver::energy::Energy;
 use crate::solver::history::{History, Snapshot};
 use crate::vessel::control::clamp_integral;
 use crate::vessel::coupling::{body_rotation, DynamicVessel, VesselContribution};
-use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector2, Vector3, Vector6};
 
 /// How many times a step may be halved when Newton fails in it.
 pub const MAX_HALVINGS: usize = 4;
@@ -68,6 +69,8 @@ pub struct DynamicState {
     pub gauss: Vec<GaussPoint>,
     /// The attached vessel's velocity and controller state, if any.
     pub vessel: Option<VesselMotion>,
+    /// Elastic seabed-friction slip (axial, lateral) of each node (m); zero without a seabed.
+    pub slips: Vec<Vector2<f64>>,
 }
 
 /// Velocity and controller state of an attached vessel.
@@ -124,12 +127,22 @@ impl DynamicState {
         });
         Ok(DynamicState {
             time,
+            slips: vec![Vector2::zeros(); model.rod.node_count()],
             body_angular_velocities: vec![Vector3::zeros(); model.rod.node_count()],
             configuration,
             velocities,
             gauss,
             vessel,
         })
+    }
+
+    /// The same state with the seabed friction's elastic slips `slips` (one per node; e.g. those of a static
+    /// solution).
+    pub fn with_slips(mut self, slips: &[Vector2<f64>]) -> Self {
+        if slips.len() == self.slips.len() {
+            self.slips.copy_from_slice(slips);
+        }
+        self
     }
 
     /// Spatial angular velocities w_I = Λ_I W_I (rad/s).
@@ -222,6 +235,8 @@ pub struct Integrator {
     vessel_step: Option<VesselContribution>,
     /// The rod's force on the vessel node in the last assembly (spatial).
     rod_force_at_vessel: Vector6<f64>,
+    /// Seabed contact, if the model has a seabed.
+    contact: Option<SeabedContact>,
 }
 
 /// The Cayley parameter θ of a rotation: cay(θ) = R (quaternion (w, v) ↦ 2v/w).
@@ -255,9 +270,20 @@ impl Integrator {
                 format!("must belong to this model ({count} nodes)"),
             ));
         }
+        if state.slips.len() != count {
+            return Err(Error::input(
+                "state",
+                format!("{} friction slips", state.slips.len()),
+                format!("must hold one per node ({count})"),
+            ));
+        }
         let mut assembler = Assembler::new(&model);
         // Before the first step: the reactions of the starting configuration at rest (static ones for a
-        // static state), from the integrator's own assembler.
+        // static state, friction from the state's slips), from the integrator's own assembler.
+        assembler
+            .contact_start
+            .clone_from(&state.configuration.positions);
+        assembler.contact_slips.clone_from(&state.slips);
         let reactions = crate::solver::response::Response::with_assembler(
             &model,
             &state.configuration,
@@ -272,7 +298,9 @@ impl Integrator {
                     .vessel
                     .as_ref()
                     .map_or(0.0, |v| v.vessel.restoring.abs().max()));
+        let contact = assembler.contact.take();
         Ok(Integrator {
+            contact,
             round_off,
             increments: vec![0.0; NODE_DOFS * count],
             correction: vec![0.0; assembler.dofs.free],
@@ -351,6 +379,7 @@ impl Integrator {
             reactions: &self.reactions,
             energy: self.energy(),
             vessel: self.vessel_values(),
+            touchdown: self.touchdown(),
             supplied_work: self.supplied_work,
             dissipated: self.dissipated,
             iterations,
@@ -396,7 +425,22 @@ impl Integrator {
             gravity: Assembler::gravity_potential(&self.model, &state.configuration),
             vessel_kinetic,
             vessel_potential,
+            seabed: self.contact.as_ref().map_or(0.0, |contact| {
+                contact.energy(&state.configuration.positions, &state.slips)
+            }),
         }
+    }
+
+    /// Where the pipe leaves the seabed in the current state; `None` without a seabed.
+    pub fn touchdown(&self) -> Option<Touchdown> {
+        self.contact
+            .as_ref()
+            .map(|contact| contact.touchdown(&self.state.configuration.positions))
+    }
+
+    /// The seabed's force on each node over the last step (N, in e); `None` without a seabed.
+    pub fn seabed_forces(&self) -> Option<&[Vector3<f64>]> {
+        self.contact.as_ref().map(|contact| &contact.forces[..])
     }
 
     /// Linear momentum Σ M_I v_I (kg·m/s).
@@ -731,6 +775,31 @@ impl Integrator {
             }
             self.assembler.add_node_matrix(node, &block);
         }
+        if let Some(mut contact) = self.contact.take() {
+            for (node, step) in contact.nodes.iter_mut().enumerate() {
+                let base = NODE_DOFS * node;
+                let half_theta =
+                    0.5 * Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
+                let rotation_mid =
+                    cayley(&half_theta) * state.configuration.rotations[node].to_rotation_matrix();
+                *step = NodeStep {
+                    start: state.configuration.positions[node],
+                    displacement: Vector3::from_column_slice(&self.increments[base..base + 3]),
+                    axis: rotation_mid.column(0).into_owned(),
+                    axis_map: 0.5 * cayley_tangent(&half_theta),
+                };
+            }
+            let rule = ContactRule::EnergyMomentum { time_step: dt };
+            self.assembler
+                .add_contact(&mut contact, rule, &state.slips, true);
+            for (node, force) in contact.forces.iter().enumerate() {
+                for k in 0..3 {
+                    self.magnitude[NODE_DOFS * node + k] += force[k].abs();
+                }
+            }
+            work.dissipated += contact.dissipated;
+            self.contact = Some(contact);
+        }
         for (load, scale) in model.point_loads.iter().zip(scales) {
             let base = NODE_DOFS * load.node;
             let force = load.force * *scale;
@@ -802,6 +871,9 @@ impl Integrator {
             state.configuration.rotations[node] = cayley_quaternion(&theta) * rotation_n;
         }
         self.state.gauss.copy_from_slice(&self.next_gauss);
+        if let Some(contact) = &self.contact {
+            self.state.slips.copy_from_slice(contact.slips());
+        }
         if let (Some(attachment), Some(motion), Some(step)) = (
             &self.model.vessel,
             &mut self.state.vessel,

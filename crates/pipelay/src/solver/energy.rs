@@ -11,11 +11,18 @@ pub struct Energy {
     pub vessel_kinetic: f64,
     /// Vessel restoring potential ½qᵀG q.
     pub vessel_potential: f64,
+    /// Energy stored in the seabed contact: normal springs and friction's elastic slip.
+    pub seabed: f64,
 }
 
 impl Energy {
     /// The storage function E = E_P + E_V (eq. 24).
     pub fn total(&self) -> f64 {
-        self.kinetic + self.strain + self.gravity + self.vessel_kinetic + self.vessel_potential
+        self.kinetic
+            + self.strain
+            + self.gravity
+            + self.vessel_kinetic
+            + self.vessel_potential
+            + self.seabed
     }
 }

@@ -2,6 +2,7 @@
 //!
 //! A record is made from a [`Snapshot`], a view of one state that the integrator hands over: the history
 //! knows nothing of how states are computed.
+use crate::solver::contact::Touchdown;
 use crate::solver::energy::Energy;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 
@@ -20,6 +21,8 @@ pub struct Snapshot<'a> {
     pub energy: Energy,
     /// With a vessel: η, ν, τ and χ.
     pub vessel: Option<[Vector6<f64>; 4]>,
+    /// With a seabed: where the pipe leaves it.
+    pub touchdown: Option<Touchdown>,
     /// Work supplied and energy dissipated since the integrator started (J).
     pub supplied_work: f64,
     pub dissipated: f64,
@@ -51,6 +54,13 @@ pub struct History {
     pub gravity: Vec<f64>,
     pub vessel_kinetic: Vec<f64>,
     pub vessel_potential: Vec<f64>,
+    /// Energy stored in the seabed contact (J).
+    pub seabed: Vec<f64>,
+    /// With a seabed: touchdown positions (T, 3), NaN where the pipe does not touch, its arc length from end A
+    /// along the reference (T,) and the laid length (T,) (m); empty without a seabed.
+    pub touchdown: Vec<f64>,
+    pub touchdown_arc_length: Vec<f64>,
+    pub laid_length: Vec<f64>,
     /// With a vessel: η (e), ν, thrust τ and the pipe's force χ (body frame), (T, 6) each; empty without.
     pub eta: Vec<f64>,
     pub nu: Vec<f64>,
@@ -92,7 +102,24 @@ impl History {
         let t = self.len();
         let n = self.nodes;
         let vessel = !self.eta.is_empty();
-        let fields: [(&str, usize, usize); 19] = [
+        let seabed = !self.touchdown_arc_length.is_empty();
+        let fields: [(&str, usize, usize); 23] = [
+            ("seabed_energy", self.seabed.len(), 1),
+            (
+                "touchdown",
+                self.touchdown.len(),
+                if seabed { 3 } else { 0 },
+            ),
+            (
+                "touchdown_arc_length",
+                self.touchdown_arc_length.len(),
+                if seabed { 1 } else { 0 },
+            ),
+            (
+                "laid_length",
+                self.laid_length.len(),
+                if seabed { 1 } else { 0 },
+            ),
             ("positions", self.positions.len(), n * 3),
             ("rotations", self.rotations.len(), n * 9),
             ("velocities", self.velocities.len(), n * 3),
@@ -123,6 +150,16 @@ impl History {
             }
             None => Ok(()),
         }
+    }
+
+    /// The storage function E of record `i` (J).
+    pub fn total_energy(&self, i: usize) -> f64 {
+        self.kinetic[i]
+            + self.strain[i]
+            + self.gravity[i]
+            + self.vessel_kinetic[i]
+            + self.vessel_potential[i]
+            + self.seabed[i]
     }
 
     /// Number of records T.
@@ -163,6 +200,15 @@ impl History {
         self.gravity.push(energy.gravity);
         self.vessel_kinetic.push(energy.vessel_kinetic);
         self.vessel_potential.push(energy.vessel_potential);
+        self.seabed.push(energy.seabed);
+        if let Some(touchdown) = &snapshot.touchdown {
+            let (arc, position) = touchdown
+                .point
+                .unwrap_or((f64::NAN, Vector3::repeat(f64::NAN)));
+            self.touchdown.extend_from_slice(position.as_slice());
+            self.touchdown_arc_length.push(arc);
+            self.laid_length.push(touchdown.laid_length);
+        }
         if let Some([eta, nu, tau, chi]) = &snapshot.vessel {
             self.eta.extend_from_slice(eta.as_slice());
             self.nu.extend_from_slice(nu.as_slice());

@@ -2,7 +2,8 @@
 use crate::model::Model;
 use crate::rod::element::evaluate;
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
-use nalgebra::Vector6;
+use crate::solver::contact::Touchdown;
+use nalgebra::{Vector2, Vector3, Vector6};
 
 /// Derived quantities of a configuration at full load.
 #[derive(Debug, Clone)]
@@ -18,6 +19,20 @@ pub struct Response {
     /// With a vessel: its pose η, the holding thrust τ and the pipe's force on it χ (body frame), and its
     /// restoring energy (J).
     pub vessel: Option<VesselResponse>,
+    /// With a seabed: its contact.
+    pub seabed: Option<SeabedResponse>,
+}
+
+/// Seabed contact of a configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeabedResponse {
+    /// The seabed's force on each node (N, in e).
+    pub forces: Vec<Vector3<f64>>,
+    /// Energy stored in the contact: normal springs and friction's elastic slip (J).
+    pub energy: f64,
+    pub touchdown: Touchdown,
+    /// Elastic friction slip per node (axial, lateral) (m): the state friction starts a simulation from.
+    pub slips: Vec<Vector2<f64>>,
 }
 
 /// Static quantities of an attached vessel.
@@ -102,7 +117,14 @@ impl Response {
                 ),
             }
         });
+        let seabed = assembler.contact.as_ref().map(|contact| SeabedResponse {
+            forces: contact.forces.clone(),
+            energy: contact.energy_end,
+            touchdown: contact.touchdown(&config.positions),
+            slips: contact.slip_end.clone(),
+        });
         Response {
+            seabed,
             vessel,
             section_forces,
             nodal_reactions,

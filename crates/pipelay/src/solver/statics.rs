@@ -411,6 +411,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
             } => {
                 iterations += its;
                 steps += 1;
+                assembler.commit_contact(&trial);
                 config = trial;
                 path = target;
                 if path >= 2.0 {
