@@ -102,6 +102,8 @@ pub struct Assembler {
     pub vessel_force: Vector6<f64>,
     /// Size of the vessel's static force in the last assembly (N).
     pub external_vessel_norm: f64,
+    /// Factor on the rotational stiffness C_R (statics' continuation from a cable to the pipe; 1 otherwise).
+    pub bending_scale: f64,
     /// Seabed contact, if the model has a seabed.
     pub contact: Option<SeabedContact>,
     /// Where statics' contact starts from: the positions and elastic friction slips of the last converged
@@ -217,6 +219,7 @@ impl Assembler {
             )
         });
         Assembler {
+            bending_scale: 1.0,
             contact,
             contact_start: model.rod.nodes.clone(),
             contact_slips: vec![Vector2::zeros(); model.rod.node_count()],
@@ -252,7 +255,7 @@ impl Assembler {
         self.external.iter_mut().for_each(|r| *r = 0.0);
         self.clear(with_tangent);
         let section = &model.rod.section;
-        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let (c_t, c_r) = (section.c_t(), section.c_r() * self.bending_scale);
         let weight = model.submerged_weight();
         let (k_axial, k_normal) = model.drag_coefficients();
         let has_drag = model

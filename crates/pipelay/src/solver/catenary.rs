@@ -110,7 +110,7 @@ fn up() -> Vector3<f64> {
 /// For `v0` and `v1 = v0 + ws` of equal sign it uses
 /// `asinh a − asinh b = asinh(a√(1+b²) − b√(1+a²))` with
 /// `a√(1+b²) − b√(1+a²) = (v1² − v0²)/(v1 T0 + v0 T1)`.
-fn asinh_diff(h: f64, v0: f64, ws: f64) -> f64 {
+pub(crate) fn asinh_diff(h: f64, v0: f64, ws: f64) -> f64 {
     let v1 = v0 + ws;
     if v0 * v1 > 0.0 {
         let t0 = h.hypot(v0);
@@ -135,7 +135,7 @@ fn cos_diff(h: f64, v0: f64, ws: f64) -> f64 {
 }
 
 /// `T(s) − T(0) = w s (2 V0 + w s)/(T(s) + T(0))`, free of cancellation.
-fn tension_diff(h: f64, v0: f64, ws: f64) -> f64 {
+pub(crate) fn tension_diff(h: f64, v0: f64, ws: f64) -> f64 {
     let v1 = v0 + ws;
     let sum = h.hypot(v1) + h.hypot(v0);
     if sum > 0.0 {

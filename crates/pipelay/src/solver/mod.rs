@@ -6,6 +6,7 @@ pub mod contact;
 pub mod dynamics;
 pub mod energy;
 pub mod history;
+pub mod laid_catenary;
 pub mod linsolve;
 pub mod response;
 pub mod statics;

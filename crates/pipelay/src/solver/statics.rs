@@ -9,6 +9,7 @@ use crate::model::{Model, SupportTarget};
 use crate::so3::{exp_quat, log_quat, minimal_rotation, quat_from_matrix};
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::solver::catenary::Catenary;
+use crate::solver::laid_catenary::LaidCatenary;
 use crate::solver::response::Response;
 use nalgebra::Vector3;
 
@@ -202,26 +203,28 @@ fn newton(
             }
             largest_rotation = largest_rotation.max(spin.norm());
         }
-        let factor = match support_increment.take() {
+        let predictor = support_increment.is_some();
+        let mut factor = match support_increment.take() {
             Some(increment) => {
                 apply_increment(config, increment);
                 1.0
             }
             None => (options.max_rotation_increment / largest_rotation).min(1.0),
         };
-        for node in 0..model.rod.node_count() {
-            let mut spin = Vector3::zeros();
-            for k in 0..3 {
-                if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + k] {
-                    config.positions[node][k] += factor * delta[i];
-                }
-                if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + 3 + k] {
-                    spin[k] = factor * delta[i];
-                }
+        // With seabed contact (non-smooth friction, contact switching), backtrack along the correction while
+        // the residual grows.
+        let start = (assembler.contact.is_some() && !predictor).then(|| config.clone());
+        for _ in 0..LINE_SEARCH_HALVINGS {
+            apply_correction(model, assembler, config, &delta, factor);
+            let Some(start) = &start else { break };
+            assembler.assemble(model, config, load_factor, false, None);
+            let trial = free_norm(assembler);
+            let floor = 1e3 * (options.tolerance * scale + round_off);
+            if trial.is_finite() && (trial <= residual || trial <= floor) {
+                break;
             }
-            if spin != Vector3::zeros() {
-                config.rotations[node] = exp_quat(&spin) * config.rotations[node];
-            }
+            config.clone_from(start);
+            factor *= 0.5;
         }
         // Stagnation at round-off with a residual already small is convergence too.
         if factor == 1.0
@@ -238,6 +241,45 @@ fn newton(
     Newton::Failed {
         iterations: options.max_iterations,
         residual,
+    }
+}
+
+/// Backtracking steps of the line search with seabed contact.
+const LINE_SEARCH_HALVINGS: usize = 6;
+
+/// Norm of the residual over the free DOFs.
+fn free_norm(assembler: &Assembler) -> f64 {
+    assembler
+        .residual
+        .iter()
+        .zip(&assembler.dofs.equation)
+        .filter(|(_, eq)| eq.is_some())
+        .map(|(r, _)| r * r)
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Moves the free DOFs of `config` by `factor` times the Newton correction `delta`.
+fn apply_correction(
+    model: &Model,
+    assembler: &Assembler,
+    config: &mut Configuration,
+    delta: &[f64],
+    factor: f64,
+) {
+    for node in 0..model.rod.node_count() {
+        let mut spin = Vector3::zeros();
+        for k in 0..3 {
+            if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + k] {
+                config.positions[node][k] += factor * delta[i];
+            }
+            if let Some(i) = assembler.dofs.equation[NODE_DOFS * node + 3 + k] {
+                spin[k] = factor * delta[i];
+            }
+        }
+        if spin != Vector3::zeros() {
+            config.rotations[node] = exp_quat(&spin) * config.rotations[node];
+        }
     }
 }
 
@@ -274,7 +316,8 @@ fn support_increment(
     increment
 }
 
-/// The catenary initial guess: nodes placed along Irvine's elastic catenary through the two held ends
+/// The catenary initial guess: nodes placed along Irvine's elastic catenary (resting on the seabed from A
+/// when A lies on it and the line is long enough, [`LaidCatenary`]) through the two held ends
 /// at their reference arc lengths, frames turned by the smallest rotation onto its tangent. A buoyant
 /// line (negative submerged weight) is the mirror image, in z, of a heavy one.
 fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configuration> {
@@ -293,28 +336,101 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
         }
     };
     let length = model.rod.length();
-    let catenary = Catenary::solve(
-        mirror(a.position),
-        mirror(b.position),
-        length,
-        weight.abs(),
+    let (ea, (a, b)) = (
         model.rod.section.translational_stiffness.x,
-    )
-    .ok()?;
+        (mirror(a.position), mirror(b.position)),
+    );
+    // A heavy line whose end A lies on the seabed rests on it up to a touchdown point.
+    let on_seabed = model.seabed().is_some_and(|seabed| {
+        weight > 0.0 && seabed.bathymetry.penetration(&a).value > -1e-3 * (b - a).norm()
+    });
+    let laid = on_seabed
+        .then(|| LaidCatenary::solve(a, b, length, weight, ea))
+        .flatten();
+    let shape: Box<dyn Fn(f64) -> (Vector3<f64>, Vector3<f64>)> = match laid {
+        Some(laid) => Box::new(move |s| (laid.position(s), laid.tangent(s))),
+        None => {
+            let catenary = Catenary::solve(a, b, length, weight.abs(), ea).ok()?;
+            Box::new(move |s| (catenary.position(s), catenary.tangent(s)))
+        }
+    };
     let mut config = Configuration::reference(model);
     let mut arc = 0.0;
     for node in 0..=last {
         if node > 0 {
             arc += model.rod.elements[node - 1].length;
         }
-        config.positions[node] = mirror(catenary.position(arc.min(length)));
+        let (position, tangent) = shape(arc.min(length));
+        config.positions[node] = mirror(position);
         let frame = config.rotations[node].to_rotation_matrix().into_inner();
-        let tangent = mirror(catenary.tangent(arc.min(length)));
-        let turn = minimal_rotation(&frame.column(0).into_owned(), &tangent);
+        let turn = minimal_rotation(&frame.column(0).into_owned(), &mirror(tangent));
         config.rotations[node] = quat_from_matrix(&(turn * frame));
     }
     apply_supports(model, targets, &mut config, 1.0);
     Some(config)
+}
+
+/// Smallest factor on the bending stiffness that the continuation from a cable starts at.
+const CABLE_BENDING_SCALE: f64 = 1e-8;
+
+/// Statics at full load by continuation in the bending stiffness: from the catenary `guess` with C_R scaled
+/// by [`CABLE_BENDING_SCALE`] (a cable, which the catenary fits) to the pipe's C_R, in steps of the
+/// logarithm of the scale that grow on easy convergence and halve on failure. `None` if it stalls.
+fn bending_continuation(
+    model: &Model,
+    assembler: &mut Assembler,
+    mut config: Configuration,
+    options: &StaticOptions,
+) -> Option<StaticSolution> {
+    let mut exponent = CABLE_BENDING_SCALE.log10();
+    let mut step = 1.0;
+    let mut iterations = 0;
+    let mut steps = 0;
+    let mut first = true;
+    loop {
+        let target = if first { exponent } else { (exponent + step).min(0.0) };
+        assembler.bending_scale = 10f64.powf(target);
+        let mut trial = config.clone();
+        match newton(model, assembler, &mut trial, 1.0, None, options) {
+            Newton::Converged {
+                iterations: its,
+                residual,
+            } => {
+                iterations += its;
+                steps += 1;
+                assembler.commit_contact(&trial);
+                config = trial;
+                exponent = target;
+                first = false;
+                if exponent >= 0.0 {
+                    assembler.bending_scale = 1.0;
+                    return Some(StaticSolution {
+                        response: Response::with_assembler(model, &config, assembler),
+                        configuration: config,
+                        iterations,
+                        steps,
+                        residual,
+                        from_catenary: true,
+                    });
+                }
+                if its <= 6 {
+                    step = (2.0 * step).min(2.0);
+                }
+            }
+            Newton::Failed {
+                iterations: its, ..
+            } => {
+                iterations += its;
+                if first {
+                    return None;
+                }
+                step *= 0.5;
+                if step < 1e-3 {
+                    return None;
+                }
+            }
+        }
+    }
 }
 
 /// Solves for static equilibrium at full load.
@@ -364,7 +480,8 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
             )
         })?),
     };
-    if let Some(mut config) = catenary {
+    if let Some(guess) = catenary {
+        let mut config = guess.clone();
         match newton(model, &mut assembler, &mut config, 1.0, None, options) {
             Newton::Converged {
                 iterations: its,
@@ -383,6 +500,15 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
                 iterations: its, ..
             } => iterations += its,
         }
+        // A stiff pipe far from the catenary: follow the solution from a cable (bending stiffness scaled
+        // down) to the pipe.
+        if let Some(mut solution) = bending_continuation(model, &mut assembler, guess, options) {
+            solution.iterations += iterations;
+            return Ok(solution);
+        }
+        assembler.bending_scale = 1.0;
+        assembler.contact_start.clone_from(&model.rod.nodes);
+        assembler.contact_slips.iter_mut().for_each(|e| *e = nalgebra::Vector2::zeros());
     }
 
     let mut config = Configuration::reference(model);
