@@ -94,10 +94,13 @@ struct FrictionStep {
     force: Vector3<f64>,
     slip: Vector2<f64>,
     dissipated: f64,
+    /// Whether the return map slid (the trial left the elastic range).
+    sliding: bool,
 }
 
 /// The nodal friction kernel (module docs): start position and elastic slip, displacement Δx, section axis
-/// t1 at the evaluation point, normal force N (N) at the step's end.
+/// t1 at the evaluation point, normal force N (N) at the step's end. `branch` forces sticking (false) or
+/// sliding (true), for derivatives of one smooth branch; `None` lets the return map decide.
 #[allow(clippy::too_many_arguments)]
 fn friction_step(
     bathymetry: &Bathymetry,
@@ -109,6 +112,7 @@ fn friction_step(
     slip_start: &Vector2<f64>,
     stiffness: &Vector2<f64>,
     yield_per_force: f64,
+    branch: Option<bool>,
 ) -> FrictionStep {
     let at = match rule {
         ContactRule::Static => start + displacement,
@@ -128,7 +132,8 @@ fn friction_step(
     let du = Vector2::new(axial.dot(displacement), lateral.dot(displacement));
     let trial = slip_start + du;
     let radius = yield_per_force * normal_force.max(0.0);
-    let slip = if trial.norm() > radius {
+    let sliding = branch.unwrap_or(trial.norm() > radius);
+    let slip = if sliding && trial.norm() > 0.0 {
         trial * (radius / trial.norm())
     } else {
         trial
@@ -140,6 +145,7 @@ fn friction_step(
             force: -spatial(stiffness.component_mul(&slip)),
             slip,
             dissipated: 0.0,
+            sliding,
         },
         ContactRule::EnergyMomentum { .. } => {
             let mean = 0.5 * (slip_start + slip);
@@ -153,6 +159,7 @@ fn friction_step(
                 force,
                 slip,
                 dissipated: stiffness.component_mul(&slip).dot(&plastic),
+                sliding,
             }
         }
     }
@@ -193,6 +200,8 @@ pub struct SeabedContact {
     /// δ_m / (w ℓ_a) per node: the elastic radius per newton of normal force (m/N).
     yield_per_force: Vec<f64>,
     has_friction: bool,
+    /// Factor on the friction forces (statics' continuation from a frictionless seabed; 1 otherwise).
+    pub friction_scale: f64,
     /// Inputs of the last evaluation.
     pub nodes: Vec<NodeStep>,
     gap_start: Vec<f64>,
@@ -252,6 +261,7 @@ impl SeabedContact {
                 .map(|l| seabed.mobilisation / (reference_weight * l))
                 .collect(),
             has_friction: seabed.has_friction(),
+            friction_scale: 1.0,
             nodes: vec![NodeStep::default(); nodes],
             gap_start: vec![0.0; nodes],
             gap_end: vec![
@@ -322,7 +332,7 @@ impl SeabedContact {
         slips
             .iter()
             .zip(&self.friction_stiffness)
-            .map(|(e, k)| 0.5 * e.dot(&k.component_mul(e)))
+            .map(|(e, k)| 0.5 * self.friction_scale * e.dot(&k.component_mul(e)))
             .sum()
     }
 
@@ -444,8 +454,12 @@ impl SeabedContact {
             self.slip_end[a] = slips_start[a];
             self.friction_by_normal[a] = Vector3::zeros();
             let active = self.normal_force[a] > 0.0 || slips_start[a] != Vector2::zeros();
-            if self.has_friction && active {
-                let kernel = |dx: &Vector3<f64>, axis: &Vector3<f64>, normal_force: f64| {
+            if self.has_friction && self.friction_scale > 0.0 && active {
+                let spring = self.friction_stiffness[a] * self.friction_scale;
+                let kernel = |dx: &Vector3<f64>,
+                              axis: &Vector3<f64>,
+                              normal_force: f64,
+                              branch: Option<bool>| {
                     friction_step(
                         &self.bathymetry,
                         rule,
@@ -454,12 +468,16 @@ impl SeabedContact {
                         axis,
                         normal_force,
                         &slips_start[a],
-                        &self.friction_stiffness[a],
+                        &spring,
                         self.yield_per_force[a],
+                        branch,
                     )
                 };
                 let n = self.normal_force[a];
-                let step = kernel(&dx, &node.axis, n);
+                let step = kernel(&dx, &node.axis, n, None);
+                // Derivatives of the branch the return map took (central differences across the kink
+                // between sticking and sliding would mix the two).
+                let branch = Some(step.sliding);
                 force += step.force;
                 self.slip_end[a] = step.slip;
                 self.dissipated += step.dissipated;
@@ -472,21 +490,21 @@ impl SeabedContact {
                         e[k] = h_x;
                         d_dx.set_column(
                             k,
-                            &((kernel(&(dx + e), &node.axis, n).force
-                                - kernel(&(dx - e), &node.axis, n).force)
+                            &((kernel(&(dx + e), &node.axis, n, branch).force
+                                - kernel(&(dx - e), &node.axis, n, branch).force)
                                 / (2.0 * h_x)),
                         );
                         e[k] = 1e-7;
                         d_axis.set_column(
                             k,
-                            &((kernel(&dx, &(node.axis + e), n).force
-                                - kernel(&dx, &(node.axis - e), n).force)
+                            &((kernel(&dx, &(node.axis + e), n, branch).force
+                                - kernel(&dx, &(node.axis - e), n, branch).force)
                                 / 2e-7),
                         );
                     }
                     let h_n = 1e-7 * n.abs().max(1.0);
-                    self.friction_by_normal[a] = (kernel(&dx, &node.axis, n + h_n).force
-                        - kernel(&dx, &node.axis, n - h_n).force)
+                    self.friction_by_normal[a] = (kernel(&dx, &node.axis, n + h_n, branch).force
+                        - kernel(&dx, &node.axis, n - h_n, branch).force)
                         / (2.0 * h_n);
                     stiffness -= d_dx;
                     let rotation_block = d_axis * skew(&node.axis) * node.axis_map;

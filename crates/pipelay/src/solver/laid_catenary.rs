@@ -9,7 +9,8 @@
 //! x_s = H L_s/EA + (H/w) asinh(w L_s/H),     z_s = w L_s²/(2EA) + (√(H² + (w L_s)²) − H)/w,
 //! ```
 //!
-//! and the laid part, L − L_s long, carries H (no friction) and stretches to (L − L_s)(1 + H/EA). The closure
+//! and the laid part, L_b = L − L_s long, carries T(s) = max(0, H − μw(L_b − s)) (axial friction μ fully
+//! mobilised against the stretch, as in MoorPy; T = H without friction) and stretches by ∫T/EA. The closure
 //! x_laid + x_s = span, z_s = rise is solved by nested bisection: for a given L_s the rise fixes H (z_s falls
 //! as H grows), and the span then grows with L_s. The statics start the pipe from this shape when it rests
 //! on the seabed ([`crate::solver::statics`]).
@@ -28,6 +29,20 @@ pub struct LaidCatenary {
     pub laid_length: f64,
     weight: f64,
     ea: f64,
+    /// Axial friction coefficient μ on the laid part.
+    friction: f64,
+}
+
+/// ∫₀^s T(u) du on a laid part of length `laid` with T(u) = max(0, H − f (laid − u)) (f = μw, N/m).
+fn laid_tension_integral(h: f64, f: f64, laid: f64, s: f64) -> f64 {
+    if f <= 0.0 {
+        return h * s;
+    }
+    let start = (laid - h / f).max(0.0);
+    if s <= start {
+        return 0.0;
+    }
+    (h - f * laid) * (s - start) + 0.5 * f * (s * s - start * start)
 }
 
 /// Bisection of a monotonic `f` on [lo, hi] for its zero (f(lo), f(hi) of opposite signs), to round-off.
@@ -48,14 +63,16 @@ fn bisect(mut lo: f64, mut hi: f64, f: impl Fn(f64) -> f64) -> f64 {
 }
 
 impl LaidCatenary {
-    /// The cable of unstretched `length`, weight `weight` (N/m) and axial stiffness `ea` (N) from A on the
-    /// seabed to B above it; `None` when it does not reach the seabed (or cannot reach B).
+    /// The cable of unstretched `length`, weight `weight` (N/m), axial stiffness `ea` (N) and axial seabed
+    /// friction `friction` from A on the seabed to B above it; `None` when it does not reach the seabed (or
+    /// cannot reach B).
     pub fn solve(
         a: Vector3<f64>,
         b: Vector3<f64>,
         length: f64,
         weight: f64,
         ea: f64,
+        friction: f64,
     ) -> Option<Self> {
         let chord = b - a;
         let span = chord.xy().norm();
@@ -70,7 +87,13 @@ impl LaidCatenary {
         let span_of = |h: f64, suspended: f64| {
             h * suspended / ea
                 + h / weight * asinh_diff(h, 0.0, weight * suspended)
-                + (length - suspended) * (1.0 + h / ea)
+                + (length - suspended)
+                + laid_tension_integral(
+                    h,
+                    friction * weight,
+                    length - suspended,
+                    length - suspended,
+                ) / ea
         };
         // H that lifts `suspended` metres of cable to the rise; None if even a vertical cable is too short.
         let tension_for = |suspended: f64| -> Option<f64> {
@@ -84,7 +107,9 @@ impl LaidCatenary {
                     return None;
                 }
             }
-            Some(bisect(1e-12 * weight * length, hi, |h| height(h, suspended) - rise))
+            Some(bisect(1e-12 * weight * length, hi, |h| {
+                height(h, suspended) - rise
+            }))
         };
         // The shortest suspended length that reaches the rise, and the span at the longest (all hanging).
         let shortest = bisect(0.0, length, |s| s + weight * s * s / (2.0 * ea) - rise);
@@ -103,6 +128,7 @@ impl LaidCatenary {
             laid_length: length - suspended,
             weight,
             ea,
+            friction,
         })
     }
 
@@ -110,7 +136,8 @@ impl LaidCatenary {
     pub fn position(&self, s: f64) -> Vector3<f64> {
         let h = self.horizontal;
         let laid = self.laid_length.min(s);
-        let mut point = self.a + self.direction * laid * (1.0 + h / self.ea);
+        let stretch = laid_tension_integral(h, self.friction * self.weight, self.laid_length, laid);
+        let mut point = self.a + self.direction * (laid + stretch / self.ea);
         if s > self.laid_length {
             let t = s - self.laid_length;
             let ws = self.weight * t;
@@ -129,8 +156,11 @@ impl LaidCatenary {
 
     /// Tension at arc length s (N).
     pub fn tension(&self, s: f64) -> f64 {
-        self.horizontal
-            .hypot(self.weight * (s - self.laid_length).max(0.0))
+        if s < self.laid_length {
+            return (self.horizontal - self.friction * self.weight * (self.laid_length - s))
+                .max(0.0);
+        }
+        self.horizontal.hypot(self.weight * (s - self.laid_length))
     }
 }
 
@@ -144,8 +174,12 @@ mod tests {
     fn closes_at_b_and_carries_the_suspended_weight() {
         let (a, b) = (Vector3::zeros(), Vector3::new(1200.0, 0.0, -800.0));
         let (length, w, ea) = (1600.0, 1846.0, 5.4e9);
-        let c = LaidCatenary::solve(a, b, length, w, ea).expect("a laid part");
-        assert!((c.position(length) - b).norm() < 1e-6, "{}", c.position(length));
+        let c = LaidCatenary::solve(a, b, length, w, ea, 0.0).expect("a laid part");
+        assert!(
+            (c.position(length) - b).norm() < 1e-6,
+            "{}",
+            c.position(length)
+        );
         let touchdown = c.position(c.laid_length);
         assert!(touchdown.z.abs() < 1e-12 && c.tangent(c.laid_length).z.abs() < 1e-12);
         let top = c.tangent(length) * c.tension(length);
@@ -156,6 +190,13 @@ mod tests {
         let stretch = (c.position(s + 1e-3) - c.position(s - 1e-3)).norm() / 2e-3;
         assert!((stretch - 1.0 - c.tension(s) / ea).abs() < 1e-8);
         // Taut: no laid part.
-        assert!(LaidCatenary::solve(a, b, 1300.0, w, ea).is_none());
+        assert!(LaidCatenary::solve(a, b, 1300.0, w, ea, 0.0).is_none());
+        // With friction the laid part's tension falls by μw per metre towards A, and B still closes.
+        let c = LaidCatenary::solve(a, b, length, w, ea, 0.5).expect("a laid part");
+        assert!((c.position(length) - b).norm() < 1e-6);
+        let s = c.laid_length - 10.0;
+        assert!((c.tension(c.laid_length) - c.tension(s) - 0.5 * w * 10.0).abs() < 1e-6);
+        let stretch = (c.position(s + 1e-3) - c.position(s - 1e-3)).norm() / 2e-3;
+        assert!((stretch - 1.0 - c.tension(s) / ea).abs() < 1e-8);
     }
 }

@@ -130,10 +130,7 @@ fn newton(
     options: &StaticOptions,
 ) -> Newton {
     let mut delta = vec![0.0; assembler.dofs.free];
-    // Round-off floor of the residual: internal forces carry errors of about 1e-16·EA per element.
-    let round_off = 1e-13
-        * model.rod.section.translational_stiffness.max()
-        * (model.rod.element_count() as f64).sqrt();
+    let round_off = round_off_floor(model);
     let length_scale = model.rod.length();
     let mut residual = f64::INFINITY;
     let mut first_residual = f64::INFINITY;
@@ -244,6 +241,23 @@ fn newton(
     }
 }
 
+/// Round-off floor of the residual norm (N): an element's axial force carries an error of about
+/// ε·EA·|x|/L0 (positions |x| known to ε relative, differenced over the element length), and n of them add up
+/// like a random walk. Never below 1e-13·EA·√n.
+fn round_off_floor(model: &Model) -> f64 {
+    let extent = model.rod.nodes.iter().map(|x| x.norm()).fold(1.0, f64::max);
+    let shortest = model
+        .rod
+        .elements
+        .iter()
+        .map(|e| e.length)
+        .fold(f64::INFINITY, f64::min);
+    let per_element = (4.0 * f64::EPSILON * extent / shortest).max(1e-13);
+    per_element
+        * model.rod.section.translational_stiffness.max()
+        * (model.rod.element_count() as f64).sqrt()
+}
+
 /// Backtracking steps of the line search with seabed contact.
 const LINE_SEARCH_HALVINGS: usize = 6;
 
@@ -316,6 +330,9 @@ fn support_increment(
     increment
 }
 
+/// A curve's position and unit tangent at an unstretched arc length.
+type CurveShape = dyn Fn(f64) -> (Vector3<f64>, Vector3<f64>);
+
 /// The catenary initial guess: nodes placed along Irvine's elastic catenary (resting on the seabed from A
 /// when A lies on it and the line is long enough, [`LaidCatenary`]) through the two held ends
 /// at their reference arc lengths, frames turned by the smallest rotation onto its tangent. A buoyant
@@ -341,13 +358,13 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
         (mirror(a.position), mirror(b.position)),
     );
     // A heavy line whose end A lies on the seabed rests on it up to a touchdown point.
-    let on_seabed = model.seabed().is_some_and(|seabed| {
-        weight > 0.0 && seabed.bathymetry.penetration(&a).value > -1e-3 * (b - a).norm()
-    });
-    let laid = on_seabed
-        .then(|| LaidCatenary::solve(a, b, length, weight, ea))
-        .flatten();
-    let shape: Box<dyn Fn(f64) -> (Vector3<f64>, Vector3<f64>)> = match laid {
+    let laid = model
+        .seabed()
+        .filter(|seabed| {
+            weight > 0.0 && seabed.bathymetry.penetration(&a).value > -1e-3 * (b - a).norm()
+        })
+        .and_then(|seabed| LaidCatenary::solve(a, b, length, weight, ea, seabed.friction[0]));
+    let shape: Box<CurveShape> = match laid {
         Some(laid) => Box::new(move |s| (laid.position(s), laid.tangent(s))),
         None => {
             let catenary = Catenary::solve(a, b, length, weight.abs(), ea).ok()?;
@@ -373,23 +390,60 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
 /// Smallest factor on the bending stiffness that the continuation from a cable starts at.
 const CABLE_BENDING_SCALE: f64 = 1e-8;
 
-/// Statics at full load by continuation in the bending stiffness: from the catenary `guess` with C_R scaled
-/// by [`CABLE_BENDING_SCALE`] (a cable, which the catenary fits) to the pipe's C_R, in steps of the
-/// logarithm of the scale that grow on easy convergence and halve on failure. `None` if it stalls.
-fn bending_continuation(
+/// Where statics' continuation stands: factors on the bending stiffness and on seabed friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Homotopy {
+    bending: f64,
+    friction: f64,
+}
+
+impl Homotopy {
+    /// The point at parameter t ∈ [0, 2]: first the bending stiffness grows geometrically from a cable's
+    /// ([`CABLE_BENDING_SCALE`]) to the pipe's (t ≤ 1), without friction; then friction grows to its value.
+    fn at(t: f64, bending_from_cable: bool) -> Self {
+        let bending = if bending_from_cable {
+            10f64.powf(CABLE_BENDING_SCALE.log10() * (1.0 - t.min(1.0)))
+        } else {
+            1.0
+        };
+        Homotopy {
+            bending,
+            friction: (t - 1.0).clamp(0.0, 1.0),
+        }
+    }
+
+    fn apply(&self, assembler: &mut Assembler) {
+        assembler.bending_scale = self.bending;
+        if let Some(contact) = &mut assembler.contact {
+            contact.friction_scale = self.friction;
+        }
+    }
+}
+
+/// Statics at full load by continuation from the catenary `guess`: from a cable (bending stiffness scaled
+/// down, which the catenary fits) to the pipe, then from a frictionless seabed to the seabed's friction
+/// (friction stays relative to statics' start, so the path does not change the answer), in steps that grow on
+/// easy convergence and halve on failure. `None` if it stalls.
+fn continuation(
     model: &Model,
     assembler: &mut Assembler,
     mut config: Configuration,
     options: &StaticOptions,
 ) -> Option<StaticSolution> {
-    let mut exponent = CABLE_BENDING_SCALE.log10();
-    let mut step = 1.0;
+    let from_cable = true;
+    let end = if assembler.contact.as_ref().is_some_and(|c| c.has_friction()) {
+        2.0
+    } else {
+        1.0
+    };
+    let mut t = 0.0;
+    let mut step: f64 = 0.25;
     let mut iterations = 0;
     let mut steps = 0;
     let mut first = true;
-    loop {
-        let target = if first { exponent } else { (exponent + step).min(0.0) };
-        assembler.bending_scale = 10f64.powf(target);
+    let outcome = loop {
+        let target = if first { 0.0 } else { (t + step).min(end) };
+        Homotopy::at(target, from_cable).apply(assembler);
         let mut trial = config.clone();
         match newton(model, assembler, &mut trial, 1.0, None, options) {
             Newton::Converged {
@@ -398,39 +452,37 @@ fn bending_continuation(
             } => {
                 iterations += its;
                 steps += 1;
-                assembler.commit_contact(&trial);
                 config = trial;
-                exponent = target;
+                t = target;
                 first = false;
-                if exponent >= 0.0 {
-                    assembler.bending_scale = 1.0;
-                    return Some(StaticSolution {
-                        response: Response::with_assembler(model, &config, assembler),
-                        configuration: config,
-                        iterations,
-                        steps,
-                        residual,
-                        from_catenary: true,
-                    });
+                if t >= end {
+                    break Some(residual);
                 }
                 if its <= 6 {
-                    step = (2.0 * step).min(2.0);
+                    step = (2.0 * step).min(0.5);
                 }
             }
             Newton::Failed {
                 iterations: its, ..
             } => {
                 iterations += its;
-                if first {
-                    return None;
-                }
                 step *= 0.5;
-                if step < 1e-3 {
-                    return None;
+                if first || step < 1e-4 {
+                    break None;
                 }
             }
         }
-    }
+    };
+    Homotopy::at(2.0, false).apply(assembler);
+    let residual = outcome?;
+    Some(StaticSolution {
+        response: Response::with_assembler(model, &config, assembler),
+        configuration: config,
+        iterations,
+        steps,
+        residual,
+        from_catenary: true,
+    })
 }
 
 /// Solves for static equilibrium at full load.
@@ -500,15 +552,12 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
                 iterations: its, ..
             } => iterations += its,
         }
-        // A stiff pipe far from the catenary: follow the solution from a cable (bending stiffness scaled
-        // down) to the pipe.
-        if let Some(mut solution) = bending_continuation(model, &mut assembler, guess, options) {
+        // A stiff pipe far from the catenary, or friction: follow the solution from a cable on a frictionless
+        // seabed to the pipe with its friction.
+        if let Some(mut solution) = continuation(model, &mut assembler, guess, options) {
             solution.iterations += iterations;
             return Ok(solution);
         }
-        assembler.bending_scale = 1.0;
-        assembler.contact_start.clone_from(&model.rod.nodes);
-        assembler.contact_slips.iter_mut().for_each(|e| *e = nalgebra::Vector2::zeros());
     }
 
     let mut config = Configuration::reference(model);
