@@ -72,6 +72,22 @@ def _summary(state: pl.State) -> str:
         f"largest axial force     {np.max(state.tension) / 1e3:12.1f} kN",
         f"reaction at A (force)   {np.array2string(state.reaction('A')[:3] / 1e3, precision=1)} kN",
     ]
+    bending = np.hypot(state.section_forces[:, 4], state.section_forces[:, 5])
+    if len(bending):
+        worst = int(np.argmax(bending))
+        arc = float(np.sum(np.linalg.norm(np.diff(state.positions, axis=0), axis=1)[:worst]))
+        lines.append(
+            f"largest bending moment  {bending[worst] / 1e3:12.1f} kN m (element {worst}, ~{arc:.1f} m from A)"
+        )
+    if state.laid_length is not None:
+        touchdown = state.touchdown
+        where = (
+            f"{touchdown.arc_length:12.2f} m from A at {np.array2string(touchdown.position, precision=2)} m"
+            if touchdown is not None
+            else "    none: the pipe does not touch the seabed"
+        )
+        lines.append(f"touchdown               {where}")
+        lines.append(f"laid length             {state.laid_length:12.2f} m")
     if state.eta is not None:
         lines.append(f"vessel η                {np.array2string(state.eta, precision=3)}")
         lines.append(
@@ -80,9 +96,27 @@ def _summary(state: pl.State) -> str:
     return "\n".join(lines)
 
 
+def _run_summary(results: pl.Results) -> str:
+    """Extremes of a run, one per line: top tension, largest bending moment, touchdown range."""
+    top = np.linalg.norm(results.reaction("B")[:, :3], axis=1)
+    moment = np.hypot(results.section_forces[..., 4], results.section_forces[..., 5])
+    lines = [
+        f"top tension |F_B|       {top.min() / 1e3:10.1f} … {top.max() / 1e3:.1f} kN",
+        f"largest bending moment  {moment.max() / 1e3:10.1f} kN m (t = {results.time[np.argmax(moment.max(axis=1))]:g} s)",
+    ]
+    arc = results.touchdown_arc_length
+    if arc is not None:
+        if np.any(np.isfinite(arc)):
+            lines.append(f"touchdown (from A)      {np.nanmin(arc):10.2f} … {np.nanmax(arc):.2f} m")
+        else:
+            lines.append("touchdown               none: the pipe never touches the seabed")
+    return "\n".join(lines)
+
+
 def _write(results: pl.Results, args: argparse.Namespace, scenario: Scenario) -> None:
     path = to_netcdf(results, args.output)
     print(f"results: {path} ({len(results)} records, t = {results.time[0]:g} … {results.time[-1]:g} s)")
+    print(_run_summary(results))
     if args.plots:
         for figure in plots.all_figures(
             results, args.plots, reference=_reference(scenario), depth=_depth(scenario)

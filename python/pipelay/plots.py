@@ -31,7 +31,15 @@ from matplotlib.figure import Figure
 
 from pipelay._core import Results, State
 
-__all__ = ["all_figures", "energy", "shape", "tension_and_bending", "top_tension", "vessel_motion"]
+__all__ = [
+    "all_figures",
+    "energy",
+    "shape",
+    "tension_and_bending",
+    "top_tension",
+    "touchdown_path",
+    "vessel_motion",
+]
 
 DPI = 120
 """Resolution of saved figures (dots per inch)."""
@@ -120,16 +128,22 @@ def shape(
     side, plan = axes
     time = results.time
     positions = results.positions
+    touchdown = results.touchdown
     for j, k in enumerate(_records(time, times)):
         p = positions[k]
-        side.plot(p[:, 0], -p[:, 2], label=_time_label(time[k]), **_style(j))
+        lines = side.plot(p[:, 0], -p[:, 2], label=_time_label(time[k]), **_style(j))
         plan.plot(p[:, 0], p[:, 1], label=_time_label(time[k]), **_style(j))
+        if touchdown is not None and np.all(np.isfinite(touchdown[k])):
+            td = touchdown[k]
+            color = lines[0].get_color()
+            side.plot(td[0], -td[2], marker="v", markersize=9, color=color, linestyle="none")
+            plan.plot(td[0], td[1], marker="v", markersize=9, color=color, linestyle="none")
     if depth is not None:
         side.axhline(depth, color="tab:cyan", linewidth=1.5, label=f"sea surface (−z = {depth:g} m)")
         side.axhline(0.0, color="saddlebrown", linewidth=1.5, label="seabed (z = 0)")
     side.set_xlabel("x (m)")
     side.set_ylabel("elevation above seabed −z (m)")
-    side.set_title("Side view")
+    side.set_title("Side view (▼ touchdown)" if touchdown is not None else "Side view")
     plan.set_xlabel("x (m)")
     plan.set_ylabel("y (m)")
     plan.set_title("Plan view (y axis scaled to fit)")
@@ -279,6 +293,8 @@ def energy(results: Results, path: _PathLike | None = None) -> Figure:
     names = {"pipe_kinetic": "pipe kinetic", "pipe_strain": "pipe strain", "pipe_gravity": "pipe gravity"}
     if results.eta is not None:
         names |= {"vessel_kinetic": "vessel kinetic", "vessel_potential": "vessel potential"}
+    if results.touchdown is not None:
+        names |= {"seabed": "seabed contact"}
     change = parts["total"] - parts["total"][0]
     curves = {f"Δ {label}": parts[key] - parts[key][0] for key, label in names.items()}
     largest = max(np.max(np.abs(c)) for c in (change, work, dissipated, *curves.values()))
@@ -302,6 +318,45 @@ def energy(results: Results, path: _PathLike | None = None) -> Figure:
     return _finish(figure, axes, path)
 
 
+def touchdown_path(results: Results, path: _PathLike | None = None) -> Figure:
+    """The touchdown point over time: its arc length from end A (m) and its path in plan (x, y).
+
+    Args:
+        results: a run of a model with a seabed.
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, two axes: arc length against time, plan view of the path.
+
+    Raises:
+        ValueError: the results have no seabed.
+    """
+    touchdown = results.touchdown
+    arc = results.touchdown_arc_length
+    if touchdown is None or arc is None:
+        raise ValueError("touchdown_path needs results of a model with a seabed (pl.Sea(seabed=...))")
+    figure, axes = _figure(11.0, 4.5, 1, 2)
+    history, plan = axes
+    history.plot(results.time, arc, color="k")
+    history.set_xlabel("time t (s)")
+    history.set_ylabel("touchdown arc length from A (m)")
+    history.set_title("Touchdown along the pipe")
+    plan.plot(touchdown[:, 0], touchdown[:, 1], color="k", marker=".", markersize=3)
+    finite = np.isfinite(touchdown[:, 0])
+    if np.any(finite):
+        first, last = np.flatnonzero(finite)[[0, -1]]
+        plan.plot(
+            *touchdown[first, :2], marker="o", color="tab:green", label=_time_label(results.time[first])
+        )
+        plan.plot(*touchdown[last, :2], marker="s", color="tab:red", label=_time_label(results.time[last]))
+        plan.legend(fontsize=8, loc="best")
+    plan.set_xlabel("x (m)")
+    plan.set_ylabel("y (m)")
+    plan.set_title("Touchdown path (plan)")
+    figure.suptitle("Touchdown point")
+    return _finish(figure, axes, path)
+
+
 def all_figures(
     results: Results,
     directory: _PathLike,
@@ -310,8 +365,8 @@ def all_figures(
 ) -> list[Path]:
     """Write every figure that applies to `results` into `directory` (created if missing).
 
-    Files: shape.png, vessel_motion.png (only with a vessel), top_tension.png (end B), tension_bending.png,
-    energy.png, with the default times.
+    Files: shape.png, vessel_motion.png (only with a vessel), touchdown.png (only with a seabed),
+    top_tension.png (end B), tension_bending.png, energy.png, with the default times.
 
     Args:
         results: a run.
@@ -329,6 +384,9 @@ def all_figures(
     if results.eta is not None:
         written.append(out / "vessel_motion.png")
         vessel_motion(results, reference=reference, path=written[-1])
+    if results.touchdown is not None:
+        written.append(out / "touchdown.png")
+        touchdown_path(results, path=written[-1])
     written.append(out / "top_tension.png")
     top_tension(results, path=written[-1])
     written.append(out / "tension_bending.png")

@@ -99,13 +99,38 @@ Exactly one of `[pipe]` and `[section]`.
 | `velocities`       | m/s  | required | profile: one [vx, vy, vz] per depth, interpolated       |
 | `start`            | s    | 0        | time the current starts                                 |
 
-### `[supports.A]`, `[supports.B]` — `model.clamp` or `model.pin` at that end
+### `[sea.seabed]` — `pl.Seabed`: contact with the seabed (without it the pipe passes through the bottom)
 
-| key        | unit | default         | meaning                                           |
-|------------|------|-----------------|---------------------------------------------------|
-| `kind`     | —    | required        | `"clamp"` (position and rotation held) or `"pin"` |
-| `position` | m    | reference node  | where the end is held [x, y, z]                   |
-| `rotation` | —    | reference frame | clamp only: R_t^e held, 3 rows of 3 numbers       |
+| key            | unit   | default | meaning                                                                        |
+|----------------|--------|---------|--------------------------------------------------------------------------------|
+| `stiffness`    | Pa/m   | 1e5     | normal force per length = stiffness · d · penetration of the centreline, > 0   |
+| `damping`      | Pa·s/m | 0       | normal damping (dynamics), ≥ 0                                                 |
+| `friction`     | —      | 0       | Coulomb coefficient, a number or [axial, lateral], ≥ 0                          |
+| `mobilisation` | m      | 0.01    | sliding distance at which friction reaches μN (pipe under its own weight), > 0 |
+
+### `[sea.seabed.bathymetry]` — `pl.Bathymetry.flat`, `.plane` or `.grid`, chosen by `kind`; default flat z = 0
+
+Elevations z are in frame e (e3 down: larger z is deeper); the seabed must lie below the surface z = −depth.
+
+| key        | unit | default  | meaning                                                           |
+|------------|------|----------|-------------------------------------------------------------------|
+| `kind`     | —    | required | `"flat"`, `"plane"` or `"grid"`                                   |
+| `z`        | m    | 0        | flat, plane: elevation at x = y = 0; grid: rows of len(y) numbers, one row per x |
+| `gradient` | —    | [0, 0]   | plane: [dz/dx, dz/dy] (a positive value deepens along that axis)  |
+| `x`        | m    | required | grid: strictly increasing x of the grid points                    |
+| `y`        | m    | required | grid: strictly increasing y of the grid points                    |
+
+### `[supports.A]`, `[supports.B]` — `model.clamp`, `model.pin` or `model.drive` at that end
+
+| key         | unit | default         | meaning                                                                 |
+|-------------|------|-----------------|-------------------------------------------------------------------------|
+| `kind`      | —    | required        | `"clamp"` (position and rotation held), `"pin"` or `"drive"`            |
+| `position`  | m    | reference node  | where the end is held [x, y, z] (drive: the centre of its motion)       |
+| `rotation`  | —    | reference frame | clamp only: R_t^e held, 3 rows of 3 numbers                             |
+| `amplitude` | m    | [0, 0, 0]       | drive: x(t) = position + amplitude · r(t) · sin(2πt/period + phase)      |
+| `period`    | s    | required        | drive: period of the motion, > 0                                        |
+| `phase`     | rad  | [0, 0, 0]       | drive: phase of each component                                          |
+| `ramp`      | s    | 0               | drive: the amplitude grows smoothly (C²) from 0 over this time, ≥ 0      |
 
 ### `[[point_loads]]` — `model.point_load`, one table per load of fixed direction in e
 
@@ -516,15 +541,34 @@ _CURRENT: dict[str, _Check] = {
     "velocities": _Matrix(None, 3, "m/s", _VELOCITY, at_least=1),
     "start": _Number("s"),
 }
+_SEABED: dict[str, _Check] = {
+    "stiffness": _Number("Pa/m", _POSITIVE),
+    "damping": _Number("Pa·s/m", _NON_NEGATIVE),
+    "friction": _NumberOrVector(2, "", _PAIR.replace("normal", "lateral"), _NON_NEGATIVE),
+    "mobilisation": _Number("m", _POSITIVE),
+}
+_BATHYMETRY: dict[str, _Check] = {
+    "kind": _Choice(("flat", "plane", "grid")),
+    "z": _Number("m"),
+    "gradient": _Vector(2, "", "[dz/dx, dz/dy]"),
+    "x": _Vector(None, "m", at_least=2),
+    "y": _Vector(None, "m", at_least=2),
+}
+_DRIVE_KEYS = ("amplitude", "period", "phase", "ramp")
+_BATHYMETRY_KINDS = {"flat": ("z",), "plane": ("z", "gradient"), "grid": ("x", "y", "z")}
 _CURRENT_KINDS = {
     "uniform": ("velocity",),
     "linear": ("surface_velocity",),
     "profile": ("depths", "velocities"),
 }
 _SUPPORT: dict[str, _Check] = {
-    "kind": _Choice(("clamp", "pin")),
+    "kind": _Choice(("clamp", "pin", "drive")),
     "position": _Vector(3, "m", _XYZ),
     "rotation": _Matrix(3, 3, ""),
+    "amplitude": _Vector(3, "m", _XYZ),
+    "period": _Number("s", _POSITIVE),
+    "phase": _Vector(3, "rad", _XYZ),
+    "ramp": _Number("s", _NON_NEGATIVE),
 }
 _POINT_LOAD: dict[str, _Check] = {
     "node": _Node(),
@@ -577,8 +621,10 @@ KEYS: dict[str, tuple[str, ...]] = {
     "pipe": tuple(_PIPE),
     "section": tuple(_SECTION),
     "rod": tuple(_ROD),
-    "sea": (*_SEA, "current"),
+    "sea": (*_SEA, "current", "seabed"),
     "sea.current": tuple(_CURRENT),
+    "sea.seabed": (*_SEABED, "bathymetry"),
+    "sea.seabed.bathymetry": tuple(_BATHYMETRY),
     "supports": ("A", "B"),
     "supports.A": tuple(_SUPPORT),
     "supports.B": tuple(_SUPPORT),
@@ -637,6 +683,7 @@ class _Plan:
     rod: dict[str, Any]
     sea: dict[str, Any] | None
     current: tuple[str, dict[str, Any]] | None
+    seabed: tuple[dict[str, Any], tuple[str, dict[str, Any]] | None] | None
     model: dict[str, Any]
     supports: dict[_End, tuple[str, dict[str, Any]]]
     point_loads: list[dict[str, Any]]
@@ -707,14 +754,49 @@ def _read_rod(top: _Table) -> tuple[dict[str, Any], int]:
     return rod, rod["elements"]
 
 
-def _read_sea(top: _Table) -> tuple[dict[str, Any] | None, tuple[str, dict[str, Any]] | None]:
-    """`[sea]` and `[sea.current]`: the arguments of pl.Sea, and the kind and arguments of the current."""
+def _read_bathymetry(value: object) -> tuple[str, dict[str, Any]]:
+    """`[sea.seabed.bathymetry]`: its kind and the arguments of pl.Bathymetry.flat, .plane or .grid."""
+    path = "sea.seabed.bathymetry"
+    table = _Table(value, path, KEYS[path])
+    kind = table.read({"kind": _BATHYMETRY["kind"]}, required=("kind",))["kind"]
+    keys = _BATHYMETRY_KINDS[kind]
+    for key in table.values:
+        if key not in (*keys, "kind"):
+            _fail(f"{path}.{key}", f'not a key of kind = "{kind}", which takes {", ".join(keys)}')
+    if kind != "grid":
+        return kind, table.read({key: _BATHYMETRY[key] for key in keys})
+    arguments = table.read({"x": _BATHYMETRY["x"], "y": _BATHYMETRY["y"]}, required=("x", "y"))
+    if "z" not in table.values:
+        _fail(f"{path}.z", "missing required key; must be rows of numbers, one row of len(y) per x (m)")
+    rows = _Matrix(len(arguments["x"]), len(arguments["y"]), "m", "(one per y)")
+    arguments["z"] = rows(table.values["z"], f"{path}.z")
+    return kind, arguments
+
+
+def _read_seabed(value: object) -> tuple[dict[str, Any], tuple[str, dict[str, Any]] | None]:
+    """`[sea.seabed]`: the arguments of pl.Seabed, and the kind and arguments of its bathymetry."""
+    table = _Table(value, "sea.seabed", KEYS["sea.seabed"])
+    seabed = table.read(_SEABED)
+    bathymetry = _read_bathymetry(table.values["bathymetry"]) if "bathymetry" in table.values else None
+    return seabed, bathymetry
+
+
+def _read_sea(
+    top: _Table,
+) -> tuple[
+    dict[str, Any] | None,
+    tuple[str, dict[str, Any]] | None,
+    tuple[dict[str, Any], tuple[str, dict[str, Any]] | None] | None,
+]:
+    """`[sea]`, `[sea.current]` and `[sea.seabed]`: the arguments of pl.Sea, the kind and arguments of the
+    current, and those of the seabed."""
     if "sea" not in top.values:
-        return None, None
+        return None, None, None
     table = _Table(top.values["sea"], "sea", KEYS["sea"])
     sea = table.read(_SEA, required=("depth",))
+    seabed = _read_seabed(table.values["seabed"]) if "seabed" in table.values else None
     if "current" not in table.values:
-        return sea, None
+        return sea, None, seabed
     current = _Table(table.values["current"], "sea.current", KEYS["sea.current"])
     kind = current.read({"kind": _CURRENT["kind"]}, required=("kind",))["kind"]
     keys = (*_CURRENT_KINDS[kind], "start")
@@ -728,7 +810,7 @@ def _read_sea(top: _Table) -> tuple[dict[str, Any] | None, tuple[str, dict[str, 
             "sea.current.velocities",
             f"must have one row {_VELOCITY} (m/s) per depth ({count}), got {len(arguments['velocities'])}",
         )
-    return sea, (kind, arguments)
+    return sea, (kind, arguments), seabed
 
 
 def _read_supports(top: _Table) -> dict[_End, tuple[str, dict[str, Any]]]:
@@ -746,8 +828,13 @@ def _read_supports(top: _Table) -> dict[_End, tuple[str, dict[str, Any]]]:
             _SUPPORT, required=("kind",)
         )
         kind = arguments.pop("kind")
-        if kind == "pin" and "rotation" in arguments:
-            _fail(f"supports.{end}.rotation", 'only kind = "clamp" holds a rotation; a pin leaves it free')
+        if kind != "clamp" and "rotation" in arguments:
+            _fail(f"supports.{end}.rotation", f'only kind = "clamp" holds a rotation; a {kind} leaves it free')
+        motion = [key for key in _DRIVE_KEYS if key in arguments]
+        if kind != "drive" and motion:
+            _fail(f"supports.{end}.{motion[0]}", f'only kind = "drive" moves its end; a {kind} holds it still')
+        if kind == "drive" and "period" not in arguments:
+            _fail(f"supports.{end}.period", "missing required key for kind = \"drive\"; a number > 0 (s)")
         supports[cast(_End, end)] = (kind, arguments)
     return supports
 
@@ -835,7 +922,7 @@ def _read(data: object) -> tuple[_Plan, dict[str, Any]]:
             model["gravity"] = _GRAVITY(gravity, "gravity")
     section = _read_section(top)
     rod, elements = _read_rod(top)
-    sea, current = _read_sea(top)
+    sea, current, seabed = _read_sea(top)
     supports = _read_supports(top)
     point_loads = _read_point_loads(top, elements)
     vessel = _read_vessel(top, sea, supports)
@@ -852,21 +939,65 @@ def _read(data: object) -> tuple[_Plan, dict[str, Any]]:
     ]
     settings = _read_solver(top)
     settings["output"] = _read_output(top, settings["t_end"])
-    plan = _Plan(section, rod, sea, current, model, supports, point_loads, vessel, controller, environment)
+    plan = _Plan(
+        section, rod, sea, current, seabed, model, supports, point_loads, vessel, controller, environment
+    )
     return plan, settings
 
 
 @contextmanager
-def _engine(path: str, keys: tuple[str, ...] = ()) -> Iterator[None]:
-    """Re-raise the engine's InputError with the key path in front (`path.key` if it names one of `keys`)."""
+def _engine(path: str, keys: Collection[str] = (), elsewhere: dict[str, str] | None = None) -> Iterator[None]:
+    """Re-raise the engine's InputError with the key path in front (`path.key` if it names one of `keys`, the
+    path `elsewhere[argument]` for arguments that belong to another table)."""
     try:
         yield
     except pl.InputError as error:
         message = str(error)
         argument, _, rest = message.partition(": ")
+        if elsewhere and argument in elsewhere:
+            raise pl.InputError(f"{elsewhere[argument]}: {rest}") from None
         if argument in keys:
             raise pl.InputError(f"{_join(path, argument)}: {rest}") from None
-        raise pl.InputError(f"{path}: {message}") from None
+        raise pl.InputError(f"{path}: {message}" if path else message) from None
+
+
+_SEABED_SHAPE = {"bathymetry": "sea.seabed.bathymetry"}
+
+
+def _harmonic_drive(
+    center: Any,
+    period: float,
+    amplitude: list[float] | None = None,
+    phase: list[float] | None = None,
+    ramp: float = 0.0,
+    **_: Any,
+) -> tuple[Callable[[float], list[float]], Callable[[float], list[float]]]:
+    """Position and velocity of an end driven harmonically about `center` (m): x(t) = c + a r(t) sin(ωt + φ),
+    ω = 2π/period, with the amplitude a ramped in by r(t) = 10s³ − 15s⁴ + 6s⁵, s = min(t/ramp, 1) (no jump in
+    position, velocity or acceleration at t = 0)."""
+    omega = 2.0 * math.pi / period
+    a = amplitude if amplitude is not None else [0.0, 0.0, 0.0]
+    phi = phase if phase is not None else [0.0, 0.0, 0.0]
+    c = [float(v) for v in center]
+
+    def ramp_of(t: float) -> tuple[float, float]:
+        if ramp <= 0.0 or t >= ramp:
+            return 1.0, 0.0
+        x = max(t, 0.0) / ramp
+        return 10 * x**3 - 15 * x**4 + 6 * x**5, (30 * x**2 - 60 * x**3 + 30 * x**4) / ramp
+
+    def position(t: float) -> list[float]:
+        r, _ = ramp_of(t)
+        return [c[k] + a[k] * r * math.sin(omega * t + phi[k]) for k in range(3)]
+
+    def velocity(t: float) -> list[float]:
+        r, dr = ramp_of(t)
+        return [
+            a[k] * (dr * math.sin(omega * t + phi[k]) + r * omega * math.cos(omega * t + phi[k]))
+            for k in range(3)
+        ]
+
+    return position, velocity
 
 
 def _build(plan: _Plan) -> pl.Model:
@@ -891,16 +1022,35 @@ def _build(plan: _Plan) -> pl.Model:
             }
             with _engine("sea.current", KEYS["sea.current"]):
                 current = factories[kind](**arguments)
-        with _engine("sea", KEYS["sea"]):
-            sea = pl.Sea(**plan.sea, current=current)
-    with _engine("", ("gravity",)):
+        seabed = None
+        if plan.seabed is not None:
+            arguments, shape = plan.seabed
+            bathymetry = None
+            if shape is not None:
+                kind, shape_arguments = shape
+                factories_b: dict[str, Callable[..., pl.Bathymetry]] = {
+                    "flat": pl.Bathymetry.flat,
+                    "plane": pl.Bathymetry.plane,
+                    "grid": pl.Bathymetry.grid,
+                }
+                with _engine("sea.seabed.bathymetry", KEYS["sea.seabed.bathymetry"]):
+                    bathymetry = factories_b[kind](**shape_arguments)
+            with _engine("sea.seabed", KEYS["sea.seabed"]):
+                seabed = pl.Seabed(**arguments, bathymetry=bathymetry)
+        with _engine("sea", KEYS["sea"], _SEABED_SHAPE):
+            sea = pl.Sea(**plan.sea, current=current, seabed=seabed)
+    with _engine("", ("gravity",), _SEABED_SHAPE):
         model = pl.Model(rod, sea=sea, **plan.model)
     for end, (kind, arguments) in plan.supports.items():
         with _engine(f"supports.{end}", KEYS[f"supports.{end}"]):
             if kind == "clamp":
                 model.clamp(end, **arguments)
-            else:
+            elif kind == "pin":
                 model.pin(end, **arguments)
+            else:
+                node = rod.nodes[0 if end == "A" else -1]
+                position, velocity = _harmonic_drive(arguments.get("position", node), **arguments)
+                model.drive(end, position, velocity=velocity)
     for i, load in enumerate(plan.point_loads):
         with _engine(f"point_loads[{i}]", KEYS["point_loads"]):
             model.point_load(**load)
