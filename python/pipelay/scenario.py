@@ -829,12 +829,16 @@ def _read_supports(top: _Table) -> dict[_End, tuple[str, dict[str, Any]]]:
         )
         kind = arguments.pop("kind")
         if kind != "clamp" and "rotation" in arguments:
-            _fail(f"supports.{end}.rotation", f'only kind = "clamp" holds a rotation; a {kind} leaves it free')
+            _fail(
+                f"supports.{end}.rotation", f'only kind = "clamp" holds a rotation; a {kind} leaves it free'
+            )
         motion = [key for key in _DRIVE_KEYS if key in arguments]
         if kind != "drive" and motion:
-            _fail(f"supports.{end}.{motion[0]}", f'only kind = "drive" moves its end; a {kind} holds it still')
+            _fail(
+                f"supports.{end}.{motion[0]}", f'only kind = "drive" moves its end; a {kind} holds it still'
+            )
         if kind == "drive" and "period" not in arguments:
-            _fail(f"supports.{end}.period", "missing required key for kind = \"drive\"; a number > 0 (s)")
+            _fail(f"supports.{end}.period", 'missing required key for kind = "drive"; a number > 0 (s)')
         supports[cast(_End, end)] = (kind, arguments)
     return supports
 
