@@ -379,6 +379,11 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
         }
         let (position, tangent) = shape(arc.min(length));
         config.positions[node] = mirror(position);
+        // Where the guess dips into an uneven seabed, it rests on its surface instead.
+        if let Some(seabed) = model.seabed().filter(|_| weight > 0.0) {
+            let p = &mut config.positions[node];
+            p.z = p.z.min(seabed.bathymetry.elevation(p.x, p.y));
+        }
         let frame = config.rotations[node].to_rotation_matrix().into_inner();
         let turn = minimal_rotation(&frame.column(0).into_owned(), &mirror(tangent));
         config.rotations[node] = quat_from_matrix(&(turn * frame));
