@@ -36,3 +36,4 @@ bench: $(STAMP)
 	$(BIN)/python benches/dynamic_step_cost.py
 	$(BIN)/python benches/jensen2009_speed.py
 	$(BIN)/python benches/validation_statics.py
+	$(BIN)/python benches/seabed_cost.py
