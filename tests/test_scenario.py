@@ -303,7 +303,7 @@ BROKEN: dict[str, tuple[str, str, tuple[str, ...]]] = {
     "bad support kind": (
         MINIMAL.replace('kind = "clamp"', 'kind = "fixed"'),
         "supports.A.kind",
-        ('"clamp" or "pin"', "got 'fixed'"),
+        ('"clamp", "pin" or "drive"', "got 'fixed'"),
     ),
     "bad support end": (MINIMAL.replace("[supports.A]", "[supports.C]"), "supports.C", ('"A"', '"B"')),
     "bad vessel end": (
