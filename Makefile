@@ -37,3 +37,4 @@ bench: $(STAMP)
 	$(BIN)/python benches/jensen2009_speed.py
 	$(BIN)/python benches/validation_statics.py
 	$(BIN)/python benches/seabed_cost.py
+	$(BIN)/python benches/seabed_statics.py

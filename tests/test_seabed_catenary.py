@@ -1,5 +1,5 @@
 """The cable limit of the seabed contact (bending stiffness ~0): statics against the elastic catenary with a
-laid part, solved here in closed form, and against MoorPy (PyPI ``moorpy``, a peer code), with and without
+laid part (``seabed_reference.py``, closed form), and against MoorPy (PyPI ``moorpy``, a peer code), with and without
 seabed friction.
 
 The cable (L, w, EA) is anchored on a nearly rigid flat seabed at A (k = 1e8 Pa/m: w/(kd) = 0.1 mm of
@@ -14,41 +14,17 @@ interpolated penetration vanishes, known to about an element); so the anchor ten
 
 from __future__ import annotations
 
-import math
-
 import pipelay as pl
 import pytest
+from seabed_reference import laid_catenary
 
 moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
-brentq = pytest.importorskip("scipy.optimize").brentq
 
 CASES = [
     # (L, XF, ZF, w, EA, d): a chain-like line, and a flooded 0.6 m steel pipe in 800 m of water
     (1000.0, 900.0, 150.0, 1000.0, 1e9, 0.1),
     (1600.0, 1200.0, 800.0, 1846.0, 5.4e9, 0.6),
 ]
-
-
-def laid_catenary(length: float, span: float, rise: float, w: float, ea: float) -> tuple[float, float]:
-    """Horizontal tension H (N) and laid length (m) of an elastic cable lying on a rigid seabed from its
-    anchor and hanging to a point `span` across and `rise` up (Irvine's catenary with zero vertical tension at
-    the touchdown, a frictionless laid part stretched by H/EA)."""
-
-    def height(h: float, s: float) -> float:
-        return w * s * s / (2 * ea) + (math.hypot(h, w * s) - h) / w
-
-    def tension(s: float) -> float:
-        return brentq(
-            lambda h: height(h, s) - rise, 1e-12 * w * length, 1e3 * w * length, xtol=1e-12, rtol=1e-15
-        )
-
-    def span_of(s: float) -> float:
-        h = tension(s)
-        return h * s / ea + h / w * math.asinh(w * s / h) + (length - s) * (1 + h / ea)
-
-    shortest = brentq(lambda s: s + w * s * s / (2 * ea) - rise, 0.0, length)
-    suspended = brentq(lambda s: span_of(s) - span, shortest * (1 + 1e-6), length, xtol=1e-12, rtol=1e-15)
-    return tension(suspended), length - suspended
 
 
 def static_cable(case: tuple[float, ...], elements: int, friction: float) -> pl.State:
@@ -63,19 +39,24 @@ def static_cable(case: tuple[float, ...], elements: int, friction: float) -> pl.
 
 
 @pytest.mark.parametrize("case", CASES)
-def test_frictionless_cable_matches_the_laid_catenary(case: tuple[float, ...]) -> None:
-    """Horizontal tension and laid length against the closed-form elastic catenary with a laid part, and
-    second-order convergence of H with the mesh."""
+@pytest.mark.parametrize("friction", [0.0, 0.5])
+def test_cable_matches_the_laid_catenary(case: tuple[float, ...], friction: float) -> None:
+    """Horizontal tension, laid length and anchor tension against the closed-form elastic catenary with a
+    laid part (``seabed_reference.laid_catenary``, itself checked against MoorPy), and second-order
+    convergence of H with the mesh."""
     length, span, rise, w, ea, _ = case
-    h_exact, laid_exact = laid_catenary(length, span, rise, w, ea)
+    exact = laid_catenary(length, span, rise, w, ea, friction=friction)
     errors = []
     for n in (200, 800):
-        state = static_cable(case, n, 0.0)
-        errors.append(abs(-state.reaction("B")[0] / h_exact - 1.0))
-    assert errors[1] < 3e-5
-    assert errors[0] / errors[1] > 8.0  # second order: ×16 expected for 4× finer
-    assert state.laid_length == pytest.approx(laid_exact, abs=5e-4 * length)
-    assert state.reaction("A")[0] == pytest.approx(h_exact, rel=3e-5)  # no friction: H reaches the anchor
+        state = static_cable(case, n, friction)
+        errors.append(abs(-state.reaction("B")[0] / exact.horizontal - 1.0))
+    assert errors[1] < (3e-5 if friction == 0.0 else 1e-4)
+    if friction == 0.0:
+        assert errors[0] / errors[1] > 8.0  # second order: ×16 expected for 4× finer
+    element = length / 800
+    assert state.laid_length == pytest.approx(exact.laid_length, abs=element)
+    tolerance = 3e-5 * exact.horizontal + 2.0 * friction * w * element
+    assert state.reaction("A")[0] == pytest.approx(exact.anchor_tension, abs=tolerance)
 
 
 @pytest.mark.parametrize("case", CASES)
