@@ -5,10 +5,11 @@ use pipelay::environment::bathymetry::Bathymetry;
 use pipelay::environment::sea::Sea;
 use pipelay::environment::seabed::Seabed;
 use pipelay::model::Model;
-use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
 use pipelay::so3::exp_quat;
-use pipelay::solver::assembly::{Assembler, Configuration, NODE_DOFS};
+use pipelay::solver::assembly::{Assembler, Configuration};
+
+mod common;
 
 fn wavy_grid() -> Bathymetry {
     let x: Vec<f64> = (0..8).map(|i| -10.0 + 8.0 * i as f64).collect();
@@ -31,17 +32,7 @@ fn assembled_tangent_with_seabed_matches_finite_differences() {
         Bathymetry::plane(0.0, Vector2::new(0.02, 0.01)).expect("plane"),
         wavy_grid(),
     ] {
-        let section = Section::pipe(
-            0.6,
-            0.015,
-            7850.0,
-            207e9,
-            0.3,
-            1025.0,
-            [0.0, 1.0],
-            [0.0, 1.0],
-        )
-        .expect("pipe");
+        let section = common::flooded_section();
         let rod =
             Rod::straight(Vector3::zeros(), Vector3::new(40.0, 0.0, 0.0), 5, section).expect("rod");
         let seabed = Seabed::new(1e5, 0.0, [0.6, 0.4], 0.02, bathymetry).expect("seabed");
@@ -64,40 +55,7 @@ fn assembled_tangent_with_seabed_matches_finite_differences() {
         assembler.contact_slips = (0..6)
             .map(|a| Vector2::new(0.01 * ((a % 3) as f64 - 1.0), 0.004 * (a as f64 - 2.5)))
             .collect();
-        assembler.assemble(&model, &config, 1.0, true, None);
-        let values = assembler.values.clone();
-        let h = 1e-7;
-        let mut worst: f64 = 0.0;
-        let mut largest: f64 = 0.0;
-        let dofs = assembler.dofs.clone();
-        let perturbed = |dof: usize, step: f64, assembler: &mut Assembler| -> Vec<f64> {
-            let mut c = config.clone();
-            let (node, k) = (dof / NODE_DOFS, dof % NODE_DOFS);
-            if k < 3 {
-                c.positions[node][k] += step;
-            } else {
-                let mut spin = Vector3::zeros();
-                spin[k - 3] = step;
-                c.rotations[node] = exp_quat(&spin) * c.rotations[node];
-            }
-            assembler.assemble(&model, &c, 1.0, false, None);
-            assembler.residual.clone()
-        };
-        for (col_dof, col) in dofs.equation.iter().enumerate() {
-            let Some(col) = col else { continue };
-            let plus = perturbed(col_dof, h, &mut assembler);
-            let minus = perturbed(col_dof, -h, &mut assembler);
-            for (row_dof, row) in dofs.equation.iter().enumerate() {
-                let Some(row) = row else { continue };
-                let fd = (plus[row_dof] - minus[row_dof]) / (2.0 * h);
-                let analytic = assembler.lu.position(*row, *col).map_or(0.0, |p| values[p]);
-                if (fd - analytic).abs() > worst {
-                    worst = (fd - analytic).abs();
-                    eprintln!("row {row_dof} col {col_dof}: fd {fd:e} analytic {analytic:e}");
-                }
-                largest = largest.max(analytic.abs());
-            }
-        }
+        let (worst, largest) = common::tangent_error(&model, &config, &mut assembler, 1e-7);
         assert!(worst < 1e-6 * largest, "worst {worst:e} of {largest:e}");
     }
 }

@@ -6,7 +6,7 @@ use pipelay::model::Model;
 use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;
 use pipelay::so3::{exp_quat, log_quat};
-use pipelay::solver::assembly::{Assembler, Configuration, NODE_DOFS};
+use pipelay::solver::assembly::{Assembler, Configuration};
 use pipelay::solver::catenary::Catenary;
 use pipelay::solver::response::Response;
 use pipelay::solver::statics::{solve, Start, StaticOptions};
@@ -219,37 +219,7 @@ fn assembled_tangent_matches_finite_differences() {
         *r = exp_quat(&Vector3::new(0.2, -0.4 * a as f64, 0.3)) * *r;
     }
     let mut assembler = Assembler::new(&model);
-    assembler.assemble(&model, &config, 1.0, true, None);
-    let values = assembler.values.clone();
-    let h = 1e-6;
-    let mut worst: f64 = 0.0;
-    let mut largest: f64 = 0.0;
-    let dofs = assembler.dofs.clone();
-    let perturbed = |dof: usize, step: f64, assembler: &mut Assembler| -> Vec<f64> {
-        let mut c = config.clone();
-        let (node, k) = (dof / NODE_DOFS, dof % NODE_DOFS);
-        if k < 3 {
-            c.positions[node][k] += step;
-        } else {
-            let mut spin = Vector3::zeros();
-            spin[k - 3] = step;
-            c.rotations[node] = exp_quat(&spin) * c.rotations[node];
-        }
-        assembler.assemble(&model, &c, 1.0, false, None);
-        assembler.residual.clone()
-    };
-    for (col_dof, col) in dofs.equation.iter().enumerate() {
-        let Some(col) = col else { continue };
-        let plus = perturbed(col_dof, h, &mut assembler);
-        let minus = perturbed(col_dof, -h, &mut assembler);
-        for (row_dof, row) in dofs.equation.iter().enumerate() {
-            let Some(row) = row else { continue };
-            let fd = (plus[row_dof] - minus[row_dof]) / (2.0 * h);
-            let analytic = assembler.lu.position(*row, *col).map_or(0.0, |p| values[p]);
-            worst = worst.max((fd - analytic).abs());
-            largest = largest.max(analytic.abs());
-        }
-    }
+    let (worst, largest) = common::tangent_error(&model, &config, &mut assembler, 1e-6);
     assert!(worst < 1e-6 * largest, "worst {worst:e} of {largest:e}");
 }
 

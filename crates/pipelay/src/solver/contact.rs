@@ -703,6 +703,16 @@ mod tests {
         Bathymetry::grid(x, y, z).expect("grid")
     }
 
+    /// Elastic slips at the step's start: two nodes with slip, two without.
+    fn start_slips() -> [Vector2<f64>; 4] {
+        [
+            Vector2::new(0.004, -0.002),
+            Vector2::new(0.0, 0.0),
+            Vector2::new(-0.001, 0.003),
+            Vector2::new(0.0, 0.0),
+        ]
+    }
+
     /// Four nodes crossing the seabed: two in contact, one just out, one well above.
     fn nodes(scale: f64) -> Vec<NodeStep> {
         let start = [
@@ -743,12 +753,7 @@ mod tests {
     /// the energy–momentum rule, on a plane and a grid, with friction (sticking and sliding) and damping.
     #[test]
     fn tangent_matches_finite_differences() {
-        let slips = [
-            Vector2::new(0.004, -0.002),
-            Vector2::new(0.0, 0.0),
-            Vector2::new(-0.001, 0.003),
-            Vector2::new(0.0, 0.0),
-        ];
+        let slips = start_slips();
         let plane = Bathymetry::plane(0.0, Vector2::new(0.05, -0.02)).expect("plane");
         for bathymetry in [plane, wavy()] {
             for rule in [
@@ -804,12 +809,7 @@ mod tests {
     /// Energy–momentum rule: the contact forces' work equals −ΔE_contact − D exactly, D ≥ 0.
     #[test]
     fn step_work_is_the_energy_change_less_dissipation() {
-        let slips = [
-            Vector2::new(0.004, -0.002),
-            Vector2::new(0.0, 0.0),
-            Vector2::new(-0.001, 0.003),
-            Vector2::new(0.0, 0.0),
-        ];
+        let slips = start_slips();
         let plane = Bathymetry::plane(0.0, Vector2::new(0.05, -0.02)).expect("plane");
         for bathymetry in [plane, wavy()] {
             for scale in [0.01, 0.3, 1.0, 3.0] {

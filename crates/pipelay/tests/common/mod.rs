@@ -1,13 +1,17 @@
-//! The 1200 m flooded steel pipe of the validation tests (0.6 m × 15 mm, 800 m of water), straight along e1.
+//! What several integration tests share: the 1200 m flooded steel pipe of the validation tests (0.6 m × 15 mm,
+//! 800 m of water, straight along e1), and the check of an assembled tangent against finite differences.
+#![allow(dead_code)]
 use nalgebra::Vector3;
 use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
+use pipelay::so3::exp_quat;
+use pipelay::solver::assembly::{Assembler, Configuration, NODE_DOFS};
 
-/// The flooded pipe with `n` elements in 800 m of water, held by nothing yet.
-pub fn flooded_pipe(n: usize) -> Model {
-    let section = Section::pipe(
+/// The flooded 0.6 m × 15 mm steel pipe's section (drag and added mass 1 normal).
+pub fn flooded_section() -> Section {
+    Section::pipe(
         0.6,
         0.015,
         7850.0,
@@ -17,7 +21,52 @@ pub fn flooded_pipe(n: usize) -> Model {
         [0.0, 1.0],
         [0.0, 1.0],
     )
-    .expect("pipe");
+    .expect("pipe")
+}
+
+/// The largest difference between the static tangent that `assembler` assembles at `config` and central
+/// differences (step `h`) of its residual over the free DOFs, and the largest tangent entry.
+pub fn tangent_error(
+    model: &Model,
+    config: &Configuration,
+    assembler: &mut Assembler,
+    h: f64,
+) -> (f64, f64) {
+    assembler.assemble(model, config, 1.0, true, None);
+    let values = assembler.values.clone();
+    let dofs = assembler.dofs.clone();
+    let perturbed = |dof: usize, step: f64, assembler: &mut Assembler| -> Vec<f64> {
+        let mut c = config.clone();
+        let (node, k) = (dof / NODE_DOFS, dof % NODE_DOFS);
+        if k < 3 {
+            c.positions[node][k] += step;
+        } else {
+            let mut spin = Vector3::zeros();
+            spin[k - 3] = step;
+            c.rotations[node] = exp_quat(&spin) * c.rotations[node];
+        }
+        assembler.assemble(model, &c, 1.0, false, None);
+        assembler.residual.clone()
+    };
+    let (mut worst, mut largest): (f64, f64) = (0.0, 0.0);
+    for (col_dof, col) in dofs.equation.iter().enumerate() {
+        let Some(col) = col else { continue };
+        let plus = perturbed(col_dof, h, assembler);
+        let minus = perturbed(col_dof, -h, assembler);
+        for (row_dof, row) in dofs.equation.iter().enumerate() {
+            let Some(row) = row else { continue };
+            let fd = (plus[row_dof] - minus[row_dof]) / (2.0 * h);
+            let analytic = assembler.lu.position(*row, *col).map_or(0.0, |p| values[p]);
+            worst = worst.max((fd - analytic).abs());
+            largest = largest.max(analytic.abs());
+        }
+    }
+    (worst, largest)
+}
+
+/// The flooded pipe with `n` elements in 800 m of water, held by nothing yet.
+pub fn flooded_pipe(n: usize) -> Model {
+    let section = flooded_section();
     let rod =
         Rod::straight(Vector3::zeros(), Vector3::new(1200.0, 0.0, 0.0), n, section).expect("rod");
     let sea = Sea::new(800.0, 1025.0, None, None).expect("sea");
