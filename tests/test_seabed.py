@@ -168,3 +168,19 @@ def test_plane_rising_above_the_surface_along_the_pipe_is_refused() -> None:
     rod = pl.Rod.straight((0, 0, 0), (500, 0, 0), 10, flooded_pipe())
     with pytest.raises(pl.InputError, match="^bathymetry"):
         pl.Model(rod, sea=pl.Sea(100.0, seabed=seabed))
+
+
+def test_heavy_seabed_damping_on_a_driven_line_converges() -> None:
+    """MoorDyn's default seabed damping (cBot = 3e5 Pa·s/m, about 3.8 times critical for this wire rope) on the
+    driven line of the MoorDyn comparison at n = 50, Δt = 0.05 s: every step converges (the damping grows
+    smoothly with the penetration instead of switching on), and the seabed takes energy out."""
+    import dataclasses
+
+    from moordyn_seabed_case import SEABED_CASE, pipelay_model
+
+    model = pipelay_model(50, dataclasses.replace(SEABED_CASE, cbot=3e5))
+    results = model.simulation(dt=0.05).run(25.0, progress=False)
+    energy = results.energy["total"]
+    balance = energy - energy[0] - results.supplied_work + results.dissipated
+    assert np.max(np.abs(balance)) < 1e-8 * np.max(np.abs(results.supplied_work))
+    assert np.min(np.diff(results.dissipated)) >= 0.0

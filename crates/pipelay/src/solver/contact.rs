@@ -10,8 +10,9 @@
 //! **Energy–momentum step.** The contact enters through a discrete gradient: Gonzalez's
 //! ∇̄V = ∇V(mid) + [ΔV − ∇V(mid)·Δ]Δ/|Δ|², first for each element's V_e(δ1, δ2) in the nodal penetrations, then
 //! for each node's δ(x) in its position (exact and constant for a plane). So Σ_a F_a·Δx_a = −ΔV exactly.
-//! Normal damping −c d ℓ_a (n̄·v̄)n̄ acts at nodes in contact at the step midpoint (ℓ_a the tributary length,
-//! v̄ = Δx/Δt), dissipating c d ℓ_a (n̄·Δx)²/Δt ≥ 0.
+//! Normal damping −c d ℓ_a χ (n̄·v̄)n̄ acts at nodes in contact at the step midpoint (ℓ_a the tributary length,
+//! v̄ = Δx/Δt, χ rising smoothly from 0 to 1 over the first resting penetration w/(k d) of the mean
+//! penetration), dissipating c d ℓ_a χ (n̄·Δx)²/Δt ≥ 0.
 //!
 //! **Friction, elastic then sliding, at the nodes.** Each node carries an elastic slip e = (axial, lateral)
 //! in the seabed's tangent plane, along t̂ (the section axis t1 projected on the plane) and l̂ = n̂ × t̂. A step
@@ -172,6 +173,17 @@ pub trait TangentSink {
     fn add_node(&mut self, node: usize, block: &Matrix6<f64>);
 }
 
+/// 3s² − 2s³ on [0, 1] (0 below, 1 above) and its derivative.
+fn smoothstep(s: f64) -> (f64, f64) {
+    if s >= 1.0 {
+        (1.0, 0.0)
+    } else if s <= 0.0 {
+        (0.0, 0.0)
+    } else {
+        (s * s * (3.0 - 2.0 * s), 6.0 * s * (1.0 - s))
+    }
+}
+
 /// The state of one node entering a contact evaluation.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct NodeStep {
@@ -195,6 +207,8 @@ pub struct SeabedContact {
     half_kd: f64,
     /// c d ℓ_a per node (N·s/m).
     damping: Vec<f64>,
+    /// Penetration over which damping grows to its full value: the resting penetration w/(k d) (m).
+    damping_ramp: f64,
     /// Friction stiffness diag(μ_a, μ_l) w ℓ_a / δ_m per node (N/m); zero without friction.
     friction_stiffness: Vec<Vector2<f64>>,
     /// δ_m / (w ℓ_a) per node: the elastic radius per newton of normal force (m/N).
@@ -252,6 +266,7 @@ impl SeabedContact {
                 .iter()
                 .map(|l| seabed.damping * diameter * l)
                 .collect(),
+            damping_ramp: reference_weight / kd,
             friction_stiffness: tributary
                 .iter()
                 .map(|l| mu * (reference_weight * l / seabed.mobilisation))
@@ -441,13 +456,19 @@ impl SeabedContact {
                     let d_normal =
                         -0.5 * (Matrix3::identity() - normal * normal.transpose()) * mid.hessian
                             / size;
-                    let c = self.damping[a];
+                    // The damping grows smoothly (C¹) to its full value over the first resting
+                    // penetration, so that a node entering the seabed does not switch it on at once.
+                    let (share, d_share) = smoothstep(gap_mid / self.damping_ramp);
+                    let c = self.damping[a] * share;
                     let rate = normal.dot(&dx) / time_step;
                     force -= c * rate * normal;
                     stiffness += c
                         * (normal * normal.transpose() / time_step
                             + rate * d_normal
-                            + normal * (dx.transpose() * d_normal) / time_step);
+                            + normal * (dx.transpose() * d_normal) / time_step)
+                        + normal
+                            * self.gap_end[a].gradient.transpose()
+                            * (self.damping[a] * rate * 0.5 * d_share / self.damping_ramp);
                     self.dissipated += c * normal.dot(&dx).powi(2) / time_step;
                 }
             }
