@@ -61,6 +61,7 @@ __all__ = [
     "CASE",
     "Case",
     "Run",
+    "initial_condition",
     "max_relative_error",
     "moordyn_initial",
     "moordyn_input",
@@ -284,17 +285,24 @@ def moordyn_initial(n: int, dt: float, case: Case = CASE, ic_time: float = 300.0
     """MoorDyn's own static initial condition for ``n`` segments with B at ``top_position(0)``, found by its
     initial-condition solver (a pseudo-dynamic relaxation run with step ``dt`` (s) for at most ``ic_time`` (s)
     of simulated time): the serialized system, to start ``run_moordyn`` from, and the top tension |F_B| (N)."""
+    text = moordyn_input(n, dt, case, ic_time=ic_time)
+    return initial_condition(text, _to_moordyn(top_position(0.0, case), case), n, dt)
+
+
+def initial_condition(text: str, top: np.ndarray, n: int, dt: float) -> tuple[bytes, float]:
+    """MoorDyn's initial-condition solve of the system described by the input file `text`, its coupled point
+    at `top` (MoorDyn's frame, m): the serialized system and the top tension |F_B| (N). `n` and `dt` only name
+    the run in the error raised if the solve fails."""
     import moordyn  # type: ignore[import-untyped]
 
-    x = _to_moordyn(top_position(0.0, case), case)
-    with _moordyn_system(moordyn_input(n, dt, case, ic_time=ic_time)) as system:
+    with _moordyn_system(text) as system:
         with _quiet():
-            err = moordyn.Init(system, x, np.zeros(3))
+            err = moordyn.Init(system, top, np.zeros(3))
         if err != 0:
             raise RuntimeError(
                 f"MoorDyn's initial-condition solve failed (error {err}), n = {n}, dt = {dt} s"
             )
-        force = moordyn.Step(system, x, np.zeros(3), 0.0, 0.0)
+        force = moordyn.Step(system, top, np.zeros(3), 0.0, 0.0)
         return moordyn.Serialize(system), float(np.linalg.norm(force))
 
 

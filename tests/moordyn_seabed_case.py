@@ -77,6 +77,7 @@ from moordyn_case import (
     _moordyn_system,
     _quiet,
     _to_moordyn,
+    initial_condition,
     max_relative_error,
     top_position,
     top_velocity,
@@ -287,18 +288,8 @@ def moordyn_initial(
     """MoorDyn's own static initial condition for ``n`` segments with B at ``top_position(0)`` (its
     initial-condition solve, at most ``ic_time`` s of simulated time at step ``dt`` s): the serialized system,
     to start ``run_moordyn`` from, and the top tension |F_B| (N)."""
-    import moordyn  # type: ignore[import-untyped]
-
-    x = _to_moordyn(top_position(0.0, case), case)
-    with _moordyn_system(moordyn_input(n, dt, case, ic_time=ic_time)) as system:
-        with _quiet():
-            err = moordyn.Init(system, x, np.zeros(3))
-        if err != 0:
-            raise RuntimeError(
-                f"MoorDyn's initial-condition solve failed (error {err}), n = {n}, dt = {dt} s"
-            )
-        force = moordyn.Step(system, x, np.zeros(3), 0.0, 0.0)
-        return moordyn.Serialize(system), float(np.linalg.norm(force))
+    text = moordyn_input(n, dt, case, ic_time=ic_time)
+    return initial_condition(text, _to_moordyn(top_position(0.0, case), case), n, dt)
 
 
 def run_moordyn(
