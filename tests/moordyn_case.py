@@ -204,12 +204,21 @@ def run_pipelay(n: int, dt: float, case: Case = CASE, t_end: float | None = None
 
 
 def moordyn_input(
-    n: int, dt: float, case: Case = CASE, scheme: str = "RK4", ba: float = 0.0, ic_time: float = 300.0
+    n: int,
+    dt: float,
+    case: Case = CASE,
+    scheme: str = "RK4",
+    ba: float = 0.0,
+    ic_time: float = 300.0,
+    seabed: str | None = None,
 ) -> str:
     """The MoorDyn v2 input file for ``n`` segments, internal step ``dt`` (s), time scheme ``scheme``, internal
     damping ``ba`` (N·s; negative: minus the damping ratio) and at most ``ic_time`` (s) of simulated time for
-    its initial-condition (static) solve."""
+    its initial-condition (static) solve. ``seabed``: the OPTIONS lines of the seabed (WtrDpth, kBot, ...);
+    default: a seabed 50 m below A, out of the line's reach."""
     top = _to_moordyn(top_position(0.0, case), case)
+    if seabed is None:
+        seabed = f"{case.depth + 50.0!r}  WtrDpth\n"
     return f"""--------------------- MoorDyn Input File ------------------------------------
 pipelay peer comparison: steel wire rope between a fixed point and a driven one
 ---------------------- LINE TYPES ------------------------------------------------------
@@ -231,8 +240,7 @@ ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 {scheme}  tScheme
 {case.gravity!r}  g
 {case.rho_water!r}  rho
-{case.depth + 50.0!r}  WtrDpth
-1.0  dtIC
+{seabed}1.0  dtIC
 {ic_time!r}  TmaxIC
 1e-7  threshIC
 1  disableOutput

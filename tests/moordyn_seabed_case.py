@@ -82,6 +82,9 @@ from moordyn_case import (
     top_position,
     top_velocity,
 )
+from moordyn_case import (
+    moordyn_input as line_input,
+)
 
 __all__ = [
     "SEABED_CASE",
@@ -237,39 +240,8 @@ def moordyn_input(
     most ``ic_time`` (s) of simulated time for its initial-condition (static) solve. The seabed is flat at
     WtrDpth = ``case.depth`` (through A) with kBot = ``case.kbot`` (Pa/m), cBot = ``case.cbot`` (Pa·s/m) and
     no friction (FrictionCoefficient 0, MoorDyn's default, written out). No internal damping (BA = 0)."""
-    top = _to_moordyn(top_position(0.0, case), case)
-    return f"""--------------------- MoorDyn Input File ------------------------------------
-pipelay peer comparison: steel wire rope laid on a flat seabed and driven at the top
----------------------- LINE TYPES ------------------------------------------------------
-TypeName  Diam  Mass/m  EA  BA/-zeta  EI  Cd  Ca  CdAx  CaAx
-(name)  (m)  (kg/m)  (N)  (N-s/-)  (N-m^2)  (-)  (-)  (-)  (-)
-rope  {case.diameter!r}  {case.mass!r}  {case.ea!r}  0.0  0.0  {case.cd_normal!r}  {case.ca!r}  0.0  {case.ca!r}
----------------------- POINTS ----------------------------------------------------------
-ID  Attachment  X  Y  Z  Mass  Volume  CdA  Ca
-(#)  (word/ID)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)
-1  Fixed  0.0  0.0  {-case.depth!r}  0  0  0  0
-2  Coupled  {top[0]!r}  {top[1]!r}  {top[2]!r}  0  0  0  0
----------------------- LINES -----------------------------------------------------------
-ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
-(#)  (name)  (ID)  (ID)  (m)  (-)  (-)
-1  rope  1  2  {case.length!r}  {n}  -
----------------------- OPTIONS ---------------------------------------------------------
-0  writeLog
-{dt!r}  dtM
-{scheme}  tScheme
-{case.gravity!r}  g
-{case.rho_water!r}  rho
-{case.depth!r}  WtrDpth
-{case.kbot!r}  kBot
-{case.cbot!r}  cBot
-0.0  FrictionCoefficient
-1.0  dtIC
-{ic_time!r}  TmaxIC
-1e-7  threshIC
-1  disableOutput
-1  disableOutTime
-------------------------- need this line -----------------------------------------------
-"""
+    seabed = f"{case.depth!r}  WtrDpth\n{case.kbot!r}  kBot\n{case.cbot!r}  cBot\n0.0  FrictionCoefficient\n"
+    return line_input(n, dt, case, scheme=scheme, ic_time=ic_time, seabed=seabed)
 
 
 def moordyn_touchdown(line: Any, case: SeabedCase = SEABED_CASE) -> tuple[float, np.ndarray]:
