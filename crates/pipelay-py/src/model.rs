@@ -193,6 +193,7 @@ impl Model {
                 angle,
                 controller.map(|c| c.0.clone()),
                 forces,
+                None,
             )
             .map_err(to_py)
     }

@@ -311,7 +311,9 @@ impl Model {
     }
 
     /// Attaches a vessel to an end (which must not also be supported). `angle` is β, zyx Euler angles of
-    /// R_b^t (rad); `eta` the starting pose; the sea gives the surface where restoring vanishes.
+    /// R_b^t (rad); `eta` the starting pose; the sea gives the surface where restoring vanishes. With `lay`,
+    /// the end is held at the lay equipment's hold point in its frame instead (and `angle` must be zero).
+    #[allow(clippy::too_many_arguments)]
     pub fn attach_vessel(
         &mut self,
         end: &str,
@@ -320,6 +322,7 @@ impl Model {
         angle: Vector3<f64>,
         controller: Option<Pid>,
         environment: Vec<EnvironmentForce>,
+        lay: Option<crate::vessel::lay::LayEquipment>,
     ) -> Result<()> {
         let node = self.end_node(end)?;
         finite("eta", eta.as_slice())?;
@@ -359,11 +362,23 @@ impl Model {
                 "must not be clamped, pinned or driven as well: the vessel holds that end",
             ));
         }
+        let angle = match &lay {
+            Some(_) if angle != Vector3::zeros() => {
+                return Err(Error::input(
+                    "angle",
+                    format!("{:?}", angle.as_slice()),
+                    "must be left at zero with lay equipment: the tensioner or tower sets the pipe's angle",
+                ))
+            }
+            Some(lay) => lay.end_frame.transpose(),
+            None => crate::vessel::euler::rotation(&angle),
+        };
         self.vessel = Some(VesselAttachment {
             node,
             surface: -sea.depth,
             vessel,
-            angle: crate::vessel::euler::rotation(&angle),
+            lay,
+            angle,
             eta,
             controller,
             environment,

@@ -10,7 +10,18 @@ use pipelay::vessel::rigid_body::Vessel;
 
 mod common;
 
+use pipelay::vessel::lay::LayEquipment;
+
 fn pipe_with_vessel(n: usize) -> Model {
+    pipe_with_lay(n, None)
+}
+
+/// A J-lay tower 40 m aft, 5 m to starboard and 10 m above CO, leaning 0.4 rad.
+fn tower() -> Option<LayEquipment> {
+    Some(LayEquipment::j_lay(Vector3::new(-40.0, 5.0, -10.0), 0.4).expect("tower"))
+}
+
+fn pipe_with_lay(n: usize, lay: Option<LayEquipment>) -> Model {
     let mut model = common::flooded_pipe(n);
     model.pin("A", None).expect("pin");
     model
@@ -21,6 +32,7 @@ fn pipe_with_vessel(n: usize) -> Model {
             Vector3::zeros(),
             None,
             vec![],
+            lay,
         )
         .expect("vessel");
     model
@@ -28,6 +40,36 @@ fn pipe_with_vessel(n: usize) -> Model {
 
 /// Heave, roll and pitch settle against the restoring; the holding thrust balances the pipe's horizontal pull;
 /// the vessel's vertical equilibrium G33 Δz + G35 θ equals the pipe's vertical pull.
+/// Held at a tower away from CO: CO still sits at η's x and y, the pipe's end at the tower exit along the
+/// tower, and thrust balances the pipe's horizontal pull.
+#[test]
+fn static_vessel_holds_the_pipe_at_its_tower() {
+    let model = pipe_with_lay(50, tower());
+    let solution = solve(&model, &StaticOptions::default()).expect("converges");
+    let response = Response::new(&model, &solution.configuration);
+    let vessel = response.vessel.expect("vessel response");
+    assert!((vessel.eta[0] - 850.0).abs() < 1e-4 && vessel.eta[1].abs() < 1e-4);
+    let body = pipelay::vessel::euler::rotation(&vessel.eta.fixed_rows::<3>(3).into_owned());
+    let co = vessel.eta.fixed_rows::<3>(0).into_owned();
+    let end = solution.configuration.positions[50];
+    assert!((end - (co + body * Vector3::new(-40.0, 5.0, -10.0))).norm() < 1e-9);
+    let tangent = solution.configuration.rotations[50] * Vector3::x();
+    let tower = body * Vector3::new(0.4f64.sin(), 0.0, -0.4f64.cos());
+    assert!((tangent - tower).norm() < 1e-9, "{tangent:?} vs {tower:?}");
+    let thrust = body * vessel.thrust.fixed_rows::<3>(0);
+    let pipe = body * vessel.pipe_force.fixed_rows::<3>(0);
+    assert!(
+        (thrust.x + pipe.x).abs() < 1e-6 * pipe.norm()
+            && (thrust.y + pipe.y).abs() < 1e-6 * pipe.norm()
+    );
+    // The pipe's moment about CO (χ) is its force at the tower exit carried over the lever arm.
+    let reaction = response.nodal_reactions[50];
+    let force = reaction.fixed_rows::<3>(0).into_owned();
+    let moment = reaction.fixed_rows::<3>(3) + (end - co).cross(&force);
+    let chi_moment = body * vessel.pipe_force.fixed_rows::<3>(3);
+    assert!((chi_moment - moment).norm() < 1e-6 * moment.norm());
+}
+
 #[test]
 fn static_vessel_holds_the_pipe() {
     let model = pipe_with_vessel(50);
@@ -90,7 +132,7 @@ fn lone_vessel(vessel: Vessel, heave: f64, pitch: f64) -> Integrator {
     let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
     let eta = Vector6::new(0.0, 0.0, -10.0 + heave, 0.0, pitch, 0.0);
     model
-        .attach_vessel("B", vessel, eta, Vector3::zeros(), None, vec![])
+        .attach_vessel("B", vessel, eta, Vector3::zeros(), None, vec![], None)
         .expect("vessel");
     let mut config = Configuration::reference(&model);
     let attachment = model.vessel.as_ref().expect("attached");
@@ -180,7 +222,17 @@ fn free_decay_periods_match_linear_theory() {
 /// constant to 1e-8 relative while the vessel heaves, pitches and drags the pipe.
 #[test]
 fn coupled_system_without_dissipation_conserves_energy() {
-    let mut model = pipe_with_vessel(20);
+    conserves_energy(None);
+}
+
+/// The same with the pipe held at a tower away from CO: the offset's work pairs exactly.
+#[test]
+fn coupled_system_held_at_a_tower_conserves_energy() {
+    conserves_energy(tower());
+}
+
+fn conserves_energy(lay: Option<LayEquipment>) {
+    let mut model = pipe_with_lay(20, lay);
     model.rod.section.drag = [0.0, 0.0];
     if let Some(attachment) = model.vessel.as_mut() {
         attachment.vessel.damping = nalgebra::Matrix6::zeros();
@@ -202,7 +254,8 @@ fn coupled_system_without_dissipation_conserves_energy() {
         sim.step().expect("step");
         worst = worst.max((sim.energy().total() - start.total()).abs() / scale);
     }
-    let moved = (sim.state().configuration.positions[20] - Vector3::new(850.0, 0.0, -800.0)).norm();
+    let eta = sim.vessel_values().expect("vessel")[0];
+    let moved = (eta.fixed_rows::<3>(0) - Vector3::new(850.0, 0.0, -800.0)).norm();
     println!(
         "energy drift {worst:.2e} of {scale:.3e} J; vessel moved {moved:.2} m; kinetic {:.3e} J",
         sim.energy().vessel_kinetic + sim.energy().kinetic

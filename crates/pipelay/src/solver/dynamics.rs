@@ -25,7 +25,9 @@ use crate::solver::contact::{ContactRule, NodeStep, SeabedContact, Touchdown};
 pub use crate::solver::energy::Energy;
 use crate::solver::history::{History, Snapshot};
 use crate::vessel::control::clamp_integral;
-use crate::vessel::coupling::{body_rotation, DynamicVessel, VesselContribution};
+use crate::vessel::coupling::{
+    pipe_force_on_vessel, vessel_pose, DynamicVessel, VesselContribution,
+};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector2, Vector3, Vector6};
 
 /// How many times a step may be halved when Newton fails in it.
@@ -362,8 +364,12 @@ impl Integrator {
         let state = &self.state;
         let (attachment, motion) = (self.model.vessel.as_ref()?, state.vessel.as_ref()?);
         let node = attachment.node;
-        let body = body_rotation(attachment, &state.configuration.rotations[node]);
-        let eta = crate::vessel::coupling::eta_of(&state.configuration.positions[node], &body);
+        let (position, body) = vessel_pose(
+            attachment,
+            &state.configuration.positions[node],
+            &state.configuration.rotations[node],
+        );
+        let eta = crate::vessel::coupling::eta_of(&position, &body);
         Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
     }
 
@@ -407,14 +413,16 @@ impl Integrator {
         let (vessel_kinetic, vessel_potential) = match (&self.model.vessel, &state.vessel) {
             (Some(attachment), Some(motion)) => {
                 let node = attachment.node;
-                let body = body_rotation(attachment, &state.configuration.rotations[node]);
+                let (position, body) = vessel_pose(
+                    attachment,
+                    &state.configuration.positions[node],
+                    &state.configuration.rotations[node],
+                );
                 (
                     crate::vessel::rigid_body::kinetic_energy(&attachment.vessel, &motion.velocity),
-                    attachment.vessel.restoring_energy(
-                        &state.configuration.positions[node],
-                        &body,
-                        attachment.surface,
-                    ),
+                    attachment
+                        .vessel
+                        .restoring_energy(&position, &body, attachment.surface),
                 )
             }
             _ => (0.0, 0.0),
@@ -892,18 +900,12 @@ impl Integrator {
                 motion.integral =
                     clamp_integral(controller, &(motion.integral + dt * step.error_mid));
             }
-            // χ: the pipe's force on the vessel, −(rod's force on the node), in the body frame.
-            let body = body_rotation(
+            // χ: the pipe's force on the vessel, −(rod's force on the node), in the body frame about CO.
+            motion.pipe_force = pipe_force_on_vessel(
                 attachment,
                 &self.state.configuration.rotations[attachment.node],
+                &self.rod_force_at_vessel,
             );
-            let f = self.rod_force_at_vessel;
-            let mut chi = Vector6::zeros();
-            chi.fixed_rows_mut::<3>(0)
-                .copy_from(&(-(body.transpose() * f.fixed_rows::<3>(0))));
-            chi.fixed_rows_mut::<3>(3)
-                .copy_from(&(-(body.transpose() * f.fixed_rows::<3>(3))));
-            motion.pipe_force = chi;
         }
         self.state.time += dt;
         self.supplied_work += self.work.supplied + support_work;

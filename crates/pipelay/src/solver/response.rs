@@ -3,6 +3,7 @@ use crate::model::Model;
 use crate::rod::element::evaluate;
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::solver::contact::Touchdown;
+use crate::vessel::coupling::{eta_of, pipe_force_on_vessel, vessel_pose};
 use nalgebra::{Vector2, Vector3, Vector6};
 
 /// Derived quantities of a configuration at full load.
@@ -96,18 +97,12 @@ impl Response {
         }
         let vessel = model.vessel.as_ref().map(|attachment| {
             let node = attachment.node;
-            let body = crate::vessel::coupling::body_rotation(attachment, &config.rotations[node]);
-            let position = config.positions[node];
-            let force = assembler.vessel_force;
-            let mut pipe_force = Vector6::zeros();
-            pipe_force
-                .fixed_rows_mut::<3>(0)
-                .copy_from(&(-(body.transpose() * force.fixed_rows::<3>(0))));
-            pipe_force
-                .fixed_rows_mut::<3>(3)
-                .copy_from(&(-(body.transpose() * force.fixed_rows::<3>(3))));
+            let (position, body) =
+                vessel_pose(attachment, &config.positions[node], &config.rotations[node]);
+            let pipe_force =
+                pipe_force_on_vessel(attachment, &config.rotations[node], &assembler.vessel_force);
             VesselResponse {
-                eta: crate::vessel::coupling::eta_of(&position, &body),
+                eta: eta_of(&position, &body),
                 thrust: assembler.vessel_thrust,
                 pipe_force,
                 restoring_energy: attachment.vessel.restoring_energy(

@@ -243,7 +243,7 @@ fn newton(
 
 /// Round-off floor of the residual norm (N): an element's axial force carries an error of about
 /// ε·EA·|x|/L0 (positions |x| known to ε relative, differenced over the element length), and n of them add up
-/// like a random walk. Never below 1e-13·EA·√n.
+/// like a random walk. Never below 1e-13·EA·√n. A vessel's holding springs add theirs.
 fn round_off_floor(model: &Model) -> f64 {
     let extent = model.rod.nodes.iter().map(|x| x.norm()).fold(1.0, f64::max);
     let shortest = model
@@ -253,9 +253,13 @@ fn round_off_floor(model: &Model) -> f64 {
         .map(|e| e.length)
         .fold(f64::INFINITY, f64::min);
     let per_element = (4.0 * f64::EPSILON * extent / shortest).max(1e-13);
+    let vessel = model.vessel.as_ref().map_or(0.0, |attachment| {
+        crate::vessel::coupling::static_round_off(attachment, extent)
+    });
     per_element
         * model.rod.section.translational_stiffness.max()
         * (model.rod.element_count() as f64).sqrt()
+        + vessel
 }
 
 /// Backtracking steps of the line search with seabed contact.
@@ -518,12 +522,16 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         upright[2] = attachment.surface;
         upright[3] = 0.0;
         upright[4] = 0.0;
+        let rotation = crate::vessel::coupling::node_rotation(attachment, &upright);
+        let body = rotation * attachment.angle;
         guess_targets.push(SupportTarget {
             node: attachment.node,
-            position: upright.fixed_rows::<3>(0).into_owned(),
-            rotation: Some(quat_from_matrix(&crate::vessel::coupling::node_rotation(
-                attachment, &upright,
-            ))),
+            position: crate::vessel::coupling::node_position(
+                attachment,
+                &upright.fixed_rows::<3>(0).into_owned(),
+                &body,
+            ),
+            rotation: Some(quat_from_matrix(&rotation)),
         });
     }
     let catenary = match options.start {

@@ -1,5 +1,9 @@
-//! The vessel on the rod's end node (eqs. 5, 22–23): the node is the vessel's reference point and turns
-//! with it, so pipe and vessel share the node's unknowns and the interface does no spurious work.
+//! The vessel on the rod's end node (eqs. 5, 22–23): the node is the vessel's hold point (CO itself, or a
+//! tensioner or tower exit at a fixed body-frame offset r from CO, [`crate::vessel::lay`]) and turns with the
+//! vessel, so pipe and vessel share the node's unknowns and the interface does no spurious work. With the
+//! offset a = Λ_B r, the vessel's pose is x_C = x_N − a; its force f and moment m_C about CO act on the node
+//! as f and m_C − a × f (in a time step, with the step's mean offset ā, so the work pairs exactly with the
+//! Cayley update a_{n+1} = cay(θ)a_n).
 //!
 //! Statics: heave, roll and pitch find their equilibrium against the hydrostatic restoring; surge, sway and
 //! yaw are held at η by stiff springs whose force is the holding thrust (or, with a controller active at
@@ -22,6 +26,54 @@ pub fn body_rotation(
     node_rotation: &UnitQuaternion<f64>,
 ) -> Matrix3<f64> {
     node_rotation.to_rotation_matrix().into_inner() * attachment.angle
+}
+
+/// Round-off of the vessel's static forces (N): the holding springs turn the last bits of positions of size
+/// `extent` (m) into force (and of the heading into moment).
+pub fn static_round_off(attachment: &VesselAttachment, extent: f64) -> f64 {
+    let restoring = &attachment.vessel.restoring;
+    let k = HOLD_STIFFNESS * restoring[(2, 2)].max(1.0);
+    let k_yaw = HOLD_STIFFNESS * restoring[(4, 4)].max(1.0);
+    8.0 * f64::EPSILON * (k * (extent + attachment.hang_off().norm()) + k_yaw)
+}
+
+/// The vessel's pose (CO position, body frame) from the end node's.
+pub fn vessel_pose(
+    attachment: &VesselAttachment,
+    node_position: &Vector3<f64>,
+    node_rotation: &UnitQuaternion<f64>,
+) -> (Vector3<f64>, Matrix3<f64>) {
+    let body = body_rotation(attachment, node_rotation);
+    (node_position - body * attachment.hang_off(), body)
+}
+
+/// The end node's position for a vessel pose (CO position, body frame).
+pub fn node_position(
+    attachment: &VesselAttachment,
+    position: &Vector3<f64>,
+    body: &Matrix3<f64>,
+) -> Vector3<f64> {
+    position + body * attachment.hang_off()
+}
+
+/// χ, the pipe's force on the vessel (body frame, moment about CO), from the vessel's force and moment on
+/// the end node (spatial, = the rod's internal force there at equilibrium); the pipe pushes back with its
+/// negative at the node.
+pub fn pipe_force_on_vessel(
+    attachment: &VesselAttachment,
+    node_rotation: &UnitQuaternion<f64>,
+    force_on_rod: &Vector6<f64>,
+) -> Vector6<f64> {
+    let body = body_rotation(attachment, node_rotation);
+    let arm = body * attachment.hang_off();
+    let force = force_on_rod.fixed_rows::<3>(0).into_owned();
+    let moment = force_on_rod.fixed_rows::<3>(3) + arm.cross(&force);
+    let mut chi = Vector6::zeros();
+    chi.fixed_rows_mut::<3>(0)
+        .copy_from(&(-(body.transpose() * force)));
+    chi.fixed_rows_mut::<3>(3)
+        .copy_from(&(-(body.transpose() * moment)));
+    chi
 }
 
 /// The end node's frame for a vessel pose: Λ_N = R(Θ) R_b^tᵀ.
@@ -56,7 +108,8 @@ impl StaticTarget {
     ) -> Self {
         let final_position = Vector3::new(attachment.eta[0], attachment.eta[1], attachment.surface);
         let final_rotation = euler::rotation(&Vector3::new(0.0, 0.0, attachment.eta[5]));
-        let start_rotation = body_rotation(attachment, reference_rotation);
+        let (reference_position, start_rotation) =
+            vessel_pose(attachment, reference_position, reference_rotation);
         let turn = log(&(final_rotation * start_rotation.transpose()));
         StaticTarget {
             position: reference_position + motion * (final_position - reference_position),
@@ -66,17 +119,18 @@ impl StaticTarget {
     }
 }
 
-/// Static forces of the vessel on the end node (spatial force and moment, work-conjugate to (Δx, θ)) and
-/// the holding thrust (body frame): restoring of the body toward the target's heave, roll and pitch, and
-/// holding springs (or the active controller's K_p) in surge, sway and yaw.
+/// Static forces of the vessel on the end node (spatial force and moment, work-conjugate to (Δx, θ) of the
+/// node at `node_position`) and the holding thrust (body frame): restoring of the body toward the target's
+/// heave, roll and pitch, and holding springs (or the active controller's K_p) in surge, sway and yaw.
 pub fn static_forces(
     attachment: &VesselAttachment,
-    position: &Vector3<f64>,
+    node_position: &Vector3<f64>,
     node_rotation: &UnitQuaternion<f64>,
     target: &StaticTarget,
 ) -> (Vector6<f64>, Vector6<f64>) {
     let vessel = &attachment.vessel;
-    let body = body_rotation(attachment, node_rotation);
+    let (co, body) = vessel_pose(attachment, node_position, node_rotation);
+    let position = &co;
     let e3 = Vector3::z();
     // Restoring toward the target: V = ½(q − q_t)ᵀG_r(q − q_t), q = (z − z0, (Λe2)·e3, −(Λe1)·e3).
     let q = super::rigid_body::Vessel::restoring_coordinates(position, &body, target.surface);
@@ -116,9 +170,12 @@ pub fn static_forces(
     thrust
         .fixed_rows_mut::<3>(3)
         .copy_from(&(body.transpose() * hold_moment));
+    // About the node rather than CO.
+    let arm = node_position - position;
     let mut out = Vector6::zeros();
     out.fixed_rows_mut::<3>(0).copy_from(&force);
-    out.fixed_rows_mut::<3>(3).copy_from(&moment);
+    out.fixed_rows_mut::<3>(3)
+        .copy_from(&(moment - arm.cross(&force)));
     (out, thrust_only(thrust, None))
 }
 
@@ -205,32 +262,45 @@ impl DynamicVessel<'_> {
     /// Residual, tangent and work at increments (Δx, θ) of the end node, whose state at n is given.
     pub fn contribution(
         &self,
-        position: &Vector3<f64>,
+        node_position: &Vector3<f64>,
         node_rotation: &UnitQuaternion<f64>,
         increment: &Vector6<f64>,
         dt: f64,
         time_mid: f64,
     ) -> VesselContribution {
         let attachment = self.attachment;
-        let body = body_rotation(attachment, node_rotation);
+        let (position, body) = vessel_pose(attachment, node_position, node_rotation);
+        let arm = body * attachment.hang_off();
         let state = VesselState {
-            position: *position,
+            position,
             rotation: crate::so3::quat_from_matrix(&body),
             velocity: self.velocity,
         };
         let evaluate = |inc: &Vector6<f64>| {
-            let dx = inc.fixed_rows::<3>(0).into_owned();
             let theta = inc.fixed_rows::<3>(3).into_owned();
+            // CO moves by Δx_N − (a_{n+1} − a_n), a_{n+1} − a_n = θ × ā.
+            let arm_next = cayley(&theta) * arm;
+            let arm_mean = 0.5 * (arm + arm_next);
+            let dx = inc.fixed_rows::<3>(0) - (arm_next - arm);
+            let mut co_increment = *inc;
+            co_increment.fixed_rows_mut::<3>(0).copy_from(&dx);
             let position_mid = position + 0.5 * dx;
             let body_mid = cayley(&(0.5 * theta)) * body;
-            let step = vessel_step(
+            let mut step = vessel_step(
                 &attachment.vessel,
                 &state,
-                inc,
+                &co_increment,
                 dt,
                 attachment.surface,
                 &|v| self.body_force(&position_mid, &body_mid, v, time_mid, dt).0,
             );
+            let force = step.residual.fixed_rows::<3>(0).into_owned();
+            let moment = step.residual.fixed_rows::<3>(3) - arm_mean.cross(&force);
+            step.residual.fixed_rows_mut::<3>(3).copy_from(&moment);
+            let force_scale = arm_mean.norm() * step.magnitude.fixed_rows::<3>(0).norm();
+            for k in 3..6 {
+                step.magnitude[k] += force_scale;
+            }
             let (_, thrust, error) =
                 self.body_force(&position_mid, &body_mid, &step.velocity_mid, time_mid, dt);
             (step, thrust, error)

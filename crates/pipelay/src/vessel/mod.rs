@@ -2,6 +2,7 @@
 pub mod control;
 pub mod coupling;
 pub mod euler;
+pub mod lay;
 pub mod rigid_body;
 
 use control::Pid;
@@ -27,4 +28,21 @@ pub struct VesselAttachment {
     pub environment: Vec<EnvironmentForce>,
     /// Elevation of the calm sea surface z_0 = −depth, where restoring vanishes (m).
     pub surface: f64,
+    /// Lay equipment: where the pipe is held (body frame) and the rollers it runs over. `None`: the pipe's
+    /// end is clamped at CO (the paper's model).
+    pub lay: Option<lay::LayEquipment>,
+}
+
+impl VesselAttachment {
+    /// The hold point in the body frame, relative to CO (m): zero without lay equipment.
+    pub fn hang_off(&self) -> nalgebra::Vector3<f64> {
+        self.lay
+            .as_ref()
+            .map_or_else(nalgebra::Vector3::zeros, |lay| lay.hang_off)
+    }
+
+    /// The rollers (empty without lay equipment).
+    pub fn rollers(&self) -> &[lay::Roller] {
+        self.lay.as_ref().map_or(&[], |lay| &lay.rollers)
+    }
 }

@@ -1,0 +1,203 @@
+//! Lay equipment on the vessel (body frame b: forward, starboard, down): where the pipe is held (the
+//! tensioner of an S-lay, the tower exit of a J-lay) and the rollers it runs over.
+//!
+//! A roller is a vessel-fixed cylinder: an axis line through its centre, a radius. The pipe's outer surface
+//! (radius d_o/2) rests on it, a unilateral contact ([`crate::solver::rollers`]). A stinger is a circular arc of
+//! rollers: the arc is the rollers' top line (the pipe's bottom when it rests on all of them), starting at
+//! `origin` with the slope `angle` below the horizontal, running aft (−b1) and bending down with radius R.
+use crate::error::{finite, positive, Error, Result};
+use nalgebra::{Matrix3, Vector3};
+
+/// A vessel-fixed roller.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Roller {
+    /// A point of the roller's axis (body frame, m).
+    pub centre: Vector3<f64>,
+    /// The axis direction (body frame, unit).
+    pub axis: Vector3<f64>,
+    /// Roller radius (m).
+    pub radius: f64,
+    /// The side the pipe rests on: unit, normal to the axis (body frame); for initial guesses and drawings.
+    pub normal: Vector3<f64>,
+}
+
+/// Default roller radius (m) and contact stiffness (N/m): a stiff steel roller on its bearing.
+pub const ROLLER_RADIUS: f64 = 0.25;
+pub const ROLLER_STIFFNESS: f64 = 1e7;
+
+/// How the vessel holds the pipe.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayEquipment {
+    /// The hold point (tensioner or tower exit) in the body frame (m), relative to CO.
+    pub hang_off: Vector3<f64>,
+    /// The pipe-end frame in the body frame, R_t^b: t1 is the pipe's tangent leaving the hold toward end B.
+    pub end_frame: Matrix3<f64>,
+    pub rollers: Vec<Roller>,
+    /// Contact stiffness of every roller (N per m of overlap).
+    pub roller_stiffness: f64,
+}
+
+/// Body-frame top points, axes and outward normals of `count` rollers spread evenly over a stinger arc.
+pub fn stinger_rollers(
+    radius: f64,
+    length: f64,
+    count: usize,
+    origin: Vector3<f64>,
+    angle: f64,
+    roller_radius: f64,
+) -> Result<Vec<Roller>> {
+    positive("stinger radius", radius, "m")?;
+    positive("stinger length", length, "m")?;
+    finite("stinger origin", origin.as_slice())?;
+    finite("stinger angle", &[angle])?;
+    if count == 0 {
+        return Err(Error::input("rollers", 0, "must be at least 1"));
+    }
+    if length / radius > std::f64::consts::PI {
+        return Err(Error::input(
+            "stinger length",
+            length,
+            format!("must not exceed π·radius = {:.1} m (half a circle)", std::f64::consts::PI * radius),
+        ));
+    }
+    let rollers = (0..count)
+        .map(|k| {
+            let s = if count == 1 { 0.0 } else { length * k as f64 / (count - 1) as f64 };
+            let slope = angle + s / radius;
+            // Top line: p(s) = origin + R(−(sin φ − sin φ0), 0, cos φ − cos φ0) with φ the slope below horizontal.
+            let top = origin
+                + radius
+                    * Vector3::new(
+                        -(slope.sin() - angle.sin()),
+                        0.0,
+                        -(slope.cos() - angle.cos()),
+                    );
+            // Outward normal (toward the pipe): up and forward of the arc, away from its centre.
+            let normal = Vector3::new(-slope.sin(), 0.0, -slope.cos());
+            Roller {
+                centre: top - roller_radius * normal,
+                axis: Vector3::y(),
+                radius: roller_radius,
+                normal,
+            }
+        })
+        .collect();
+    Ok(rollers)
+}
+
+/// Rollers at given top points with given axes (body frame); the pipe rests on their upper side.
+pub fn rollers_at(
+    tops: &[Vector3<f64>],
+    axes: &[Vector3<f64>],
+    roller_radius: f64,
+) -> Result<Vec<Roller>> {
+    tops.iter()
+        .zip(axes)
+        .map(|(top, axis)| {
+            finite("roller positions", top.as_slice())?;
+            finite("roller axes", axis.as_slice())?;
+            let axis = axis.try_normalize(1e-12).ok_or_else(|| {
+                Error::input("roller axes", format!("{axis:?}"), "must be non-zero vectors")
+            })?;
+            let up = -Vector3::z();
+            let normal = (up - up.dot(&axis) * axis)
+                .try_normalize(1e-9)
+                .ok_or_else(|| {
+                    Error::input(
+                        "roller axes",
+                        format!("{axis:?}"),
+                        "must not be vertical (the pipe rests on the roller's upper side)",
+                    )
+                })?;
+            Ok(Roller {
+                centre: top - roller_radius * normal,
+                axis,
+                radius: roller_radius,
+                normal,
+            })
+        })
+        .collect()
+}
+
+impl LayEquipment {
+    /// S-lay: the pipe held by the tensioner at `tensioner` on a horizontal firing line along +b1 (its
+    /// tangent toward end B points forward), running aft over `rollers`.
+    pub fn s_lay(tensioner: Vector3<f64>, rollers: Vec<Roller>, stiffness: f64) -> Result<Self> {
+        finite("tensioner", tensioner.as_slice())?;
+        positive("roller_stiffness", stiffness, "N/m")?;
+        Ok(LayEquipment {
+            hang_off: tensioner,
+            end_frame: Matrix3::identity(),
+            rollers,
+            roller_stiffness: stiffness,
+        })
+    }
+
+    /// J-lay: the pipe held at the tower exit `position`, its tangent toward end B up the tower, which
+    /// leans `angle` (rad) from the vertical toward the bow: t1 = (sin α, 0, −cos α) in b.
+    pub fn j_lay(position: Vector3<f64>, angle: f64) -> Result<Self> {
+        finite("position", position.as_slice())?;
+        finite("angle", &[angle])?;
+        if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&angle) {
+            return Err(Error::input(
+                "angle",
+                angle,
+                "must be between 0 (vertical tower) and π/2 rad (horizontal)",
+            ));
+        }
+        let pitch = std::f64::consts::FRAC_PI_2 - angle;
+        // Rotation about b2 by `pitch` turns b1 into (cos, 0, −sin) = (sin α, 0, −cos α).
+        let (s, c) = pitch.sin_cos();
+        let end_frame = Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c);
+        Ok(LayEquipment {
+            hang_off: position,
+            end_frame,
+            rollers: Vec::new(),
+            roller_stiffness: ROLLER_STIFFNESS,
+        })
+    }
+
+    /// Length of the roller path from the hold point to the farthest roller (m): how far along the pipe
+    /// from its held end the rollers can reach.
+    pub fn reach(&self) -> f64 {
+        let mut previous = self.hang_off;
+        let mut length = 0.0;
+        for roller in &self.rollers {
+            let top = roller.centre + roller.radius * roller.normal;
+            length += (top - previous).norm();
+            previous = top;
+        }
+        length
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stinger_rollers_lie_on_the_arc() {
+        let (radius, origin, angle) = (100.0, Vector3::new(-30.0, 0.0, 5.0), 0.05);
+        let rollers = stinger_rollers(radius, 60.0, 7, origin, angle, 0.3).unwrap();
+        // The arc's centre: origin + R·(inward normal at the start).
+        let centre = origin + radius * Vector3::new(angle.sin(), 0.0, angle.cos());
+        for roller in &rollers {
+            let top = roller.centre + roller.radius * roller.normal;
+            assert!(((top - centre).norm() - radius).abs() < 1e-9);
+            assert!(((roller.centre - centre).norm() - (radius - 0.3)).abs() < 1e-9);
+        }
+        let last = rollers[6].centre + 0.3 * rollers[6].normal;
+        let arc = 2.0 * radius * (0.5 * (last - origin).norm() / radius).asin();
+        assert!((arc - 60.0).abs() < 1e-9);
+        assert!(last.x < origin.x && last.z > origin.z);
+    }
+
+    #[test]
+    fn j_lay_tangent_leans_from_vertical() {
+        let lay = LayEquipment::j_lay(Vector3::zeros(), 0.2).unwrap();
+        let t1 = lay.end_frame.column(0);
+        assert!((t1 - Vector3::new(0.2f64.sin(), 0.0, -0.2f64.cos())).norm() < 1e-12);
+        assert!((lay.end_frame.determinant() - 1.0).abs() < 1e-12);
+        assert!(LayEquipment::j_lay(Vector3::zeros(), 2.0).is_err());
+    }
+}
