@@ -71,6 +71,7 @@ impl State {
                 vessel_kinetic: 0.0,
                 vessel_potential: response.vessel.map_or(0.0, |v| v.restoring_energy),
                 seabed: response.seabed.as_ref().map_or(0.0, |s| s.energy),
+                rollers: response.rollers.as_ref().map_or(0.0, |r| r.1),
             },
             seabed: response.seabed.as_ref().map(|s| SeabedState {
                 forces: s.forces.clone(),

@@ -23,6 +23,20 @@ pub struct Section {
     pub added_mass: [f64; 2],
     /// Rotational damping D_R = diag (N·m·s per m).
     pub rotational_damping: Vector3<f64>,
+    /// The pipe's wall, for sections built from it ([`Section::pipe`]): what design checks need.
+    pub wall: Option<PipeWall>,
+}
+
+/// The wall of a pipe section.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PipeWall {
+    /// Wall thickness (m).
+    pub thickness: f64,
+    /// Young's modulus (Pa).
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    /// Density of the contents (kg/m³).
+    pub contents_density: f64,
 }
 
 /// Hydrodynamic and inertial data of a section that are optional when building one.
@@ -93,6 +107,7 @@ impl Section {
             drag: extras.drag,
             added_mass: extras.added_mass,
             rotational_damping: Vector3::from(extras.rotational_damping),
+            wall: None,
         })
     }
 
@@ -151,14 +166,33 @@ impl Section {
             added_mass,
             rotational_damping: [0.0; 3],
         };
-        Section::new(
+        let mut section = Section::new(
             youngs_modulus * area,
             [shear_modulus * shear_area; 2],
             shear_modulus * 2.0 * second_moment,
             [youngs_modulus * second_moment; 2],
             mass,
             extras,
-        )
+        )?;
+        section.wall = Some(PipeWall {
+            thickness: wall_thickness,
+            youngs_modulus,
+            poisson_ratio,
+            contents_density,
+        });
+        Ok(section)
+    }
+
+    /// Largest longitudinal strain of a section carrying material force and moment `forces`
+    /// ([N1, N2, N3, M1, M2, M3]): axial N1/EA plus bending at the outer fibre, (d_o/2)|(M2/EI2, M3/EI3)|
+    /// (linear elastic; the tensile side in bending).
+    pub fn strain(&self, forces: &nalgebra::Vector6<f64>) -> f64 {
+        let axial = forces[0] / self.translational_stiffness.x;
+        let curvature = nalgebra::Vector2::new(
+            forces[4] / self.rotational_stiffness.y,
+            forces[5] / self.rotational_stiffness.z,
+        );
+        axial + 0.5 * self.outer_diameter * curvature.norm()
     }
 
     /// C_T as a matrix.

@@ -6,6 +6,7 @@ use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::solver::contact::{ContactRule, SeabedContact, TangentSink};
 use crate::solver::linsolve::SparseLu;
+use crate::solver::rollers::{EntrySink, RollerContact};
 use crate::vessel::coupling::{static_forces, StaticTarget};
 use crate::vessel::VesselAttachment;
 use nalgebra::{Matrix6, UnitQuaternion, Vector2, Vector3, Vector6};
@@ -110,6 +111,25 @@ pub struct Assembler {
     /// load step (initially the reference, without slip).
     pub contact_start: Vec<Vector3<f64>>,
     pub contact_slips: Vec<Vector2<f64>>,
+    /// The vessel's rollers, if it has any.
+    pub rollers: Option<RollerContact>,
+}
+
+/// Tangent entries by global DOF, where the pattern has them.
+struct Entries<'a> {
+    values: &'a mut [f64],
+    dofs: &'a DofMap,
+    lu: &'a SparseLu,
+}
+
+impl EntrySink for Entries<'_> {
+    fn add_entry(&mut self, row: usize, column: usize, value: f64) {
+        if let (Some(r), Some(c)) = (self.dofs.equation[row], self.dofs.equation[column]) {
+            if let Some(p) = self.lu.position(r, c) {
+                self.values[p] += value;
+            }
+        }
+    }
 }
 
 /// The tangent's values seen through the element and node scatter maps.
@@ -154,6 +174,30 @@ impl Assembler {
             for j in 0..12 {
                 if let Some(col) = dofs.equation[global(e, j)] {
                     columns[col].extend((0..12).filter_map(|i| dofs.equation[global(e, i)]));
+                }
+            }
+        }
+        // Rollers couple the nodes within their reach to the vessel's node and to near neighbours.
+        let rollers = model.vessel.as_ref().and_then(|attachment| {
+            let lengths: Vec<f64> = model.rod.elements.iter().map(|e| e.length).collect();
+            RollerContact::new(attachment, model.rod.section.outer_diameter, &lengths)
+        });
+        if let (Some(rollers), Some(attachment)) = (&rollers, &model.vessel) {
+            let nodes = rollers.nodes();
+            let mut couple = |a: usize, b: usize| {
+                for j in 0..NODE_DOFS {
+                    if let Some(col) = dofs.equation[NODE_DOFS * b + j] {
+                        columns[col].extend(
+                            (0..NODE_DOFS).filter_map(|i| dofs.equation[NODE_DOFS * a + i]),
+                        );
+                    }
+                }
+            };
+            for a in nodes.clone() {
+                couple(a, attachment.node);
+                couple(attachment.node, a);
+                for b in nodes.clone().filter(|b| b.abs_diff(a) <= 3) {
+                    couple(a, b);
                 }
             }
         }
@@ -219,6 +263,7 @@ impl Assembler {
             )
         });
         Assembler {
+            rollers,
             bending_scale: 1.0,
             contact,
             contact_start: model.rod.nodes.clone(),
@@ -347,6 +392,7 @@ impl Assembler {
             self.contact_slips = slips;
             self.contact = Some(contact);
         }
+        self.add_rollers(ContactRule::Static, config, None, None, with_tangent);
         if with_tangent {
             self.shift_rotations();
         }
@@ -443,6 +489,40 @@ impl Assembler {
         };
         let sink: Option<&mut dyn TangentSink> = if with_tangent { Some(&mut sink) } else { None };
         contact.evaluate(rule, slips, &mut self.residual, sink)
+    }
+
+    /// Adds the rollers' residual (and with `with_tangent` their tangent) at `config` + `increments` (see
+    /// [`RollerContact::evaluate`]), and their forces' sizes to `magnitude`.
+    pub fn add_rollers(
+        &mut self,
+        rule: ContactRule,
+        config: &Configuration,
+        increments: Option<&[f64]>,
+        magnitude: Option<&mut [f64]>,
+        with_tangent: bool,
+    ) {
+        let Some(rollers) = self.rollers.as_mut() else {
+            return;
+        };
+        let mut entries = Entries {
+            values: &mut self.values,
+            dofs: &self.dofs,
+            lu: &self.lu,
+        };
+        let sink: Option<&mut dyn EntrySink> = if with_tangent {
+            Some(&mut entries)
+        } else {
+            None
+        };
+        rollers.evaluate(
+            rule,
+            &config.positions,
+            &config.rotations,
+            increments,
+            &mut self.residual,
+            magnitude,
+            sink,
+        );
     }
 
     /// Makes `config` (and the friction it mobilised) the start of statics' next load step.

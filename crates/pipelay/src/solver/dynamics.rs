@@ -436,6 +436,11 @@ impl Integrator {
             seabed: self.contact.as_ref().map_or(0.0, |contact| {
                 contact.energy(&state.configuration.positions, &state.slips)
             }),
+            rollers: self
+                .assembler
+                .rollers
+                .as_ref()
+                .map_or(0.0, |r| r.energy_end),
         }
     }
 
@@ -449,6 +454,11 @@ impl Integrator {
     /// The seabed's force on each node over the last step (N, in e); `None` without a seabed.
     pub fn seabed_forces(&self) -> Option<&[Vector3<f64>]> {
         self.contact.as_ref().map(|contact| &contact.forces[..])
+    }
+
+    /// Each roller's normal force in the current state (N); `None` without rollers.
+    pub fn roller_forces(&self) -> Option<&[f64]> {
+        self.assembler.rollers.as_ref().map(|r| &r.forces[..])
     }
 
     /// Linear momentum Σ M_I v_I (kg·m/s).
@@ -808,6 +818,13 @@ impl Integrator {
             work.dissipated += contact.dissipated;
             self.contact = Some(contact);
         }
+        self.assembler.add_rollers(
+            ContactRule::EnergyMomentum { time_step: dt },
+            &state.configuration,
+            Some(&self.increments),
+            Some(&mut self.magnitude),
+            true,
+        );
         for (load, scale) in model.point_loads.iter().zip(scales) {
             let base = NODE_DOFS * load.node;
             let force = load.force * *scale;

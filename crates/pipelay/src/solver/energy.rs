@@ -13,6 +13,8 @@ pub struct Energy {
     pub vessel_potential: f64,
     /// Energy stored in the seabed contact: normal springs and friction's elastic slip.
     pub seabed: f64,
+    /// Energy stored in the roller contacts.
+    pub rollers: f64,
 }
 
 impl Energy {
@@ -24,5 +26,6 @@ impl Energy {
             + self.vessel_kinetic
             + self.vessel_potential
             + self.seabed
+            + self.rollers
     }
 }

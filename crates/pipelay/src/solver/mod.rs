@@ -9,4 +9,5 @@ pub mod history;
 pub mod laid_catenary;
 pub mod linsolve;
 pub mod response;
+pub mod rollers;
 pub mod statics;

@@ -22,6 +22,8 @@ pub struct Response {
     pub vessel: Option<VesselResponse>,
     /// With a seabed: its contact.
     pub seabed: Option<SeabedResponse>,
+    /// With rollers: each roller's normal force (N) and their contact energy (J).
+    pub rollers: Option<(Vec<f64>, f64)>,
 }
 
 /// Seabed contact of a configuration.
@@ -118,7 +120,12 @@ impl Response {
             touchdown: contact.touchdown(&config.positions),
             slips: contact.slip_end.clone(),
         });
+        let rollers = assembler
+            .rollers
+            .as_ref()
+            .map(|r| (r.forces.clone(), r.energy_end));
         Response {
+            rollers,
             seabed,
             vessel,
             section_forces,

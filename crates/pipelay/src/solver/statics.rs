@@ -356,10 +356,18 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
             Vector3::new(v.x, v.y, -v.z)
         }
     };
-    let length = model.rod.length();
+    // Over a vessel's rollers the guess follows the roller path from the hold point; the catenary hangs from
+    // the path's last point with the rest of the pipe.
+    let path = roller_path(model, b);
+    let path_length = path.last().map_or(0.0, |p| p.0);
+    let length = model.rod.length() - path_length;
+    if length <= 0.0 {
+        return None;
+    }
+    let hang = path.last().map_or(b.position, |p| p.1);
     let (ea, (a, b)) = (
         model.rod.section.translational_stiffness.x,
-        (mirror(a.position), mirror(b.position)),
+        (mirror(a.position), mirror(hang)),
     );
     // A heavy line whose end A lies on the seabed rests on it up to a touchdown point.
     let laid = model
@@ -381,7 +389,11 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
         if node > 0 {
             arc += model.rod.elements[node - 1].length;
         }
-        let (position, tangent) = shape(arc.min(length));
+        let (position, tangent) = if arc > length && !path.is_empty() {
+            along_path(&path, model.rod.length() - arc)
+        } else {
+            shape(arc.min(length))
+        };
         config.positions[node] = mirror(position);
         // Where the guess dips into an uneven seabed, it rests on its surface instead.
         if let Some(seabed) = model.seabed().filter(|_| weight > 0.0) {
@@ -394,6 +406,40 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
     }
     apply_supports(model, targets, &mut config, 1.0);
     Some(config)
+}
+
+/// The roller path of a vessel holding end B at `held`: (distance from the hold point, point in e) from the
+/// hold point over the roller tops raised by the pipe's radius, in the rollers' order; empty without rollers.
+fn roller_path(model: &Model, held: &SupportTarget) -> Vec<(f64, Vector3<f64>)> {
+    let Some(attachment) = model.vessel.as_ref().filter(|v| !v.rollers().is_empty()) else {
+        return Vec::new();
+    };
+    let Some(rotation) = held.rotation else {
+        return Vec::new();
+    };
+    let body = rotation.to_rotation_matrix().into_inner() * attachment.angle;
+    let hang_off = attachment.hang_off();
+    let radius = 0.5 * model.rod.section.outer_diameter;
+    let mut path = vec![(0.0, held.position)];
+    for roller in attachment.rollers() {
+        let top = roller.centre + (roller.radius + radius) * roller.normal;
+        let point = held.position + body * (top - hang_off);
+        let previous = path[path.len() - 1];
+        path.push((previous.0 + (point - previous.1).norm(), point));
+    }
+    path
+}
+
+/// Position and tangent (toward the hold point, i.e. toward end B) at distance `s` along a roller path.
+fn along_path(path: &[(f64, Vector3<f64>)], s: f64) -> (Vector3<f64>, Vector3<f64>) {
+    let k = path
+        .windows(2)
+        .position(|w| s <= w[1].0)
+        .unwrap_or(path.len().saturating_sub(2));
+    let (start, end) = (path[k], path[k + 1]);
+    let span = (end.0 - start.0).max(f64::MIN_POSITIVE);
+    let t = ((s - start.0) / span).clamp(0.0, 1.0);
+    (start.1 + t * (end.1 - start.1), (start.1 - end.1) / span)
 }
 
 /// Smallest factor on the bending stiffness that the continuation from a cable starts at.

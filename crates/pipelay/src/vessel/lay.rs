@@ -57,12 +57,19 @@ pub fn stinger_rollers(
         return Err(Error::input(
             "stinger length",
             length,
-            format!("must not exceed π·radius = {:.1} m (half a circle)", std::f64::consts::PI * radius),
+            format!(
+                "must not exceed π·radius = {:.1} m (half a circle)",
+                std::f64::consts::PI * radius
+            ),
         ));
     }
     let rollers = (0..count)
         .map(|k| {
-            let s = if count == 1 { 0.0 } else { length * k as f64 / (count - 1) as f64 };
+            let s = if count == 1 {
+                0.0
+            } else {
+                length * k as f64 / (count - 1) as f64
+            };
             let slope = angle + s / radius;
             // Top line: p(s) = origin + R(−(sin φ − sin φ0), 0, cos φ − cos φ0) with φ the slope below horizontal.
             let top = origin
@@ -97,7 +104,11 @@ pub fn rollers_at(
             finite("roller positions", top.as_slice())?;
             finite("roller axes", axis.as_slice())?;
             let axis = axis.try_normalize(1e-12).ok_or_else(|| {
-                Error::input("roller axes", format!("{axis:?}"), "must be non-zero vectors")
+                Error::input(
+                    "roller axes",
+                    format!("{axis:?}"),
+                    "must be non-zero vectors",
+                )
             })?;
             let up = -Vector3::z();
             let normal = (up - up.dot(&axis) * axis)
