@@ -12,6 +12,7 @@ from pipelay._core import (
     Current,
     Force,
     InputError,
+    JLay,
     Model,
     Results,
     Rod,
@@ -19,10 +20,13 @@ from pipelay._core import (
     Seabed,
     Section,
     Simulation,
+    SLay,
     State,
+    Stinger,
     Touchdown,
     Vessel,
 )
+from pipelay import checks
 from pipelay.results import load, resume
 
 
@@ -41,16 +45,20 @@ __all__ = [
     "Current",
     "Force",
     "InputError",
+    "JLay",
     "Model",
     "Results",
     "Rod",
     "Sea",
     "Seabed",
     "Section",
+    "SLay",
     "Simulation",
     "State",
+    "Stinger",
     "Touchdown",
     "Vessel",
+    "checks",
     "load",
     "resume",
 ]

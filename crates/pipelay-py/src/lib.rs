@@ -2,6 +2,7 @@
 mod callables;
 mod convert;
 mod errors;
+mod lay;
 mod model;
 mod seabed;
 mod simulation;
@@ -33,5 +34,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vessel::Vessel>()?;
     m.add_class::<vessel::PyPid>()?;
     m.add_class::<vessel::PyForce>()?;
+    m.add_class::<lay::Stinger>()?;
+    m.add_class::<lay::SLay>()?;
+    m.add_class::<lay::JLay>()?;
     Ok(())
 }

@@ -156,7 +156,9 @@ impl Model {
     /// heave, roll and pitch settle and surge, sway and yaw are held at eta by thrust (reported as
     /// `state.tau`), unless the controller is active at t = 0. Until the controller starts, simulations keep
     /// applying the holding thrust of their starting state. `environment`: pl.Force objects (body frame).
-    #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None))]
+    /// `lay`: a pl.SLay or pl.JLay holding the pipe at the tensioner or tower (then `angle` stays zero).
+    #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None, lay=None))]
+    #[allow(clippy::too_many_arguments)]
     fn attach_vessel(
         &mut self,
         end: &str,
@@ -165,7 +167,9 @@ impl Model {
         angle: Option<&Bound<'_, PyAny>>,
         controller: Option<&PyPid>,
         environment: Option<&Bound<'_, PyAny>>,
+        lay: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
+        let lay = lay.map(crate::lay::equipment).transpose()?;
         let mut forces = Vec::new();
         if let Some(items) = environment {
             for item in items.try_iter()? {
@@ -193,7 +197,7 @@ impl Model {
                 angle,
                 controller.map(|c| c.0.clone()),
                 forces,
-                None,
+                lay,
             )
             .map_err(to_py)
     }

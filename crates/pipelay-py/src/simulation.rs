@@ -10,6 +10,7 @@ use pipelay::model::Model;
 use pipelay::rod::dynamic_element::GaussPoint;
 use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator, VesselMotion};
 use pipelay::solver::history::History;
+use pipelay::solver::lay_summary::LAY_FIELDS;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -560,6 +561,7 @@ impl Results {
             PyArray1::from_slice(py, &h.vessel_potential),
         )?;
         dict.set_item("seabed", PyArray1::from_slice(py, &h.seabed))?;
+        dict.set_item("rollers", PyArray1::from_slice(py, &h.rollers))?;
         dict.set_item("total", PyArray1::from_slice(py, &total))?;
         Ok(dict)
     }
@@ -579,6 +581,31 @@ impl Results {
     fn iterations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         let its: Vec<f64> = self.history.iterations.iter().map(|&i| i as f64).collect();
         PyArray1::from_slice(py, &its)
+    }
+    /// Normal force of each roller (T, k) (N); None without rollers.
+    #[getter]
+    fn roller_reactions<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let h = &self.history;
+        if h.rollers_count == 0 {
+            return Ok(None);
+        }
+        let array = PyArray1::from_slice(py, &h.roller_reactions);
+        Ok(Some(array.reshape([h.len(), h.rollers_count])?.into_any()))
+    }
+    /// The lay summary over time: a dict of (T,) arrays with the keys of State.lay_summary()
+    /// (liftoff_roller as a number, NaN: none); None without a vessel.
+    fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let h = &self.history;
+        if h.lay.is_empty() {
+            return Ok(None);
+        }
+        let dict = PyDict::new(py);
+        let width = LAY_FIELDS.len();
+        for (k, name) in LAY_FIELDS.iter().enumerate() {
+            let series: Vec<f64> = h.lay.iter().skip(k).step_by(width).copied().collect();
+            dict.set_item(name, PyArray1::from_slice(py, &series))?;
+        }
+        Ok(Some(dict))
     }
     /// Vessel pose η (T, 6) in e (m, rad): None without a vessel.
     #[getter]
@@ -650,6 +677,21 @@ impl Results {
         h.seabed = optional("seabed_energy")?;
         if h.seabed.is_empty() {
             h.seabed = vec![0.0; h.time.len()];
+        }
+        h.rollers = optional("roller_energy")?;
+        if h.rollers.is_empty() {
+            h.rollers = vec![0.0; h.time.len()];
+        }
+        h.roller_reactions = optional("roller_reactions")?;
+        h.rollers_count = h.roller_reactions.len() / h.time.len().max(1);
+        let lay: Vec<Vec<f64>> = LAY_FIELDS
+            .iter()
+            .map(|name| optional(name))
+            .collect::<PyResult<_>>()?;
+        if lay.iter().all(|series| series.len() == h.time.len()) {
+            h.lay = (0..h.time.len())
+                .flat_map(|i| lay.iter().map(move |series| series[i]))
+                .collect();
         }
         h.touchdown = optional("touchdown")?;
         h.touchdown_arc_length = optional("touchdown_arc_length")?;

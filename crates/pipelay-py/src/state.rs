@@ -7,6 +7,7 @@ use pipelay::model::Model;
 use pipelay::solver::assembly::Configuration;
 use pipelay::solver::contact::Touchdown;
 use pipelay::solver::dynamics::{DynamicState, Energy, Integrator};
+use pipelay::solver::lay_summary::{lay_summary, LaySummary, LAY_FIELDS};
 use pipelay::solver::response::Response;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -33,6 +34,9 @@ pub struct State {
     dynamic: Option<DynamicState>,
     /// With a seabed: its force on each node, the touchdown and the friction slips.
     seabed: Option<SeabedState>,
+    /// What lay engineers read: strain per element, roller forces, the lay summary; and the section and sea
+    /// that design checks need.
+    lay: LayState,
     /// Time (s): 0 for static states.
     #[pyo3(get)]
     time: f64,
@@ -47,6 +51,42 @@ pub struct State {
     steps: usize,
 }
 
+/// The lay quantities of a state.
+struct LayState {
+    strain: Vec<f64>,
+    roller_forces: Option<Vec<f64>>,
+    summary: Option<LaySummary>,
+    section: pipelay::rod::section::Section,
+    /// Water depth and density (m, kg/m³), with a sea.
+    water: Option<(f64, f64)>,
+}
+
+impl LayState {
+    fn new(
+        model: &Model,
+        configuration: &Configuration,
+        section_forces: &[Vector6<f64>],
+        rollers: Option<(&[f64], &[usize])>,
+        touchdown: Option<&Touchdown>,
+    ) -> Self {
+        let section = model.rod.section.clone();
+        LayState {
+            strain: section_forces.iter().map(|f| section.strain(f)).collect(),
+            roller_forces: rollers.map(|(f, _)| f.to_vec()),
+            summary: lay_summary(
+                model,
+                &configuration.positions,
+                &configuration.rotations,
+                section_forces,
+                rollers,
+                touchdown,
+            ),
+            section,
+            water: model.sea.as_ref().map(|sea| (sea.depth, sea.density)),
+        }
+    }
+}
+
 impl State {
     /// A static state (at rest).
     pub fn from_static(
@@ -58,7 +98,18 @@ impl State {
         steps: usize,
     ) -> Self {
         let count = model.rod.node_count();
+        let lay = LayState::new(
+            model,
+            &configuration,
+            &response.section_forces,
+            response
+                .rollers
+                .as_ref()
+                .map(|r| (&r.forces[..], &r.elements[..])),
+            response.seabed.as_ref().map(|s| &s.touchdown),
+        );
         State {
+            lay,
             configuration,
             velocities: vec![Vector3::zeros(); count],
             angular_velocities: vec![Vector3::zeros(); count],
@@ -71,7 +122,7 @@ impl State {
                 vessel_kinetic: 0.0,
                 vessel_potential: response.vessel.map_or(0.0, |v| v.restoring_energy),
                 seabed: response.seabed.as_ref().map_or(0.0, |s| s.energy),
-                rollers: response.rollers.as_ref().map_or(0.0, |r| r.1),
+                rollers: response.rollers.as_ref().map_or(0.0, |r| r.energy),
             },
             seabed: response.seabed.as_ref().map(|s| SeabedState {
                 forces: s.forces.clone(),
@@ -92,11 +143,27 @@ impl State {
     /// The current state of a simulation.
     pub fn from_integrator(integrator: &Integrator, iterations: usize) -> Self {
         let state = integrator.state();
+        let section_forces = integrator.section_forces();
+        let rollers = integrator
+            .model()
+            .vessel
+            .as_ref()
+            .and(integrator.roller_forces());
+        let mut lay = LayState::new(
+            integrator.model(),
+            &state.configuration,
+            &section_forces,
+            None,
+            None,
+        );
+        lay.roller_forces = rollers.map(|f| f.to_vec());
+        lay.summary = integrator.lay_summary();
         State {
+            lay,
             configuration: state.configuration.clone(),
             velocities: state.velocities.clone(),
             angular_velocities: state.angular_velocities(),
-            section_forces: integrator.section_forces(),
+            section_forces,
             reactions: integrator.reactions().to_vec(),
             energy: integrator.energy(),
             vessel: integrator.vessel_values(),
@@ -163,6 +230,7 @@ fn energy_dict<'py>(py: Python<'py>, energy: &Energy) -> PyResult<Bound<'py, PyD
     dict.set_item("vessel_kinetic", energy.vessel_kinetic)?;
     dict.set_item("vessel_potential", energy.vessel_potential)?;
     dict.set_item("seabed", energy.seabed)?;
+    dict.set_item("rollers", energy.rollers)?;
     dict.set_item("total", energy.total())?;
     Ok(dict)
 }
@@ -253,8 +321,49 @@ impl State {
     fn laid_length(&self) -> Option<f64> {
         self.seabed.as_ref().map(|s| s.touchdown.laid_length)
     }
+    /// Largest longitudinal strain in each element (n,): axial plus bending at the outer fibre (−).
+    #[getter]
+    fn strain<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        to_numpy(py, &self.lay.strain)
+    }
+    /// Normal force of each roller (k,) (N, ≥ 0; 0: lifted off); None without rollers.
+    #[getter]
+    fn roller_reactions<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.lay.roller_forces.as_ref().map(|f| to_numpy(py, f))
+    }
+    /// The lay summary (dict; SI units, angles in rad): top_tension (N, at the hold point), departure_angle
+    /// (below the horizontal where the pipe leaves the equipment), liftoff_roller (index of the last roller in
+    /// contact, or None), liftoff_arc_length, layback (horizontal, hold point to touchdown; NaN without one),
+    /// touchdown_arc_length, overbend_strain (largest, hold point to lift-off), sagbend_strain and
+    /// sagbend_moment (largest, lift-off to touchdown). None without a vessel.
+    fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(summary) = &self.lay.summary else {
+            return Ok(None);
+        };
+        let dict = PyDict::new(py);
+        for (name, value) in LAY_FIELDS.iter().zip(summary.values()) {
+            dict.set_item(name, value)?;
+        }
+        dict.set_item("liftoff_roller", summary.liftoff_roller)?;
+        Ok(Some(dict))
+    }
+    /// The model's cross-section.
+    #[getter]
+    fn section(&self) -> crate::structure::Section {
+        crate::structure::Section(self.lay.section.clone())
+    }
+    /// The sea's depth (m), None without a sea.
+    #[getter]
+    fn water_depth(&self) -> Option<f64> {
+        self.lay.water.map(|w| w.0)
+    }
+    /// The sea's density (kg/m³), None without a sea.
+    #[getter]
+    fn water_density(&self) -> Option<f64> {
+        self.lay.water.map(|w| w.1)
+    }
     /// Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, seabed,
-    /// total.
+    /// rollers, total.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         energy_dict(py, &self.energy)
     }

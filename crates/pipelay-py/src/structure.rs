@@ -128,6 +128,26 @@ impl Section {
         (self.0.inertia.x, self.0.inertia.y, self.0.inertia.z)
     }
     /// Outer diameter (m).
+    /// Wall thickness (m) of a section built by Section.pipe; None otherwise.
+    #[getter]
+    fn wall_thickness(&self) -> Option<f64> {
+        self.0.wall.map(|w| w.thickness)
+    }
+    /// Young's modulus (Pa) of a section built by Section.pipe; None otherwise.
+    #[getter]
+    fn youngs_modulus(&self) -> Option<f64> {
+        self.0.wall.map(|w| w.youngs_modulus)
+    }
+    /// Poisson's ratio of a section built by Section.pipe; None otherwise.
+    #[getter]
+    fn poisson_ratio(&self) -> Option<f64> {
+        self.0.wall.map(|w| w.poisson_ratio)
+    }
+    /// Density of the contents (kg/m³) of a section built by Section.pipe; None otherwise.
+    #[getter]
+    fn contents_density(&self) -> Option<f64> {
+        self.0.wall.map(|w| w.contents_density)
+    }
     #[getter]
     fn outer_diameter(&self) -> f64 {
         self.0.outer_diameter

@@ -113,7 +113,7 @@ fn elastica_invariant_error(x: f64, n: usize) -> (f64, f64) {
     let model = s_lay(x, n, None);
     let solution = solve(&model, &StaticOptions::default()).expect("statics");
     let response = Response::new(&model, &solution.configuration);
-    let (forces, _) = response.rollers.clone().expect("rollers");
+    let forces = response.rollers.clone().expect("rollers").forces;
     assert!(
         forces.iter().filter(|f| **f > 0.0).count() >= 5,
         "{forces:?}"
@@ -224,7 +224,7 @@ fn s_lay_on_a_seabed_converges() {
     let solution = solution.expect("statics");
     let response = Response::new(&model, &solution.configuration);
     let touchdown = response.seabed.as_ref().expect("seabed").touchdown;
-    let (forces, _) = response.rollers.clone().expect("rollers");
+    let forces = response.rollers.clone().expect("rollers").forces;
     println!("touchdown {touchdown:?}; rollers {forces:?}");
     assert!(forces.iter().any(|f| *f > 0.0));
     let laid = touchdown.laid_length;

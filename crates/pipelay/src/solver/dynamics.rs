@@ -386,6 +386,8 @@ impl Integrator {
             energy: self.energy(),
             vessel: self.vessel_values(),
             touchdown: self.touchdown(),
+            roller_forces: self.roller_forces(),
+            lay: self.lay_summary(),
             supplied_work: self.supplied_work,
             dissipated: self.dissipated,
             iterations,
@@ -454,6 +456,22 @@ impl Integrator {
     /// The seabed's force on each node over the last step (N, in e); `None` without a seabed.
     pub fn seabed_forces(&self) -> Option<&[Vector3<f64>]> {
         self.contact.as_ref().map(|contact| &contact.forces[..])
+    }
+
+    /// The lay summary of the current state; `None` without a vessel.
+    pub fn lay_summary(&self) -> Option<crate::solver::lay_summary::LaySummary> {
+        let state = &self.state;
+        crate::solver::lay_summary::lay_summary(
+            &self.model,
+            &state.configuration.positions,
+            &state.configuration.rotations,
+            &self.section_forces(),
+            self.assembler
+                .rollers
+                .as_ref()
+                .map(|r| (&r.forces[..], &r.nearest_elements[..])),
+            self.touchdown().as_ref(),
+        )
     }
 
     /// Each roller's normal force in the current state (N); `None` without rollers.

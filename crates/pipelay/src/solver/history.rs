@@ -4,6 +4,7 @@
 //! knows nothing of how states are computed.
 use crate::solver::contact::Touchdown;
 use crate::solver::energy::Energy;
+use crate::solver::lay_summary::LaySummary;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 
 /// What one record holds, borrowed from the state it describes.
@@ -23,6 +24,10 @@ pub struct Snapshot<'a> {
     pub vessel: Option<[Vector6<f64>; 4]>,
     /// With a seabed: where the pipe leaves it.
     pub touchdown: Option<Touchdown>,
+    /// With rollers: each roller's normal force (N).
+    pub roller_forces: Option<&'a [f64]>,
+    /// With a vessel: the lay summary.
+    pub lay: Option<LaySummary>,
     /// Work supplied and energy dissipated since the integrator started (J).
     pub supplied_work: f64,
     pub dissipated: f64,
@@ -56,6 +61,15 @@ pub struct History {
     pub vessel_potential: Vec<f64>,
     /// Energy stored in the seabed contact (J).
     pub seabed: Vec<f64>,
+    /// Energy stored in the roller contacts (J).
+    pub rollers: Vec<f64>,
+    /// With rollers: each roller's normal force, (T, k) (N); empty without.
+    pub roller_reactions: Vec<f64>,
+    /// With a vessel: the lay summary of each record, (T, 9) in the order of
+    /// [`crate::solver::lay_summary::LAY_FIELDS`]; empty without.
+    pub lay: Vec<f64>,
+    /// Number of rollers k.
+    pub rollers_count: usize,
     /// With a seabed: touchdown positions (T, 3), NaN where the pipe does not touch, its arc length from end A
     /// along the reference (T,) and the laid length (T,) (m); empty without a seabed.
     pub touchdown: Vec<f64>,
@@ -103,8 +117,19 @@ impl History {
         let n = self.nodes;
         let vessel = !self.eta.is_empty();
         let seabed = !self.touchdown_arc_length.is_empty();
-        let fields: [(&str, usize, usize); 23] = [
+        let fields: [(&str, usize, usize); 26] = [
             ("seabed_energy", self.seabed.len(), 1),
+            ("roller_energy", self.rollers.len(), 1),
+            (
+                "roller_reactions",
+                self.roller_reactions.len(),
+                self.rollers_count,
+            ),
+            (
+                "lay summary",
+                self.lay.len(),
+                if self.lay.is_empty() { 0 } else { 9 },
+            ),
             (
                 "touchdown",
                 self.touchdown.len(),
@@ -160,6 +185,7 @@ impl History {
             + self.vessel_kinetic[i]
             + self.vessel_potential[i]
             + self.seabed[i]
+            + self.rollers[i]
     }
 
     /// Number of records T.
@@ -201,6 +227,14 @@ impl History {
         self.vessel_kinetic.push(energy.vessel_kinetic);
         self.vessel_potential.push(energy.vessel_potential);
         self.seabed.push(energy.seabed);
+        self.rollers.push(energy.rollers);
+        if let Some(forces) = snapshot.roller_forces {
+            self.rollers_count = forces.len();
+            self.roller_reactions.extend_from_slice(forces);
+        }
+        if let Some(lay) = snapshot.lay {
+            self.lay.extend_from_slice(&lay.values());
+        }
         if let Some(touchdown) = &snapshot.touchdown {
             let (arc, position) = touchdown
                 .point

@@ -7,6 +7,7 @@ pub mod dynamics;
 pub mod energy;
 pub mod history;
 pub mod laid_catenary;
+pub mod lay_summary;
 pub mod linsolve;
 pub mod response;
 pub mod rollers;

@@ -22,8 +22,19 @@ pub struct Response {
     pub vessel: Option<VesselResponse>,
     /// With a seabed: its contact.
     pub seabed: Option<SeabedResponse>,
-    /// With rollers: each roller's normal force (N) and their contact energy (J).
-    pub rollers: Option<(Vec<f64>, f64)>,
+    /// With rollers: their contact.
+    pub rollers: Option<RollerResponse>,
+}
+
+/// Roller contact of a configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RollerResponse {
+    /// Each roller's normal force (N, ≥ 0).
+    pub forces: Vec<f64>,
+    /// The element nearest each roller.
+    pub elements: Vec<usize>,
+    /// Energy stored in the contacts (J).
+    pub energy: f64,
 }
 
 /// Seabed contact of a configuration.
@@ -120,10 +131,11 @@ impl Response {
             touchdown: contact.touchdown(&config.positions),
             slips: contact.slip_end.clone(),
         });
-        let rollers = assembler
-            .rollers
-            .as_ref()
-            .map(|r| (r.forces.clone(), r.energy_end));
+        let rollers = assembler.rollers.as_ref().map(|r| RollerResponse {
+            forces: r.forces.clone(),
+            elements: r.nearest_elements.clone(),
+            energy: r.energy_end,
+        });
         Response {
             rollers,
             seabed,

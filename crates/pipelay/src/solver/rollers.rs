@@ -58,6 +58,8 @@ pub struct RollerContact {
     elements: std::ops::Range<usize>,
     /// Normal force of each roller at the evaluated (end) state (N, ≥ 0).
     pub forces: Vec<f64>,
+    /// The element nearest each roller there.
+    pub nearest_elements: Vec<usize>,
     /// Contact energy at the evaluated (end) state (J).
     pub energy_end: f64,
 }
@@ -151,6 +153,7 @@ impl RollerContact {
         };
         Some(RollerContact {
             forces: vec![0.0; rollers.len()],
+            nearest_elements: vec![0; rollers.len()],
             rollers,
             stiffness: lay.roller_stiffness,
             end_node,
@@ -281,6 +284,7 @@ impl RollerContact {
             let (forces, value, normal_force) =
                 self.roller_residual(k, rule, nodes, positions, &start, &base, &update);
             self.forces[k] = normal_force;
+            self.nearest_elements[k] = elements[0];
             self.energy_end += value;
             if normal_force == 0.0 && forces[..variables].iter().all(|f| *f == 0.0) {
                 continue;

@@ -209,8 +209,10 @@ fn newton(
             None => (options.max_rotation_increment / largest_rotation).min(1.0),
         };
         // With seabed contact (non-smooth friction, contact switching), backtrack along the correction while
-        // the residual grows.
-        let start = (assembler.contact.is_some() && !predictor).then(|| config.clone());
+        // the residual grows. Not with rollers: a roller's contact switching raises the residual for an
+        // iteration on the way to convergence, and backtracking then stalls.
+        let start = (assembler.contact.is_some() && assembler.rollers.is_none() && !predictor)
+            .then(|| config.clone());
         for _ in 0..LINE_SEARCH_HALVINGS {
             apply_correction(model, assembler, config, &delta, factor);
             let Some(start) = &start else { break };
@@ -356,32 +358,46 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
             Vector3::new(v.x, v.y, -v.z)
         }
     };
-    // Over a vessel's rollers the guess follows the roller path from the hold point; the catenary hangs from
-    // the path's last point with the rest of the pipe.
-    let path = roller_path(model, b);
-    let path_length = path.last().map_or(0.0, |p| p.0);
-    let length = model.rod.length() - path_length;
-    if length <= 0.0 {
-        return None;
-    }
-    let hang = path.last().map_or(b.position, |p| p.1);
-    let (ea, (a, b)) = (
-        model.rod.section.translational_stiffness.x,
-        (mirror(a.position), mirror(hang)),
-    );
-    // A heavy line whose end A lies on the seabed rests on it up to a touchdown point.
-    let laid = model
-        .seabed()
-        .filter(|seabed| {
-            weight > 0.0 && seabed.bathymetry.penetration(&a).value > -1e-3 * (b - a).norm()
-        })
-        .and_then(|seabed| LaidCatenary::solve(a, b, length, weight, ea, seabed.friction[0]));
-    let shape: Box<CurveShape> = match laid {
-        Some(laid) => Box::new(move |s| (laid.position(s), laid.tangent(s))),
-        None => {
-            let catenary = Catenary::solve(a, b, length, weight.abs(), ea).ok()?;
-            Box::new(move |s| (catenary.position(s), catenary.tangent(s)))
+    let ea = model.rod.section.translational_stiffness.x;
+    let a = mirror(a.position);
+    // The line hanging from A to `top` (mirrored) with `length` of pipe: a heavy line whose end A lies on the
+    // seabed rests on it up to a touchdown point.
+    let hanging = |top: Vector3<f64>, length: f64| -> Option<Box<CurveShape>> {
+        let laid = model
+            .seabed()
+            .filter(|seabed| {
+                weight > 0.0 && seabed.bathymetry.penetration(&a).value > -1e-3 * (top - a).norm()
+            })
+            .and_then(|seabed| LaidCatenary::solve(a, top, length, weight, ea, seabed.friction[0]));
+        match laid {
+            Some(laid) => Some(Box::new(move |s| (laid.position(s), laid.tangent(s)))),
+            None => {
+                let catenary = Catenary::solve(a, top, length, weight.abs(), ea).ok()?;
+                Some(Box::new(move |s| {
+                    (catenary.position(s), catenary.tangent(s))
+                }))
+            }
         }
+    };
+    // Over a vessel's rollers the guess follows the roller path from the hold point and leaves it where the
+    // hanging line from A meets the path most nearly tangentially.
+    let mut path = roller_path(model, b);
+    let (length, shape) = if path.len() > 1 {
+        let total = model.rod.length();
+        let best = (1..path.len())
+            .filter_map(|k| {
+                let length = total - path[k].0;
+                let shape = hanging(mirror(path[k].1), length)?;
+                let along = mirror(path[k - 1].1 - path[k].1).normalize();
+                let mismatch = (shape(length).1 - along).norm();
+                Some((mismatch, k, length, shape))
+            })
+            .min_by(|x, y| x.0.total_cmp(&y.0))?;
+        path.truncate(best.1 + 1);
+        (best.2, best.3)
+    } else {
+        let length = model.rod.length();
+        (length, hanging(mirror(b.position), length)?)
     };
     let mut config = Configuration::reference(model);
     let mut arc = 0.0;
@@ -389,7 +405,7 @@ fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configurat
         if node > 0 {
             arc += model.rod.elements[node - 1].length;
         }
-        let (position, tangent) = if arc > length && !path.is_empty() {
+        let (position, tangent) = if arc > length && path.len() > 1 {
             along_path(&path, model.rod.length() - arc)
         } else {
             shape(arc.min(length))
