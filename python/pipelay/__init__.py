@@ -5,6 +5,7 @@ direction and e3 pointing down (gravity is +g·e3); the sea surface is the plane
 Rod end "A" is node 0 (seabed end), "B" is node n (top end).
 """
 
+from pipelay import checks, lay
 from pipelay._core import (
     PID,
     Bathymetry,
@@ -26,7 +27,7 @@ from pipelay._core import (
     Touchdown,
     Vessel,
 )
-from pipelay import checks
+from pipelay.lay import find_lay_position
 from pipelay.results import load, resume
 
 
@@ -49,16 +50,18 @@ __all__ = [
     "Model",
     "Results",
     "Rod",
+    "SLay",
     "Sea",
     "Seabed",
     "Section",
-    "SLay",
     "Simulation",
     "State",
     "Stinger",
     "Touchdown",
     "Vessel",
     "checks",
+    "find_lay_position",
+    "lay",
     "load",
     "resume",
 ]

@@ -19,14 +19,17 @@ __all__ = [
     "Current",
     "Force",
     "InputError",
+    "JLay",
     "Model",
     "Results",
     "Rod",
+    "SLay",
     "Sea",
     "Seabed",
     "Section",
     "Simulation",
     "State",
+    "Stinger",
     "Touchdown",
     "Vessel",
 ]
@@ -70,6 +73,18 @@ class Section:
     @property
     def EA(self) -> float:
         """Axial stiffness (N)."""
+    @property
+    def wall_thickness(self) -> float | None:
+        """Wall thickness (m) of a Section.pipe; None otherwise."""
+    @property
+    def youngs_modulus(self) -> float | None:
+        """Young's modulus (Pa) of a Section.pipe; None otherwise."""
+    @property
+    def poisson_ratio(self) -> float | None:
+        """Poisson's ratio of a Section.pipe; None otherwise."""
+    @property
+    def contents_density(self) -> float | None:
+        """Contents density (kg/m³) of a Section.pipe; None otherwise."""
     @property
     def GA(self) -> tuple[float, float]:
         """Shear stiffnesses (N)."""
@@ -279,10 +294,88 @@ class State:
     @property
     def laid_length(self) -> float | None:
         """Reference length of pipe on the seabed (m); None without a seabed."""
+    @property
+    def strain(self) -> _FloatArray:
+        """Largest longitudinal strain per element (n,): axial plus bending at the outer fibre."""
+    @property
+    def roller_reactions(self) -> _FloatArray | None:
+        """Normal force of each roller (k,) (N, ≥ 0; 0: lifted off); None without rollers."""
+    def lay_summary(self) -> dict[str, Any] | None:
+        """Top tension, departure angle, lift-off roller, layback, touchdown, overbend and sagbend strain and
+        sagbend moment (SI units, rad); None without a vessel."""
+    @property
+    def roller_positions(self) -> _FloatArray | None:
+        """The rollers' top points (k, 3) in e (m) in this state; None without rollers."""
+    @property
+    def reference_arc_length(self) -> _FloatArray:
+        """Each node's arc length from end A along the stress-free reference (n + 1,) (m)."""
+    @property
+    def section(self) -> Section:
+        """The model's cross-section."""
+    @property
+    def water_depth(self) -> float | None:
+        """The sea's depth (m); None without a sea."""
+    @property
+    def water_density(self) -> float | None:
+        """The sea's density (kg/m³); None without a sea."""
     def energy(self) -> dict[str, float]:
-        """Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, total."""
+        """Energy parts (J): pipe_kinetic, pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, seabed,
+        rollers, total."""
 
 @final
+@final
+class Stinger:
+    """Rollers over a circular arc (body frame, m): `rollers` rollers on an arc of `radius` and `length` from
+    `origin`, starting at the slope `angle` (rad below horizontal), running aft and bending down."""
+
+    def __new__(
+        cls,
+        radius: float,
+        length: float,
+        rollers: int,
+        *,
+        origin: _ArrayLike | None = None,
+        angle: float = 0.0,
+        roller_radius: float = ...,
+    ) -> Stinger: ...
+    @staticmethod
+    def from_rollers(
+        positions: _ArrayLike, axes: _ArrayLike | None = None, roller_radius: float = ...
+    ) -> Stinger:
+        """Rollers at given top points (k, 3) with axes (k, 3) (default b2), body frame (m)."""
+    @property
+    def positions(self) -> _FloatArray:
+        """The rollers' top points (k, 3), body frame (m)."""
+    def __len__(self) -> int: ...
+
+@final
+class SLay:
+    """S-lay: the pipe held by the tensioner (body frame, m) on a horizontal firing line, over a stinger."""
+
+    def __new__(
+        cls,
+        tensioner: _ArrayLike,
+        stinger: Stinger | None = None,
+        friction: float = 0.0,
+        *,
+        roller_stiffness: float = ...,
+    ) -> SLay: ...
+    @property
+    def tensioner(self) -> tuple[float, float, float]:
+        """The tensioner's position (body frame, m)."""
+    @property
+    def stinger(self) -> Stinger:
+        """The rollers."""
+
+@final
+class JLay:
+    """J-lay: the pipe held at the tower exit (body frame, m), the tower leaning `angle` (rad) from vertical."""
+
+    def __new__(cls, position: _ArrayLike, angle: float = 0.0) -> JLay: ...
+    @property
+    def position(self) -> tuple[float, float, float]:
+        """The tower exit's position (body frame, m)."""
+
 @final
 class Vessel:
     """A DP vessel: M = M_RB + M_A, damping D and restoring G (6×6, about CO)."""
@@ -415,6 +508,11 @@ class Results:
     def laid_length(self) -> _FloatArray | None:
         """Reference length of pipe on the seabed (T,) (m); None without a seabed."""
     @property
+    def roller_reactions(self) -> _FloatArray | None:
+        """Normal force of each roller (T, k) (N); None without rollers."""
+    def lay_summary(self) -> dict[str, _FloatArray] | None:
+        """The lay summary over time: (T,) arrays with State.lay_summary()'s keys; None without a vessel."""
+    @property
     def energy(self) -> dict[str, _FloatArray]:
         """Energy parts (T,) each (J), keys as State.energy()."""
     @property
@@ -477,8 +575,10 @@ class Model:
         angle: _ArrayLike | None = None,
         controller: PID | None = None,
         environment: Sequence[Force] | None = None,
+        lay: SLay | JLay | None = None,
     ) -> None:
-        """Attach a vessel at `end`: starting pose eta (6,), clamp angle β (zyx, rad), controller, forces."""
+        """Attach a vessel at `end`: starting pose eta (6,), clamp angle β (zyx, rad), controller, forces; or
+        held by lay equipment (`lay`)."""
     def simulation(self, state: State | None = None, dt: float = 0.05) -> Simulation:
         """A time simulation from `state` (default: self.static()) with time step `dt` (s)."""
     def point_load(

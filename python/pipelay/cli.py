@@ -1,7 +1,7 @@
 """The ``pipelay`` command line.
 
     pipelay run SCENARIO -o RESULTS.nc [--plots DIR] [--checkpoint FILE] [--resume FILE] [--no-progress]
-    pipelay static SCENARIO [--plots DIR]
+    pipelay static SCENARIO [--plots DIR] [--target QUANTITY=VALUE [--bracket LOW,HIGH]]
     pipelay check SCENARIO
     pipelay plot RESULTS.nc --plots DIR
 
@@ -13,16 +13,19 @@ still written), 2 bad input (the message names the scenario key; no traceback), 
 from __future__ import annotations
 
 import argparse
+import copy
 import sys
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 import pipelay as pl
 from pipelay import plots
+from pipelay.lay import TARGETS, find_lay_position
 from pipelay.results import checkpoint, load, resume, to_netcdf
-from pipelay.scenario import Scenario, load_scenario
+from pipelay.scenario import Scenario, load_scenario, parse_scenario
 
 INTERRUPTED = 130
 
@@ -44,6 +47,16 @@ def _parser() -> argparse.ArgumentParser:
     static = commands.add_parser("static", help="static equilibrium: prints tensions, reactions, vessel pose")
     static.add_argument("scenario", type=Path, help="scenario file (TOML)")
     static.add_argument("--plots", type=Path, help="directory for the tension and bending figure")
+    static.add_argument(
+        "--target",
+        help="move the vessel along e1 until a lay quantity reaches a value, e.g. top_tension=8e5 "
+        f"(quantities: {', '.join(TARGETS)})",
+    )
+    static.add_argument(
+        "--bracket",
+        help="LOW,HIGH: the vessel positions (η's x, m) to search between; default: searched from vessel.eta "
+        "in steps that double from 1 m",
+    )
     check = commands.add_parser("check", help="validate a scenario file without solving")
     check.add_argument("scenario", type=Path, help="scenario file (TOML)")
     plot = commands.add_parser("plot", help="figures from a results file")
@@ -88,12 +101,37 @@ def _summary(state: pl.State) -> str:
         )
         lines.append(f"touchdown               {where}")
         lines.append(f"laid length             {state.laid_length:12.2f} m")
+    summary = state.lay_summary()
+    if summary is not None:
+        lines.extend(_lay_lines(summary, state.roller_reactions))
     if state.eta is not None:
         lines.append(f"vessel η                {np.array2string(state.eta, precision=3)}")
         lines.append(
             f"thrust τ (surge, sway, yaw) {np.array2string(state.tau[[0, 1, 5]] / 1e3, precision=1)} kN, kN m"
         )
     return "\n".join(lines)
+
+
+def _lay_lines(summary: dict[str, Any], rollers: np.ndarray | None) -> list[str]:
+    """The lay summary of a static state, one quantity per line."""
+    liftoff = summary["liftoff_roller"]
+    lines = [
+        f"lay: top tension        {summary['top_tension'] / 1e3:12.1f} kN (at the tensioner or tower)",
+        f"lay: departure angle    {np.degrees(summary['departure_angle']):12.2f}° below horizontal",
+        "lay: lift-off roller    "
+        + (
+            f"{liftoff:12d} of {len(rollers)}"
+            if liftoff is not None and rollers is not None
+            else "        none"
+        ),
+        f"lay: layback            {summary['layback']:12.2f} m",
+        f"lay: overbend strain    {100 * summary['overbend_strain']:12.4f} %",
+        f"lay: sagbend strain     {100 * summary['sagbend_strain']:12.4f} %",
+        f"lay: sagbend moment     {summary['sagbend_moment'] / 1e3:12.1f} kN m",
+    ]
+    if rollers is not None:
+        lines.append(f"lay: roller reactions   {np.array2string(rollers / 1e3, precision=1)} kN")
+    return lines
 
 
 def _run_summary(results: pl.Results) -> str:
@@ -104,6 +142,17 @@ def _run_summary(results: pl.Results) -> str:
         f"top tension |F_B|       {top.min() / 1e3:10.1f} … {top.max() / 1e3:.1f} kN",
         f"largest bending moment  {moment.max() / 1e3:10.1f} kN m (t = {results.time[np.argmax(moment.max(axis=1))]:g} s)",
     ]
+    summary = results.lay_summary()
+    if summary is not None:
+        for key, label, scale, unit in (
+            ("top_tension", "lay: top tension       ", 1e-3, "kN"),
+            ("departure_angle", "lay: departure angle   ", 180 / np.pi, "°"),
+            ("overbend_strain", "lay: overbend strain   ", 100.0, "%"),
+            ("sagbend_strain", "lay: sagbend strain    ", 100.0, "%"),
+        ):
+            series = summary[key] * scale
+            if np.any(np.isfinite(series)):
+                lines.append(f"{label} {np.nanmin(series):10.4g} … {np.nanmax(series):.4g} {unit}")
     arc = results.touchdown_arc_length
     if arc is not None:
         if np.any(np.isfinite(arc)):
@@ -158,15 +207,64 @@ def _run(args: argparse.Namespace) -> int:
     return status
 
 
+def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
+    """`--target`: the static state with the vessel moved along e1 until the lay quantity hits the value."""
+    quantity, _, text = str(args.target).partition("=")
+    try:
+        value = float(text)
+    except ValueError:
+        raise pl.InputError(
+            f"--target: {args.target!r} must be QUANTITY=VALUE, e.g. top_tension=8e5"
+        ) from None
+    vessel = scenario.source.get("vessel")
+    if not isinstance(vessel, dict):
+        raise pl.InputError("--target: needs a [vessel] to move")
+    x0 = float(vessel["eta"][0])
+    bracket = None
+    if args.bracket:
+        try:
+            low, high = (float(v) for v in str(args.bracket).split(","))
+        except ValueError:
+            raise pl.InputError(f"--bracket: {args.bracket!r} must be LOW,HIGH (m)") from None
+        bracket = (low, high)
+
+    def build(x: float) -> pl.Model:
+        data = copy.deepcopy(scenario.source)
+        data["vessel"]["eta"][0] = x
+        controller = data.get("controller")
+        if isinstance(controller, dict) and "reference" in controller:
+            controller["reference"][0] += x - x0
+        return parse_scenario(data, str(args.scenario)).model
+
+    found = find_lay_position(build, quantity, value, bracket, start=x0)
+    print(
+        f"lay position: vessel x = {found.x:.3f} m gives {quantity} = {found.value:.6g} "
+        f"({found.solves} static solves)"
+    )
+    if abs(found.value - value) > 1e-3 * max(abs(value), 1e-12):
+        print(
+            f"lay position: {quantity} jumps across {value:.6g} there (the lift-off moves to another roller, "
+            "say): the closest a static state comes"
+        )
+    return found.state
+
+
 def _static(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
-    state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
+    if args.target:
+        state = _target(args, scenario)
+    else:
+        state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
     print(f"static equilibrium: {state.iterations} Newton iterations in {state.steps} load step(s)")
     print(_summary(state))
     if args.plots:
         path = Path(args.plots) / "tension_bending.png"
         plots.tension_and_bending(state, path=path)
         print(f"figure: {path}")
+        if state.lay_summary() is not None:
+            path = Path(args.plots) / "lay_configuration.png"
+            plots.lay_configuration(state, path=path)
+            print(f"figure: {path}")
     return 0
 
 

@@ -34,6 +34,8 @@ from pipelay._core import Results, State
 __all__ = [
     "all_figures",
     "energy",
+    "lay_configuration",
+    "lay_summary",
     "shape",
     "tension_and_bending",
     "top_tension",
@@ -357,6 +359,106 @@ def touchdown_path(results: Results, path: _PathLike | None = None) -> Figure:
     return _finish(figure, axes, path)
 
 
+def lay_configuration(state: State, path: _PathLike | None = None, **check: Any) -> Figure:
+    """A lay configuration: the pipe on the stinger's rollers and down to the seabed (side view, whole and near
+    the vessel), and the strain and DNV-ST-F101 utilisations along the pipe.
+
+    Args:
+        state: a static or simulated state of a model held by a vessel.
+        path: where to save the figure, if anywhere.
+        check: arguments of ``pl.checks.dnv_st_f101`` (e.g. grade="X65"); the utilisation panel is left out
+            when the check cannot run (a section without a wall thickness).
+
+    Returns:
+        The figure: side view, detail at the vessel, strain, utilisation.
+    """
+    import pipelay as pl
+
+    summary = state.lay_summary()
+    if summary is None:
+        raise ValueError("lay_configuration needs a state of a model held by a vessel")
+    x, elevation = state.positions[:, 0], -state.positions[:, 2]
+    rollers = state.roller_positions
+    figure, axes = _figure(11.0, 8.0, 2, 2)
+    whole, detail, strain_axis, utilisation_axis = axes
+    for axis in (whole, detail):
+        axis.plot(x, elevation, color="k", linewidth=1.2, label="pipe")
+        axis.plot(x[-1], elevation[-1], marker="s", color="tab:blue", label="hold point")
+        if rollers is not None:
+            loaded = state.roller_reactions > 0
+            axis.plot(
+                *rollers[~loaded][:, [0, 2]].T * [[1], [-1]], "o", mfc="none", color="0.4", label="roller"
+            )
+            axis.plot(
+                *rollers[loaded][:, [0, 2]].T * [[1], [-1]], "o", color="tab:red", label="roller in contact"
+            )
+        if state.touchdown is not None:
+            axis.plot(
+                *state.touchdown.position[[0, 2]] * [1, -1], marker="v", color="tab:green", label="touchdown"
+            )
+        if state.water_depth is not None:
+            axis.axhline(state.water_depth, color="tab:blue", linewidth=0.8, linestyle="--")
+    whole.axhline(0.0, color="0.3", linewidth=0.8)
+    whole.set_title("Lay configuration (side view)")
+    whole.set_xlabel("x (m)")
+    whole.set_ylabel("elevation −z (m)")
+    whole.legend(fontsize=8, loc="best")
+    near = np.linalg.norm(state.positions - state.positions[-1], axis=1) < max(
+        60.0, 1.3 * (np.ptp(rollers[:, 0]) if rollers is not None else 0.0) + 40.0
+    )
+    detail.set_xlim(x[near].min() - 5.0, x[near].max() + 5.0)
+    detail.set_ylim(elevation[near].min() - 5.0, elevation[near].max() + 5.0)
+    detail.set_title(f"At the vessel: departure {np.degrees(summary['departure_angle']):.1f}°")
+    detail.set_xlabel("x (m)")
+    arc = state.reference_arc_length
+    middle = 0.5 * (arc[:-1] + arc[1:])
+    strain_axis.plot(middle, 100 * state.strain, color="k")
+    strain_axis.set_xlabel("arc length from end A (m)")
+    strain_axis.set_ylabel("largest strain (%)")
+    strain_axis.set_title("Strain (axial + bending at the outer fibre)")
+    try:
+        utilisation = pl.checks.dnv_st_f101(state, **check)
+    except (pl.InputError, ValueError) as error:
+        utilisation_axis.text(0.5, 0.5, f"no DNV check: {error}", ha="center", va="center", wrap=True)
+    else:
+        utilisation_axis.plot(middle, utilisation.load_controlled, label="load-controlled")
+        utilisation_axis.plot(middle, utilisation.displacement_controlled, label="displacement-controlled")
+        utilisation_axis.axhline(1.0, color="tab:red", linewidth=0.8)
+        utilisation_axis.legend(fontsize=8, loc="best")
+    utilisation_axis.set_xlabel("arc length from end A (m)")
+    utilisation_axis.set_ylabel("utilisation (1 = limit)")
+    utilisation_axis.set_title("DNV-ST-F101 utilisation")
+    return _finish(figure, axes, path)
+
+
+def lay_summary(results: Results, path: _PathLike | None = None) -> Figure:
+    """The lay summary over a run: top tension, departure angle, overbend and sagbend strain, layback.
+
+    Raises:
+        ValueError: the results have no vessel.
+    """
+    summary = results.lay_summary()
+    if summary is None:
+        raise ValueError("lay_summary needs results of a model held by a vessel")
+    t = results.time
+    figure, axes = _figure(11.0, 7.0, 2, 2, sharex=True)
+    tension, angle, strain, layback = axes
+    tension.plot(t, summary["top_tension"] / 1e3, color="k")
+    tension.set_ylabel("top tension (kN)")
+    angle.plot(t, np.degrees(summary["departure_angle"]), color="k")
+    angle.set_ylabel("departure angle (°)")
+    strain.plot(t, 100 * summary["overbend_strain"], label="overbend")
+    strain.plot(t, 100 * summary["sagbend_strain"], label="sagbend")
+    strain.set_ylabel("largest strain (%)")
+    strain.legend(fontsize=8, loc="best")
+    layback.plot(t, summary["layback"], color="k")
+    layback.set_ylabel("layback (m)")
+    for axis in (strain, layback):
+        axis.set_xlabel("time t (s)")
+    figure.suptitle("Lay summary")
+    return _finish(figure, axes, path)
+
+
 def all_figures(
     results: Results,
     directory: _PathLike,
@@ -366,7 +468,8 @@ def all_figures(
     """Write every figure that applies to `results` into `directory` (created if missing).
 
     Files: shape.png, vessel_motion.png (only with a vessel), touchdown.png (only with a seabed),
-    top_tension.png (end B), tension_bending.png, energy.png, with the default times.
+    top_tension.png (end B), lay_summary.png (only with lay equipment's rollers), tension_bending.png,
+    energy.png, with the default times.
 
     Args:
         results: a run.
@@ -389,6 +492,9 @@ def all_figures(
         touchdown_path(results, path=written[-1])
     written.append(out / "top_tension.png")
     top_tension(results, path=written[-1])
+    if results.lay_summary() is not None and results.roller_reactions is not None:
+        written.append(out / "lay_summary.png")
+        lay_summary(results, path=written[-1])
     written.append(out / "tension_bending.png")
     tension_and_bending(results, path=written[-1])
     written.append(out / "energy.png")

@@ -42,7 +42,22 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "vessel_kinetic": (("time",), "J", "vessel kinetic energy"),
     "vessel_potential": (("time",), "J", "vessel hydrostatic restoring energy"),
     "seabed_energy": (("time",), "J", "energy stored in the seabed contact (normal and friction springs)"),
-    "total_energy": (("time",), "J", "storage function E = pipe + vessel + seabed energy"),
+    "roller_energy": (("time",), "J", "energy stored in the roller contacts"),
+    "total_energy": (("time",), "J", "storage function E = pipe + vessel + seabed + roller energy"),
+    "roller_reactions": (("time", "roller"), "N", "normal force of each roller (0: lifted off)"),
+    "top_tension": (("time",), "N", "effective tension at the hold point (tensioner or tower)"),
+    "departure_angle": (("time",), "rad", "pipe angle below the horizontal where it leaves the equipment"),
+    "liftoff_roller": (("time",), "1", "index of the last roller in contact, NaN: none"),
+    "liftoff_arc_length": (("time",), "m", "arc length of the lift-off point from end A"),
+    "inflection_arc_length": (
+        ("time",),
+        "m",
+        "arc length of the steepest point (overbend/sagbend) from end A",
+    ),
+    "layback": (("time",), "m", "horizontal distance from the hold point to the touchdown, NaN: none"),
+    "overbend_strain": (("time",), "1", "largest strain from the hold point to the inflection point"),
+    "sagbend_strain": (("time",), "1", "largest strain from the inflection point to the touchdown"),
+    "sagbend_moment": (("time",), "N m", "largest bending moment from the inflection point to the touchdown"),
     "touchdown": (
         ("time", "axis"),
         "m",
@@ -78,15 +93,29 @@ def _arrays(results: Results) -> dict[str, np.ndarray]:
         "reaction_B": results.reaction("B"),
         **{key: energy[key] for key in ENERGY_KEYS},
         "seabed_energy": energy["seabed"],
+        "roller_energy": energy["rollers"],
         "total_energy": energy["total"],
         "supplied_work": results.supplied_work,
         "dissipated": results.dissipated,
         "iterations": results.iterations,
     }
-    for key in ("touchdown", "touchdown_arc_length", "laid_length", "eta", "nu", "tau", "chi"):
+    for key in (
+        "touchdown",
+        "touchdown_arc_length",
+        "laid_length",
+        "eta",
+        "nu",
+        "tau",
+        "chi",
+        "roller_reactions",
+    ):
         value = getattr(results, key)
         if value is not None:
             arrays[key] = value
+    summary = results.lay_summary()
+    if summary is not None:
+        # touchdown_arc_length is recorded with the seabed already.
+        arrays.update({key: value for key, value in summary.items() if key != "touchdown_arc_length"})
     return arrays
 
 

@@ -156,6 +156,34 @@ Needs `[sea]`. Give `model` or the matrices (6×6, about CO, rows and columns su
 | `eta`               | m, rad                | required  | starting pose η = [x, y, z, φ, θ, ψ] in e (zyx) |
 | `angle`             | rad                   | [0, 0, 0] | clamp angle β of the pipe on the vessel (zyx)   |
 
+### `[vessel.lay]` — `pl.SLay` or `pl.JLay`: the pipe held by lay equipment instead of at CO
+
+Positions in the vessel's body frame (forward, starboard, down; m from CO). Leave `vessel.angle` out.
+
+| key                | unit | default  | meaning                                                            |
+|--------------------|------|----------|--------------------------------------------------------------------|
+| `kind`             | —    | required | `"s-lay"` (tensioner and stinger) or `"j-lay"` (tower)             |
+| `tensioner`        | m    | required | s-lay: the tensioner [x, y, z]; the firing line is horizontal, +b1 |
+| `roller_stiffness` | N/m  | 1e7      | s-lay: contact stiffness of every roller                           |
+| `friction`         | —    | 0        | s-lay: roller friction; only 0 (free rollers) is modelled          |
+| `position`         | m    | required | j-lay: the tower exit [x, y, z]                                    |
+| `angle`            | rad  | 0        | j-lay: the tower's lean from vertical toward the bow, in [0, π/2]  |
+
+### `[vessel.lay.stinger]` — `pl.Stinger`: the rollers of an s-lay
+
+Either an arc (`radius`, `length`, `rollers`, …) or the rollers' top points (`positions`, `axes`).
+
+| key             | unit | default   | meaning                                                         |
+|-----------------|------|-----------|-----------------------------------------------------------------|
+| `radius`        | m    | required  | arc: radius of the rollers' top line                            |
+| `length`        | m    | required  | arc: its length (≤ π · radius)                                  |
+| `rollers`       | —    | required  | arc: number of rollers spread evenly over it, 1 to 1000         |
+| `origin`        | m    | [0, 0, 0] | arc: where it starts [x, y, z]; it runs aft and bends down      |
+| `angle`         | rad  | 0         | arc: its slope below the horizontal at the origin               |
+| `positions`     | m    | required  | rollers: top points, one row [x, y, z] per roller               |
+| `axes`          | —    | b2        | rollers: axis directions, one row per roller                    |
+| `roller_radius` | m    | 0.25      | radius of every roller                                          |
+
 ### `[controller]` — `pl.PID` on the vessel's η; needs `[vessel]`
 
 Gains are 6 numbers (a diagonal matrix) or a 6×6 matrix.
@@ -587,6 +615,28 @@ _VESSEL: dict[str, _Check] = {
     "eta": _Vector(6, "m, rad", _ETA),
     "angle": _Vector(3, "rad", "[φ, θ, ψ]"),
 }
+_LAY: dict[str, _Check] = {
+    "kind": _Choice(("s-lay", "j-lay")),
+    "tensioner": _Vector(3, "m", _XYZ),
+    "roller_stiffness": _Number("N/m", _POSITIVE),
+    "friction": _Number("", _NON_NEGATIVE),
+    "position": _Vector(3, "m", _XYZ),
+    "angle": _Number("rad"),
+}
+_LAY_KINDS = {
+    "s-lay": ("tensioner", "roller_stiffness", "friction", "stinger"),
+    "j-lay": ("position", "angle"),
+}
+_STINGER: dict[str, _Check] = {
+    "radius": _Number("m", _POSITIVE),
+    "length": _Number("m", _POSITIVE),
+    "rollers": _Integer(1, 1000),
+    "origin": _Vector(3, "m", _XYZ),
+    "angle": _Number("rad"),
+    "positions": _Matrix(None, 3, "m", _XYZ, at_least=1),
+    "axes": _Matrix(None, 3, "", _XYZ, at_least=1),
+    "roller_radius": _Number("m", _POSITIVE),
+}
 _CONTROLLER: dict[str, _Check] = {
     "kp": _Gains("N/m, N·m/rad"),
     "kd": _Gains("N·s/m, N·m·s/rad"),
@@ -629,7 +679,9 @@ KEYS: dict[str, tuple[str, ...]] = {
     "supports.A": tuple(_SUPPORT),
     "supports.B": tuple(_SUPPORT),
     "point_loads": tuple(_POINT_LOAD),
-    "vessel": tuple(_VESSEL),
+    "vessel": (*_VESSEL, "lay"),
+    "vessel.lay": (*_LAY, "stinger"),
+    "vessel.lay.stinger": tuple(_STINGER),
     "controller": tuple(_CONTROLLER),
     "environment": tuple(_ENVIRONMENT),
     "solver": tuple(_SOLVER),
@@ -885,7 +937,44 @@ def _read_vessel(top: _Table, sea: object, supports: Collection[str]) -> dict[st
         _fail(
             "vessel.end", f'end "{end}" also has [supports.{end}]; an end is held by a support or the vessel'
         )
+    if "lay" in table.values:
+        if "angle" in vessel:
+            _fail("vessel.angle", "conflicts with [vessel.lay]: the tensioner or tower sets the pipe's angle")
+        vessel["lay"] = _read_lay(table.values["lay"])
     return vessel
+
+
+def _read_lay(value: object) -> tuple[str, dict[str, Any], dict[str, Any] | None]:
+    """`[vessel.lay]` and `[vessel.lay.stinger]`: the kind, the arguments of pl.SLay or pl.JLay, and those of
+    pl.Stinger (or of Stinger.from_rollers when `positions` is given)."""
+    table = _Table(value, "vessel.lay", KEYS["vessel.lay"])
+    kind = table.read({"kind": _LAY["kind"]}, required=("kind",))["kind"]
+    keys = _LAY_KINDS[kind]
+    for key in table.values:
+        if key not in (*keys, "kind"):
+            _fail(f"vessel.lay.{key}", f'not a key of kind = "{kind}", which takes {", ".join(keys)}')
+    required = ("tensioner",) if kind == "s-lay" else ("position",)
+    arguments = table.read({key: _LAY[key] for key in keys if key in _LAY}, required=required)
+    if "stinger" not in table.values:
+        return kind, arguments, None
+    stinger = _Table(table.values["stinger"], "vessel.lay.stinger", KEYS["vessel.lay.stinger"])
+    if "positions" in stinger.values:
+        for key in ("radius", "length", "rollers", "origin", "angle"):
+            if key in stinger.values:
+                _fail(
+                    f"vessel.lay.stinger.{key}",
+                    "conflicts with positions: give an arc or the rollers' points",
+                )
+        rollers = stinger.read(_STINGER, required=("positions",))
+        if "axes" in rollers and len(rollers["axes"]) != len(rollers["positions"]):
+            _fail(
+                "vessel.lay.stinger.axes",
+                f"must have one row per roller ({len(rollers['positions'])}), got {len(rollers['axes'])}",
+            )
+        return kind, arguments, rollers
+    if "axes" in stinger.values:
+        _fail("vessel.lay.stinger.axes", "belongs to positions (rollers given point by point)")
+    return kind, arguments, stinger.read(_STINGER, required=("radius", "length", "rollers"))
 
 
 def _read_solver(top: _Table) -> dict[str, Any]:
@@ -1068,6 +1157,7 @@ def _attach(model: pl.Model, vessel_arguments: dict[str, Any], plan: _Plan) -> N
     arguments = dict(vessel_arguments)
     end, eta = arguments.pop("end"), arguments.pop("eta")
     angle = arguments.pop("angle", None)
+    lay = _lay(arguments.pop("lay")) if "lay" in arguments else None
     with _engine("vessel", KEYS["vessel"]):
         vessel = pl.Vessel.osv() if arguments.pop("model", None) == "osv" else pl.Vessel(**arguments)
     controller = None
@@ -1079,7 +1169,37 @@ def _attach(model: pl.Model, vessel_arguments: dict[str, Any], plan: _Plan) -> N
         with _engine(f"environment[{i}]", KEYS["environment"]):
             environment.append(pl.Force(**force))
     with _engine("vessel", KEYS["vessel"]):
-        model.attach_vessel(end, vessel, eta=eta, angle=angle, controller=controller, environment=environment)
+        model.attach_vessel(
+            end, vessel, eta=eta, angle=angle, controller=controller, environment=environment, lay=lay
+        )
+
+
+def _lay(plan: tuple[str, dict[str, Any], dict[str, Any] | None]) -> pl.SLay | pl.JLay:
+    """The lay equipment of a checked `[vessel.lay]`."""
+    kind, arguments, stinger_arguments = plan
+    if kind == "j-lay":
+        with _engine("vessel.lay", KEYS["vessel.lay"]):
+            return pl.JLay(**arguments)
+    stinger = None
+    if stinger_arguments is not None:
+        with _engine(
+            "vessel.lay.stinger",
+            KEYS["vessel.lay.stinger"],
+            {
+                "stinger radius": "vessel.lay.stinger.radius",
+                "stinger length": "vessel.lay.stinger.length",
+                "stinger origin": "vessel.lay.stinger.origin",
+                "stinger angle": "vessel.lay.stinger.angle",
+                "roller positions": "vessel.lay.stinger.positions",
+                "roller axes": "vessel.lay.stinger.axes",
+            },
+        ):
+            if "positions" in stinger_arguments:
+                stinger = pl.Stinger.from_rollers(**stinger_arguments)
+            else:
+                stinger = pl.Stinger(**stinger_arguments)
+    with _engine("vessel.lay", KEYS["vessel.lay"]):
+        return pl.SLay(stinger=stinger, **arguments)
 
 
 def parse_scenario(data: dict[str, Any], origin: str = "<dict>") -> Scenario:

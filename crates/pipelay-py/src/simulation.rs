@@ -684,9 +684,15 @@ impl Results {
         }
         h.roller_reactions = optional("roller_reactions")?;
         h.rollers_count = h.roller_reactions.len() / h.time.len().max(1);
+        // Without a seabed no touchdown_arc_length is written: the lay summary's is NaN throughout.
         let lay: Vec<Vec<f64>> = LAY_FIELDS
             .iter()
-            .map(|name| optional(name))
+            .map(|name| match optional(name) {
+                Ok(series) if series.is_empty() && *name == "touchdown_arc_length" => {
+                    Ok(vec![f64::NAN; h.time.len()])
+                }
+                other => other,
+            })
             .collect::<PyResult<_>>()?;
         if lay.iter().all(|series| series.len() == h.time.len()) {
             h.lay = (0..h.time.len())

@@ -7,7 +7,7 @@ use pipelay::model::Model;
 use pipelay::solver::assembly::Configuration;
 use pipelay::solver::contact::Touchdown;
 use pipelay::solver::dynamics::{DynamicState, Energy, Integrator};
-use pipelay::solver::lay_summary::{lay_summary, LaySummary, LAY_FIELDS};
+use pipelay::solver::lay_summary::{lay_summary, roller_tops, LaySummary, LAY_FIELDS};
 use pipelay::solver::response::Response;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -57,6 +57,10 @@ struct LayState {
     roller_forces: Option<Vec<f64>>,
     summary: Option<LaySummary>,
     section: pipelay::rod::section::Section,
+    /// The rollers' top points in e (m).
+    roller_tops: Vec<Vector3<f64>>,
+    /// Each node's arc length from end A along the reference (m).
+    arc_length: Vec<f64>,
     /// Water depth and density (m, kg/m³), with a sea.
     water: Option<(f64, f64)>,
 }
@@ -82,6 +86,13 @@ impl LayState {
                 touchdown,
             ),
             section,
+            roller_tops: roller_tops(model, &configuration.positions, &configuration.rotations),
+            arc_length: std::iter::once(0.0)
+                .chain(model.rod.elements.iter().scan(0.0, |arc, e| {
+                    *arc += e.length;
+                    Some(*arc)
+                }))
+                .collect(),
             water: model.sea.as_ref().map(|sea| (sea.depth, sea.density)),
         }
     }
@@ -333,9 +344,10 @@ impl State {
     }
     /// The lay summary (dict; SI units, angles in rad): top_tension (N, at the hold point), departure_angle
     /// (below the horizontal where the pipe leaves the equipment), liftoff_roller (index of the last roller in
-    /// contact, or None), liftoff_arc_length, layback (horizontal, hold point to touchdown; NaN without one),
-    /// touchdown_arc_length, overbend_strain (largest, hold point to lift-off), sagbend_strain and
-    /// sagbend_moment (largest, lift-off to touchdown). None without a vessel.
+    /// contact, or None), liftoff_arc_length, inflection_arc_length (the steepest point, where the overbend
+    /// meets the sagbend), layback (horizontal, hold point to touchdown; NaN without one),
+    /// touchdown_arc_length, overbend_strain (largest, hold point to inflection), sagbend_strain and
+    /// sagbend_moment (largest, inflection to touchdown). None without a vessel.
     fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Some(summary) = &self.lay.summary else {
             return Ok(None);
@@ -346,6 +358,19 @@ impl State {
         }
         dict.set_item("liftoff_roller", summary.liftoff_roller)?;
         Ok(Some(dict))
+    }
+    /// The rollers' top points (k, 3) in e (m), where the vessel holds them in this state; None without rollers.
+    #[getter]
+    fn roller_positions<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.lay
+            .roller_forces
+            .as_ref()
+            .map(|_| points_to_numpy(py, &self.lay.roller_tops))
+    }
+    /// Each node's arc length from end A along the stress-free reference (n + 1,) (m).
+    #[getter]
+    fn reference_arc_length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        to_numpy(py, &self.lay.arc_length)
     }
     /// The model's cross-section.
     #[getter]

@@ -65,7 +65,7 @@ pub struct History {
     pub rollers: Vec<f64>,
     /// With rollers: each roller's normal force, (T, k) (N); empty without.
     pub roller_reactions: Vec<f64>,
-    /// With a vessel: the lay summary of each record, (T, 9) in the order of
+    /// With a vessel: the lay summary of each record, (T, 10) in the order of
     /// [`crate::solver::lay_summary::LAY_FIELDS`]; empty without.
     pub lay: Vec<f64>,
     /// Number of rollers k.
@@ -128,7 +128,11 @@ impl History {
             (
                 "lay summary",
                 self.lay.len(),
-                if self.lay.is_empty() { 0 } else { 9 },
+                if self.lay.is_empty() {
+                    0
+                } else {
+                    crate::solver::lay_summary::LAY_FIELDS.len()
+                },
             ),
             (
                 "touchdown",
