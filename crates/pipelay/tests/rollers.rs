@@ -230,3 +230,24 @@ fn s_lay_on_a_seabed_converges() {
     let laid = touchdown.laid_length;
     assert!(laid > 100.0 && laid < 600.0, "laid length {laid}");
 }
+
+/// From a static S-lay the vessel keeps its holding thrust: the pipe barely moves, and Newton converges in a
+/// step or two every time (the discrete gradient's correction term must not turn the round-off of the
+/// contact energy into force where the pipe hardly moves over the rollers).
+#[test]
+fn a_held_s_lay_steps_in_few_iterations() {
+    let model = s_lay(660.0, 280, None);
+    let solution = solve(&model, &StaticOptions::default()).expect("statics");
+    let state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
+    let options = DynamicOptions {
+        time_step: 0.2,
+        ..DynamicOptions::default()
+    };
+    let mut sim = Integrator::new(model, state, options).expect("integrator");
+    let mut most = 0;
+    for _ in 0..20 {
+        most = most.max(sim.step().expect("step").iterations);
+    }
+    println!("most Newton iterations in a step: {most}");
+    assert!(most <= 3, "{most}");
+}
