@@ -8,9 +8,8 @@ import tomllib
 from pathlib import Path
 
 import numpy as np
-import pytest
-
 import pipelay as pl
+import pytest
 from pipelay.cli import main
 from pipelay.lay import find_lay_position, lay_quantity
 from pipelay.scenario import load_scenario, parse_scenario
