@@ -210,7 +210,14 @@ impl Assembler {
             row_idx.extend_from_slice(rows);
             col_ptr.push(row_idx.len());
         }
-        let lu = SparseLu::new(dofs.free, col_ptr, row_idx);
+        // With rollers, the vessel node's free unknowns are the border of the factorisation.
+        let border: Vec<usize> = match (&rollers, &model.vessel) {
+            (Some(_), Some(attachment)) => (0..NODE_DOFS)
+                .filter_map(|k| dofs.equation[NODE_DOFS * attachment.node + k])
+                .collect(),
+            _ => Vec::new(),
+        };
+        let lu = SparseLu::with_border(dofs.free, col_ptr, row_idx, &border);
         let scatter = (0..elements)
             .map(|e| {
                 let mut map = [FIXED; 144];

@@ -2,6 +2,12 @@
 //! Newton iteration refactorises numerically and solves, without allocating. Small systems (a few
 //! elements, e.g. the paper's 10-element pipe) use faer's dense partial-pivoting LU instead, whose cost
 //! there is a fraction of the sparse factorisation's bookkeeping.
+//!
+//! **Border.** A vessel's rollers couple its node to every node within their reach. A sparse LU analysed
+//! on AᵀA (as faer's is) sees those few dense rows as a dense block and fills hundreds of columns. Given the
+//! border unknowns (at most six, the vessel node's), the system [A B; C D][x; z] = [r; s] is solved by block
+//! elimination instead: A (the rod with the border held) by the sparse LU, X = A⁻¹B once per factorisation,
+//! the Schur complement D − C X (at most 6×6) densely, then x = A⁻¹r − X z. Cost stays linear in the unknowns.
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{
     lu_in_place, lu_in_place_scratch, PartialPivLuParams,
@@ -30,6 +36,8 @@ enum Factors {
 
 /// A square sparse matrix in compressed-column form with a fixed pattern, and its LU factors.
 pub struct SparseLu {
+    /// With border unknowns: the block elimination around the interior's factorisation.
+    border: Option<Box<Border>>,
     size: usize,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
@@ -44,6 +52,27 @@ pub struct SparseLu {
 pub struct Singular;
 
 impl SparseLu {
+    /// A system whose unknowns `border` (sorted, at most six) couple densely to the rest: factorised by block
+    /// elimination around the sparse LU of the others (module docs). The values stay in the whole pattern's
+    /// order.
+    pub fn with_border(
+        size: usize,
+        col_ptr: Vec<usize>,
+        row_idx: Vec<usize>,
+        border: &[usize],
+    ) -> Self {
+        if border.is_empty() || border.len() > BORDER_MAX || border.len() >= size {
+            return Self::new(size, col_ptr, row_idx);
+        }
+        // The whole pattern is only kept for positions; the factorisation is the border's.
+        let mut lu = Self::new(0, vec![0], Vec::new());
+        lu.border = Some(Box::new(Border::new(size, &col_ptr, &row_idx, border)));
+        lu.size = size;
+        lu.col_ptr = col_ptr;
+        lu.row_idx = row_idx;
+        lu
+    }
+
     /// Analyses the pattern (columns `col_ptr`, sorted rows `row_idx`). Panics only on an invalid
     /// pattern, which is built by the assembler, never by users.
     pub fn new(size: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Self {
@@ -81,6 +110,7 @@ impl SparseLu {
             )
         };
         SparseLu {
+            border: None,
             size,
             col_ptr,
             row_idx,
@@ -105,6 +135,11 @@ impl SparseLu {
 
     /// Numeric factorisation of the matrix with these values (in pattern order).
     pub fn factorise(&mut self, values: &[f64]) -> Result<(), Singular> {
+        if let Some(border) = self.border.as_mut() {
+            let ok = border.factorise(values).is_ok();
+            self.factorised = ok;
+            return if ok { Ok(()) } else { Err(Singular) };
+        }
         let params = Spec::<PartialPivLuParams, f64>::default();
         let stack = MemStack::new(&mut self.factor_scratch);
         let ok = match &mut self.factors {
@@ -152,6 +187,9 @@ impl SparseLu {
         if !self.factorised {
             return Err(Singular);
         }
+        if let Some(border) = self.border.as_mut() {
+            return border.solve_in_place(rhs);
+        }
         let stack = MemStack::new(&mut self.solve_scratch);
         let rhs = MatMut::from_column_major_slice_mut(rhs, self.size, 1);
         match &self.factors {
@@ -184,9 +222,215 @@ impl SparseLu {
     }
 }
 
+/// Most border unknowns (one node's).
+const BORDER_MAX: usize = 6;
+
+/// Where an entry of the whole pattern goes in the block elimination.
+#[derive(Debug, Clone, Copy)]
+enum Block {
+    /// The interior A, at this value position of its own pattern.
+    Interior(usize),
+    /// B (interior row, border column), C (border row, interior column), D: row and column indices.
+    Right(usize, usize),
+    Below(usize, usize),
+    Corner(usize, usize),
+}
+
+/// The block elimination of a bordered system (module docs).
+struct Border {
+    /// Border unknowns, and each unknown's interior index (`usize::MAX` on the border).
+    unknowns: Vec<usize>,
+    interior_of: Vec<usize>,
+    /// Destination of each value of the whole pattern.
+    blocks: Vec<Block>,
+    interior: SparseLu,
+    interior_values: Vec<f64>,
+    /// B and X = A⁻¹B, column by column (interior × border), and C row by row (border × interior).
+    right: Vec<Vec<f64>>,
+    solved: Vec<Vec<f64>>,
+    below: Vec<Vec<f64>>,
+    corner: nalgebra::Matrix6<f64>,
+    /// LU of the Schur complement D − C X (padded with the identity to 6×6).
+    schur: Option<nalgebra::LU<f64, nalgebra::Const<6>, nalgebra::Const<6>>>,
+    work: Vec<f64>,
+}
+
+impl Border {
+    fn new(size: usize, col_ptr: &[usize], row_idx: &[usize], border: &[usize]) -> Self {
+        let mut interior_of = vec![usize::MAX; size];
+        let mut count = 0;
+        for (i, slot) in interior_of.iter_mut().enumerate() {
+            if !border.contains(&i) {
+                *slot = count;
+                count += 1;
+            }
+        }
+        let place = |i: usize| border.iter().position(|&b| b == i);
+        let mut inner_ptr = vec![0];
+        let mut inner_rows = Vec::new();
+        let mut blocks = vec![Block::Interior(0); row_idx.len()];
+        for col in 0..size {
+            for k in col_ptr[col]..col_ptr[col + 1] {
+                let row = row_idx[k];
+                blocks[k] = match (place(row), place(col)) {
+                    (None, None) => {
+                        inner_rows.push(interior_of[row]);
+                        Block::Interior(inner_rows.len() - 1)
+                    }
+                    (None, Some(c)) => Block::Right(interior_of[row], c),
+                    (Some(r), None) => Block::Below(r, interior_of[col]),
+                    (Some(r), Some(c)) => Block::Corner(r, c),
+                };
+            }
+            if interior_of[col] != usize::MAX {
+                inner_ptr.push(inner_rows.len());
+            }
+        }
+        let nnz = inner_rows.len();
+        Border {
+            unknowns: border.to_vec(),
+            interior_of,
+            blocks,
+            interior: SparseLu::new(count, inner_ptr, inner_rows),
+            interior_values: vec![0.0; nnz],
+            right: vec![vec![0.0; count]; border.len()],
+            solved: vec![vec![0.0; count]; border.len()],
+            below: vec![vec![0.0; count]; border.len()],
+            corner: nalgebra::Matrix6::identity(),
+            schur: None,
+            work: vec![0.0; count],
+        }
+    }
+
+    fn factorise(&mut self, values: &[f64]) -> Result<(), Singular> {
+        let m = self.unknowns.len();
+        for column in self.right.iter_mut().chain(self.below.iter_mut()) {
+            column.iter_mut().for_each(|v| *v = 0.0);
+        }
+        self.corner = nalgebra::Matrix6::identity();
+        for r in 0..m {
+            for c in 0..m {
+                self.corner[(r, c)] = 0.0;
+            }
+        }
+        for (block, value) in self.blocks.iter().zip(values) {
+            match *block {
+                Block::Interior(p) => self.interior_values[p] = *value,
+                Block::Right(i, c) => self.right[c][i] = *value,
+                Block::Below(r, i) => self.below[r][i] = *value,
+                Block::Corner(r, c) => self.corner[(r, c)] = *value,
+            }
+        }
+        self.interior.factorise(&self.interior_values)?;
+        let mut schur = self.corner;
+        for c in 0..m {
+            self.solved[c].copy_from_slice(&self.right[c]);
+            self.interior.solve_in_place(&mut self.solved[c])?;
+            for r in 0..m {
+                let product: f64 = self.below[r]
+                    .iter()
+                    .zip(&self.solved[c])
+                    .map(|(a, b)| a * b)
+                    .sum();
+                schur[(r, c)] -= product;
+            }
+        }
+        let lu = schur.lu();
+        if !lu.is_invertible() || !schur.iter().all(|v| v.is_finite()) {
+            self.schur = None;
+            return Err(Singular);
+        }
+        self.schur = Some(lu);
+        Ok(())
+    }
+
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), Singular> {
+        let Some(schur) = &self.schur else {
+            return Err(Singular);
+        };
+        for (i, slot) in self.interior_of.iter().enumerate() {
+            if *slot != usize::MAX {
+                self.work[*slot] = rhs[i];
+            }
+        }
+        self.interior.solve_in_place(&mut self.work)?;
+        let m = self.unknowns.len();
+        let mut reduced = nalgebra::Vector6::zeros();
+        for r in 0..m {
+            let product: f64 = self.below[r]
+                .iter()
+                .zip(&self.work)
+                .map(|(a, b)| a * b)
+                .sum();
+            reduced[r] = rhs[self.unknowns[r]] - product;
+        }
+        let z = schur.solve(&reduced).ok_or(Singular)?;
+        for (i, slot) in self.interior_of.iter().enumerate() {
+            if *slot != usize::MAX {
+                let correction: f64 = (0..m).map(|c| self.solved[c][*slot] * z[c]).sum();
+                rhs[i] = self.work[*slot] - correction;
+            }
+        }
+        for (r, &i) in self.unknowns.iter().enumerate() {
+            rhs[i] = z[r];
+        }
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An arrowhead system (tridiagonal, with its last three unknowns coupled to every tenth one), solved by
+    /// block elimination around those three, against its solution; the same with the plain LU.
+    #[test]
+    fn a_bordered_system_solves_by_block_elimination() {
+        let size = 300_usize;
+        let border = [size - 3, size - 2, size - 1];
+        let coupled = |a: usize, b: usize| {
+            a.abs_diff(b) <= 1
+                || (border.contains(&a) && (b % 10 == 0 || border.contains(&b)))
+                || (border.contains(&b) && a % 10 == 0)
+        };
+        let mut col_ptr = vec![0];
+        let mut row_idx = Vec::new();
+        let mut values = Vec::new();
+        for col in 0..size {
+            for row in 0..size {
+                if coupled(row, col) {
+                    row_idx.push(row);
+                    values.push(if row == col {
+                        6.0 + (row % 7) as f64
+                    } else {
+                        0.3 * ((row * 31 + col * 17) as f64).sin()
+                    });
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let exact: Vec<f64> = (0..size).map(|i| (0.1 * i as f64).cos()).collect();
+        let mut rhs = vec![0.0; size];
+        for col in 0..size {
+            for k in col_ptr[col]..col_ptr[col + 1] {
+                rhs[row_idx[k]] += values[k] * exact[col];
+            }
+        }
+        for mut lu in [
+            SparseLu::with_border(size, col_ptr.clone(), row_idx.clone(), &border),
+            SparseLu::new(size, col_ptr.clone(), row_idx.clone()),
+        ] {
+            let mut x = rhs.clone();
+            lu.factorise(&values).expect("regular");
+            lu.solve_in_place(&mut x).expect("solves");
+            let error = x
+                .iter()
+                .zip(&exact)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(error < 1e-12, "{error:e}");
+        }
+    }
 
     /// A tridiagonal non-symmetric system, small (dense path) and large (sparse path), against its solution.
     #[test]
