@@ -38,3 +38,4 @@ bench: $(STAMP)
 	$(BIN)/python benches/validation_statics.py
 	$(BIN)/python benches/seabed_cost.py
 	$(BIN)/python benches/seabed_statics.py
+	$(BIN)/python benches/lay_cost.py
