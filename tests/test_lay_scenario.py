@@ -162,3 +162,21 @@ def test_cli_run_writes_the_lay_summary(tmp_path: Path, capsys: pytest.CaptureFi
     assert summary is not None and len(summary["top_tension"]) == len(results.time)
     first = load_scenario(scenario).model.static().lay_summary()
     assert summary["top_tension"][0] == pytest.approx(first["top_tension"], rel=1e-9)
+
+
+def test_lay_configuration_figure_draws_the_stinger(tmp_path: Path) -> None:
+    """The configuration figure draws every roller (loaded ones apart) at its place and the strain curve."""
+    from pipelay import plots
+
+    state = load_scenario(EXAMPLE).model.static()
+    figure = plots.lay_configuration(state, path=tmp_path / "lay.png")
+    assert (tmp_path / "lay.png").stat().st_size > 10_000
+    side = figure.axes[0]
+    lines = {line.get_label(): line for line in side.get_lines()}
+    loaded, free = lines["roller in contact"], lines["roller"]
+    assert len(loaded.get_xdata()) == np.count_nonzero(state.roller_reactions)
+    assert len(loaded.get_xdata()) + len(free.get_xdata()) == 15
+    drawn = np.sort(np.concatenate([loaded.get_xdata(), free.get_xdata()]))
+    assert np.allclose(drawn, np.sort(state.roller_positions[:, 0]))
+    strain = figure.axes[2].get_lines()[0].get_ydata()
+    assert np.allclose(strain, 100 * state.strain)
