@@ -556,8 +556,37 @@ fn continuation(
     })
 }
 
-/// Solves for static equilibrium at full load.
+/// Solves for static equilibrium at full load. A vessel found upside down or on its side (its body axis b3
+/// more than 60° from the vertical: an equilibrium of the restoring's director form that no vessel floats in)
+/// is a failure.
 pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
+    let solution = solve_unchecked(model, options)?;
+    if let Some(attachment) = &model.vessel {
+        let node = attachment.node;
+        let body = crate::vessel::coupling::body_rotation(
+            attachment,
+            &solution.configuration.rotations[node],
+        );
+        let upright = body.column(2).z;
+        if upright < 0.5 {
+            let angles = crate::vessel::euler::angles_from_rotation(&body);
+            return Err(Error::Convergence {
+                context: "static solve".into(),
+                reached: 1.0,
+                iterations: solution.iterations,
+                residual: solution.residual,
+                reason: format!(
+                    "the vessel's equilibrium found is capsized (roll {:.3} rad, pitch {:.3} rad); start from the \
+                     catenary (start=\"auto\") or give more load steps",
+                    angles.x, angles.y
+                ),
+            });
+        }
+    }
+    Ok(solution)
+}
+
+fn solve_unchecked(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
     if options.initial_steps == 0 {
         return Err(Error::input("steps", 0, "must be an integer >= 1"));
     }
