@@ -6,7 +6,6 @@ use pipelay::environment::sea::Sea;
 use pipelay::environment::seabed::Seabed;
 use pipelay::model::Model;
 use pipelay::rod::{section::Section, Rod};
-use pipelay::so3::exp_quat;
 use pipelay::solver::assembly::{Assembler, NODE_DOFS};
 use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
 use pipelay::solver::response::Response;
@@ -79,20 +78,14 @@ fn roller_tangent_matches_differences() {
         let Some(col) = dofs.equation[column] else {
             continue;
         };
-        let mut residuals = Vec::new();
-        for step in [h, -h] {
-            let mut c = config.clone();
-            let (node, k) = (column / NODE_DOFS, column % NODE_DOFS);
-            if k < 3 {
-                c.positions[node][k] += step;
-            } else {
-                let mut spin = Vector3::zeros();
-                spin[k - 3] = step;
-                c.rotations[node] = exp_quat(&spin) * c.rotations[node];
-            }
-            assembler.assemble(&model, &c, 1.0, false, None);
-            residuals.push(assembler.residual.clone());
-        }
+        let residuals: Vec<Vec<f64>> = [h, -h]
+            .iter()
+            .map(|&step| {
+                let c = common::perturbed(&config, column, step);
+                assembler.assemble(&model, &c, 1.0, false, None);
+                assembler.residual.clone()
+            })
+            .collect();
         for row in range.clone() {
             let Some(r) = dofs.equation[row] else {
                 continue;
@@ -163,21 +156,8 @@ fn frictionless_rollers_keep_the_elastica_invariant() {
 /// the pipe slides and lifts on the stinger: the total stays constant to 1e-8 of the energies in play.
 #[test]
 fn rollers_keep_the_energy_balance_exact() {
-    let mut model = s_lay(620.0, 140, None);
-    model.rod.section.drag = [0.0, 0.0];
-    if let Some(attachment) = model.vessel.as_mut() {
-        attachment.vessel.damping = nalgebra::Matrix6::zeros();
-    }
-    let solution = solve(&model, &StaticOptions::default()).expect("statics");
-    let mut state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
-    if let Some(v) = state.vessel.as_mut() {
-        v.hold_thrust = Vector6::zeros(); // let go: the pipe pulls the vessel back over its stinger
-    }
-    let options = DynamicOptions {
-        time_step: 0.1,
-        ..DynamicOptions::default()
-    };
-    let mut sim = Integrator::new(model, state, options).expect("integrator");
+    // Let go: the pipe pulls the vessel back over its stinger.
+    let mut sim = common::released_without_dissipation(s_lay(620.0, 140, None), 0.1);
     let start = sim.energy();
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
     let mut worst: f64 = 0.0;

@@ -232,21 +232,8 @@ fn coupled_system_held_at_a_tower_conserves_energy() {
 }
 
 fn conserves_energy(lay: Option<LayEquipment>) {
-    let mut model = pipe_with_lay(20, lay);
-    model.rod.section.drag = [0.0, 0.0];
-    if let Some(attachment) = model.vessel.as_mut() {
-        attachment.vessel.damping = nalgebra::Matrix6::zeros();
-    }
-    let solution = solve(&model, &StaticOptions::default()).expect("statics");
-    let mut state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
-    if let Some(v) = state.vessel.as_mut() {
-        v.hold_thrust = Vector6::zeros(); // let go: the pipe pulls the vessel back
-    }
-    let options = DynamicOptions {
-        time_step: 0.1,
-        ..DynamicOptions::default()
-    };
-    let mut sim = Integrator::new(model, state, options).expect("integrator");
+    // Let go: the pipe pulls the vessel back.
+    let mut sim = common::released_without_dissipation(pipe_with_lay(20, lay), 0.1);
     let start = sim.energy();
     let mut worst: f64 = 0.0;
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();

@@ -1,5 +1,6 @@
 //! What several integration tests share: the 1200 m flooded steel pipe of the validation tests (0.6 m × 15 mm,
-//! 800 m of water, straight along e1), and the check of an assembled tangent against finite differences.
+//! 800 m of water, straight along e1), the check of an assembled tangent against finite differences, and a
+//! vessel-held model let go without dissipation.
 #![allow(dead_code)]
 use nalgebra::Vector3;
 use pipelay::environment::sea::Sea;
@@ -8,6 +9,8 @@ use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
 use pipelay::so3::exp_quat;
 use pipelay::solver::assembly::{Assembler, Configuration, NODE_DOFS};
+use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
+use pipelay::solver::statics::{solve, StaticOptions};
 
 /// The flooded 0.6 m × 15 mm steel pipe's section (drag and added mass 1 normal).
 pub fn flooded_section() -> Section {
@@ -24,6 +27,39 @@ pub fn flooded_section() -> Section {
     .expect("pipe")
 }
 
+/// `config` with global DOF `dof` moved by `step`: a position component, or a spatial spin exp(step e_k).
+pub fn perturbed(config: &Configuration, dof: usize, step: f64) -> Configuration {
+    let mut c = config.clone();
+    let (node, k) = (dof / NODE_DOFS, dof % NODE_DOFS);
+    if k < 3 {
+        c.positions[node][k] += step;
+    } else {
+        let mut spin = Vector3::zeros();
+        spin[k - 3] = step;
+        c.rotations[node] = exp_quat(&spin) * c.rotations[node];
+    }
+    c
+}
+
+/// A vessel-held model from its static state with every dissipation off and the holding thrust let go (the
+/// pipe pulls the vessel), stepping by `dt`.
+pub fn released_without_dissipation(mut model: Model, dt: f64) -> Integrator {
+    model.rod.section.drag = [0.0, 0.0];
+    if let Some(attachment) = model.vessel.as_mut() {
+        attachment.vessel.damping = nalgebra::Matrix6::zeros();
+    }
+    let solution = solve(&model, &StaticOptions::default()).expect("statics");
+    let mut state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
+    if let Some(v) = state.vessel.as_mut() {
+        v.hold_thrust = nalgebra::Vector6::zeros();
+    }
+    let options = DynamicOptions {
+        time_step: dt,
+        ..DynamicOptions::default()
+    };
+    Integrator::new(model, state, options).expect("integrator")
+}
+
 /// The largest difference between the static tangent that `assembler` assembles at `config` and central
 /// differences (step `h`) of its residual over the free DOFs, and the largest tangent entry.
 pub fn tangent_error(
@@ -36,16 +72,7 @@ pub fn tangent_error(
     let values = assembler.values.clone();
     let dofs = assembler.dofs.clone();
     let perturbed = |dof: usize, step: f64, assembler: &mut Assembler| -> Vec<f64> {
-        let mut c = config.clone();
-        let (node, k) = (dof / NODE_DOFS, dof % NODE_DOFS);
-        if k < 3 {
-            c.positions[node][k] += step;
-        } else {
-            let mut spin = Vector3::zeros();
-            spin[k - 3] = step;
-            c.rotations[node] = exp_quat(&spin) * c.rotations[node];
-        }
-        assembler.assemble(model, &c, 1.0, false, None);
+        assembler.assemble(model, &perturbed(config, dof, step), 1.0, false, None);
         assembler.residual.clone()
     };
     let (mut worst, mut largest): (f64, f64) = (0.0, 0.0);
