@@ -23,6 +23,7 @@ __all__ = [
     "Model",
     "Results",
     "Rod",
+    "Route",
     "SLay",
     "Sea",
     "Seabed",
@@ -411,22 +412,36 @@ class Vessel:
         """C(ν) = C_RB(ν) + C_A(ν) (6, 6)."""
 
 @final
+class Route:
+    """A lay route for a DP reference: from `start` (x, y) at `start_time` along `heading` at `speed` (m/s)."""
+
+    def __new__(
+        cls, start: _ArrayLike, heading: float = 0.0, speed: float = 0.0, start_time: float = 0.0
+    ) -> Route: ...
+    def at(self, t: float) -> tuple[_FloatArray, _FloatArray]:
+        """η_ref and η̇_ref (6,) each at time t (s)."""
+
+@final
 class PID:
-    """PID on η: τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), from `start` (s)."""
+    """PID on η: τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t), from `start` (s); the reference is
+    η_ref (6,), a pl.Route or a callable of t (with `reference_rate`, or central differences)."""
 
     def __new__(
         cls,
         kp: _ArrayLike,
         kd: _ArrayLike,
         ki: _ArrayLike | None = None,
-        reference: _ArrayLike | None = None,
+        reference: _ArrayLike | Route | Callable[[float], _ArrayLike] | None = None,
         start: float = 0.0,
         integral_limit: _ArrayLike | None = None,
         thrust_limit: _ArrayLike | None = None,
+        reference_rate: Callable[[float], _ArrayLike] | None = None,
     ) -> PID: ...
     @property
     def reference(self) -> _FloatArray:
-        """η_ref (6,)."""
+        """η_ref (6,) at t = 0."""
+    def reference_at(self, t: float) -> tuple[_FloatArray, _FloatArray]:
+        """η_ref and η̇_ref (6,) each at time t (s)."""
     @property
     def start(self) -> float:
         """Start time (s)."""

@@ -62,6 +62,19 @@ pub fn matrix_function(
     Ok(wrap(callable.clone().unbind(), argument, matrix3))
 }
 
+fn vector6(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<nalgebra::Vector6<f64>> {
+    crate::convert::array::<6>(value, argument).map(nalgebra::Vector6::from)
+}
+
+/// A callable of t returning a (6,) vector.
+pub fn vector6_function(
+    callable: &Bound<'_, PyAny>,
+    argument: &'static str,
+) -> PyResult<TimeFunction<nalgebra::Vector6<f64>>> {
+    check_callable(callable, argument)?;
+    Ok(wrap(callable.clone().unbind(), argument, vector6))
+}
+
 /// A callable of t returning a number.
 pub fn scalar_function(
     callable: &Bound<'_, PyAny>,

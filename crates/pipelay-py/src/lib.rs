@@ -34,6 +34,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vessel::Vessel>()?;
     m.add_class::<vessel::PyPid>()?;
     m.add_class::<vessel::PyForce>()?;
+    m.add_class::<vessel::PyRoute>()?;
     m.add_class::<lay::Stinger>()?;
     m.add_class::<lay::SLay>()?;
     m.add_class::<lay::JLay>()?;

@@ -3,7 +3,7 @@ use crate::convert::{array, float_matrix6, to_numpy};
 use crate::errors::{input, to_py};
 use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
-use pipelay::vessel::control::Pid;
+use pipelay::vessel::control::{Pid, Reference};
 use pipelay::vessel::EnvironmentForce;
 use pyo3::prelude::*;
 
@@ -100,9 +100,62 @@ fn gains(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Matrix6<f64>> {
     })
 }
 
-/// A PID controller on η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − reference, from
-/// `start` (s). PD when ki is None. `integral_limit` (6,) bounds ∫η̃; `thrust_limit` (3,) bounds the thrust in
-/// surge (N), sway (N) and yaw (N·m).
+/// A reference's pose and rate as arrays.
+type PoseAndRate<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+fn pose_and_rate<'py>(
+    py: Python<'py>,
+    reference: &Reference,
+    t: f64,
+) -> PyResult<PoseAndRate<'py>> {
+    let (pose, rate) = reference.at(t).map_err(to_py)?;
+    Ok((to_numpy(py, pose.as_slice()), to_numpy(py, rate.as_slice())))
+}
+
+/// A lay route for a DP reference: from `start` (x, y) (m) at `start_time` (s), along `heading` ψ (rad) at
+/// `speed` (m/s); the reference's z, roll and pitch are zero and its heading is ψ.
+#[pyclass(module = "pipelay", name = "Route", frozen)]
+#[derive(Clone)]
+pub struct PyRoute(pub Reference);
+
+#[pymethods]
+impl PyRoute {
+    #[new]
+    #[pyo3(signature = (start, heading=0.0, speed=0.0, start_time=0.0))]
+    fn new(start: &Bound<'_, PyAny>, heading: f64, speed: f64, start_time: f64) -> PyResult<Self> {
+        let start = nalgebra::Vector2::from(array::<2>(start, "start")?);
+        for (name, value, unit) in [
+            ("heading", heading, "rad"),
+            ("speed", speed, "m/s"),
+            ("start_time", start_time, "s"),
+        ] {
+            if !value.is_finite() {
+                return Err(input(
+                    name,
+                    value,
+                    &format!("must be a finite number ({unit})"),
+                ));
+            }
+        }
+        Ok(PyRoute(Reference::Route {
+            start,
+            heading,
+            speed,
+            start_time,
+        }))
+    }
+
+    /// η_ref and η̇_ref (6,) each at time `t` (s).
+    fn at<'py>(&self, py: Python<'py>, t: f64) -> PyResult<PoseAndRate<'py>> {
+        pose_and_rate(py, &self.0, t)
+    }
+}
+
+/// A PID controller on η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t),
+/// η̃̇ = J(η)ν − η̇_ref(t), from `start` (s). PD when ki is None. `reference`: η_ref (6,), a pl.Route, or a
+/// callable of t returning (6,) (with `reference_rate`, a callable returning η̇_ref, or central differences
+/// over 1 ms). `integral_limit` (6,) bounds ∫η̃; `thrust_limit` (3,) bounds the thrust in surge (N), sway (N)
+/// and yaw (N·m).
 #[pyclass(module = "pipelay", name = "PID", frozen)]
 #[derive(Clone)]
 pub struct PyPid(pub Pid);
@@ -110,7 +163,7 @@ pub struct PyPid(pub Pid);
 #[pymethods]
 impl PyPid {
     #[new]
-    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None))]
+    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         kp: &Bound<'_, PyAny>,
@@ -120,14 +173,34 @@ impl PyPid {
         start: f64,
         integral_limit: Option<&Bound<'_, PyAny>>,
         thrust_limit: Option<&Bound<'_, PyAny>>,
+        reference_rate: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let Some(reference) = reference else {
             return Err(input(
                 "reference",
                 "None",
-                "must be η_ref (6,): [x, y, z, φ, θ, ψ] (m, rad)",
+                "must be η_ref (6,): [x, y, z, φ, θ, ψ] (m, rad), a pl.Route or a callable of t",
             ));
         };
+        let reference = if let Ok(route) = reference.cast::<PyRoute>() {
+            route.get().0.clone()
+        } else if reference.is_callable() {
+            Reference::Function {
+                pose: crate::callables::vector6_function(reference, "reference")?,
+                rate: reference_rate
+                    .map(|r| crate::callables::vector6_function(r, "reference_rate"))
+                    .transpose()?,
+            }
+        } else {
+            Reference::Fixed(Vector6::from(array::<6>(reference, "reference")?))
+        };
+        if reference_rate.is_some() && !matches!(reference, Reference::Function { .. }) {
+            return Err(input(
+                "reference_rate",
+                "a callable",
+                "belongs to a reference given as a callable of t",
+            ));
+        }
         if !start.is_finite() {
             return Err(input("start", start, "must be a finite time (s)"));
         }
@@ -138,7 +211,7 @@ impl PyPid {
                 .map(|k| gains(k, "ki"))
                 .transpose()?
                 .unwrap_or_else(Matrix6::zeros),
-            reference: Vector6::from(array::<6>(reference, "reference")?),
+            reference,
             start,
             integral_limit: integral_limit
                 .map(|l| array::<6>(l, "integral_limit").map(Vector6::from))
@@ -149,10 +222,15 @@ impl PyPid {
         }))
     }
 
-    /// η_ref (6,).
+    /// η_ref (6,) at t = 0.
     #[getter]
-    fn reference<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        to_numpy(py, self.0.reference.as_slice())
+    fn reference<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (pose, _) = self.0.reference.at(0.0).map_err(to_py)?;
+        Ok(to_numpy(py, pose.as_slice()))
+    }
+    /// η_ref and η̇_ref (6,) each at time `t` (s).
+    fn reference_at<'py>(&self, py: Python<'py>, t: f64) -> PyResult<PoseAndRate<'py>> {
+        pose_and_rate(py, &self.0.reference, t)
     }
     /// Start time (s).
     #[getter]

@@ -338,7 +338,19 @@ impl Model {
             for (name, m) in [("kp", &c.kp), ("kd", &c.kd), ("ki", &c.ki)] {
                 finite(name, m.as_slice())?;
             }
-            finite("reference", c.reference.as_slice())?;
+            if let crate::vessel::control::Reference::Route {
+                start,
+                heading,
+                speed,
+                start_time,
+            } = &c.reference
+            {
+                finite("route start", start.as_slice())?;
+                finite("route heading", &[*heading])?;
+                finite("route speed", &[*speed])?;
+                finite("route start_time", &[*start_time])?;
+            }
+            c.reference.at(0.0)?;
             finite("start", &[c.start])?;
             if let Some(limit) = &c.integral_limit {
                 for &l in limit.iter() {

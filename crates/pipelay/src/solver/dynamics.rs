@@ -237,6 +237,8 @@ pub struct Integrator {
     vessel_step: Option<VesselContribution>,
     /// The rod's force on the vessel node in the last assembly (spatial).
     rod_force_at_vessel: Vector6<f64>,
+    /// The controller's reference pose and rate at the current step's midpoint.
+    reference_mid: (Vector6<f64>, Vector6<f64>),
     /// Seabed contact, if the model has a seabed.
     contact: Option<SeabedContact>,
 }
@@ -319,6 +321,7 @@ impl Integrator {
             reactions,
             vessel_step: None,
             rod_force_at_vessel: Vector6::zeros(),
+            reference_mid: (Vector6::zeros(), Vector6::zeros()),
         })
     }
 
@@ -566,6 +569,14 @@ impl Integrator {
             .iter()
             .map(|load| load.scale_at(time_mid))
             .collect::<Result<Vec<f64>>>()?;
+        if let Some(controller) = self
+            .model
+            .vessel
+            .as_ref()
+            .and_then(|v| v.controller.as_ref())
+        {
+            self.reference_mid = controller.reference.at(time_mid)?;
+        }
         self.predict(&targets, dt);
         let mut residual = f64::INFINITY;
         let mut converged = false;
@@ -867,6 +878,7 @@ impl Integrator {
                 velocity: motion.velocity,
                 integral: motion.integral,
                 hold_thrust: motion.hold_thrust,
+                reference: self.reference_mid,
             };
             let contribution = vessel.contribution(
                 &state.configuration.positions[node],

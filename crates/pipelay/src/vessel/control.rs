@@ -1,16 +1,140 @@
-//! The DP controller (eqs. 44–45): PID on η with a bounded integral, thrust in surge, sway and yaw.
+//! The DP controller (eqs. 44–45): PID on η with a bounded integral, thrust in surge, sway and yaw, about a
+//! fixed reference, a lay route or a reference given as a function of time.
 use super::euler;
-use nalgebra::{Matrix6, Vector3, Vector6};
+use crate::error::{finite, Error, Result};
+use crate::model::TimeFunction;
+use nalgebra::{Matrix6, Vector2, Vector3, Vector6};
 
-/// A PID controller on the vessel's η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref,
-/// active from `start`; thrust acts in surge, sway and yaw only.
+/// The pose η_ref(t) the controller holds or follows, and its rate η̇_ref(t).
+#[derive(Clone)]
+pub enum Reference {
+    /// A fixed pose [x, y, z, φ, θ, ψ] (m, rad).
+    Fixed(Vector6<f64>),
+    /// A lay route: from `start` (x, y) at `start_time`, along `heading` ψ at `speed` (m/s); z, φ, θ zero.
+    Route {
+        start: Vector2<f64>,
+        heading: f64,
+        speed: f64,
+        start_time: f64,
+    },
+    /// A function of time, and its rate (else central differences over a millisecond).
+    Function {
+        pose: TimeFunction<Vector6<f64>>,
+        rate: Option<TimeFunction<Vector6<f64>>>,
+    },
+}
+
+impl std::fmt::Debug for Reference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Reference::Fixed(pose) => write!(f, "Fixed({:?})", pose.as_slice()),
+            Reference::Route {
+                start,
+                heading,
+                speed,
+                start_time,
+            } => write!(
+                f,
+                "Route(start={:?}, heading={heading}, speed={speed}, start_time={start_time})",
+                start.as_slice()
+            ),
+            Reference::Function { .. } => write!(f, "Function"),
+        }
+    }
+}
+
+impl PartialEq for Reference {
+    fn eq(&self, other: &Self) -> bool {
+        match (self, other) {
+            (Reference::Fixed(a), Reference::Fixed(b)) => a == b,
+            (
+                Reference::Route {
+                    start: a,
+                    heading: b,
+                    speed: c,
+                    start_time: d,
+                },
+                Reference::Route {
+                    start: e,
+                    heading: g,
+                    speed: h,
+                    start_time: i,
+                },
+            ) => a == e && b == g && c == h && d == i,
+            (Reference::Function { pose: a, .. }, Reference::Function { pose: b, .. }) => {
+                std::sync::Arc::ptr_eq(a, b)
+            }
+            _ => false,
+        }
+    }
+}
+
+impl Reference {
+    /// η_ref(t) and η̇_ref(t); a function's failure or a non-finite value names `reference` and the time.
+    pub fn at(&self, time: f64) -> Result<(Vector6<f64>, Vector6<f64>)> {
+        match self {
+            Reference::Fixed(pose) => Ok((*pose, Vector6::zeros())),
+            Reference::Route {
+                start,
+                heading,
+                speed,
+                start_time,
+            } => {
+                let (sin, cos) = heading.sin_cos();
+                let moving = time > *start_time;
+                let travelled = speed * (time - start_time).max(0.0);
+                let pose = Vector6::new(
+                    start.x + travelled * cos,
+                    start.y + travelled * sin,
+                    0.0,
+                    0.0,
+                    0.0,
+                    *heading,
+                );
+                let rate = if moving {
+                    Vector6::new(speed * cos, speed * sin, 0.0, 0.0, 0.0, 0.0)
+                } else {
+                    Vector6::zeros()
+                };
+                Ok((pose, rate))
+            }
+            Reference::Function { pose, rate } => {
+                let call = |function: &TimeFunction<Vector6<f64>>, argument: &str, t: f64| {
+                    let value = function(t)
+                        .map_err(|message| Error::input(argument, format!("t = {t} s"), message))?;
+                    finite(argument, value.as_slice()).map_err(|_| {
+                        Error::input(
+                            argument,
+                            format!("{:?} at t = {t} s", value.as_slice()),
+                            "must return finite numbers",
+                        )
+                    })?;
+                    Ok::<_, Error>(value)
+                };
+                let value = call(pose, "reference", time)?;
+                let derivative = match rate {
+                    Some(rate) => call(rate, "reference_rate", time)?,
+                    None => {
+                        let h = 1e-3;
+                        (call(pose, "reference", time + h)? - call(pose, "reference", time - h)?)
+                            / (2.0 * h)
+                    }
+                };
+                Ok((value, derivative))
+            }
+        }
+    }
+}
+
+/// A PID controller on the vessel's η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t),
+/// η̃̇ = J(η)ν − η̇_ref(t), active from `start`; thrust acts in surge, sway and yaw only.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Pid {
     pub kp: nalgebra::Matrix6<f64>,
     pub kd: nalgebra::Matrix6<f64>,
     pub ki: nalgebra::Matrix6<f64>,
-    /// η_ref = [x, y, z, φ, θ, ψ] in e (m, rad).
-    pub reference: nalgebra::Vector6<f64>,
+    /// η_ref(t) = [x, y, z, φ, θ, ψ] in e (m, rad).
+    pub reference: Reference,
     /// Time the controller starts (s).
     pub start: f64,
     /// Bound on each component of ∫η̃ (keeps the PID passive, §III.B); `None`: unbounded.
@@ -52,16 +176,18 @@ pub fn thrust_only(mut tau: Vector6<f64>, limit: Option<&Vector3<f64>>) -> Vecto
     tau
 }
 
-/// τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i z) (body frame), thrust in surge, sway, yaw within the limits.
+/// τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i z) (body frame), thrust in surge, sway, yaw within the limits, about the
+/// reference pose and rate `reference` = (η_ref, η̇_ref).
 pub fn pid_thrust(
     controller: &Pid,
     eta: &Vector6<f64>,
     velocity: &Vector6<f64>,
     integral: &Vector6<f64>,
+    reference: &(Vector6<f64>, Vector6<f64>),
 ) -> Vector6<f64> {
-    let error = eta_error(eta, &controller.reference);
+    let error = eta_error(eta, &reference.0);
     let jacobian = euler::jacobian(eta).unwrap_or_else(Matrix6::identity);
-    let rate = jacobian * velocity;
+    let rate = jacobian * velocity - reference.1;
     let tau_pid = controller.kp * error + controller.kd * rate + controller.ki * integral;
     thrust_only(
         -jacobian.transpose() * tau_pid,
@@ -74,5 +200,47 @@ pub fn clamp_integral(controller: &Pid, integral: &Vector6<f64>) -> Vector6<f64>
     match &controller.integral_limit {
         Some(limit) => integral.zip_map(limit, |z, l| z.clamp(-l, l)),
         None => *integral,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_route_waits_for_its_start_then_moves_at_its_speed() {
+        let route = Reference::Route {
+            start: Vector2::new(100.0, -5.0),
+            heading: 0.5,
+            speed: 2.0,
+            start_time: 10.0,
+        };
+        let (before, rate_before) = route.at(4.0).unwrap();
+        assert_eq!(before, Vector6::new(100.0, -5.0, 0.0, 0.0, 0.0, 0.5));
+        assert_eq!(rate_before, Vector6::zeros());
+        let (after, rate) = route.at(25.0).unwrap();
+        let travelled = Vector2::new(after.x - 100.0, after.y + 5.0);
+        assert!((travelled.norm() - 30.0).abs() < 1e-12);
+        assert!((travelled.y.atan2(travelled.x) - 0.5).abs() < 1e-12);
+        assert!((rate.fixed_rows::<2>(0).norm() - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_reference_function_that_fails_names_itself_and_the_time() {
+        let pose: TimeFunction<Vector6<f64>> = std::sync::Arc::new(|t| {
+            if t < 1.0 {
+                Ok(Vector6::repeat(t))
+            } else {
+                Ok(Vector6::repeat(f64::NAN))
+            }
+        });
+        let reference = Reference::Function { pose, rate: None };
+        let (value, rate) = reference.at(0.5).unwrap();
+        assert!((value[0] - 0.5).abs() < 1e-15 && (rate[0] - 1.0).abs() < 1e-9);
+        let message = reference.at(2.0).unwrap_err().to_string();
+        assert!(
+            message.contains("reference") && message.contains("t = 2"),
+            "{message}"
+        );
     }
 }

@@ -186,7 +186,18 @@ fn controller_static(
     body: &Matrix3<f64>,
 ) -> (Vector3<f64>, Vector3<f64>) {
     let eta = eta_of(position, body);
-    let tau = pid_thrust(controller, &eta, &Vector6::zeros(), &Vector6::zeros());
+    // Statics hold the reference's pose at t = 0, at rest.
+    let pose = controller
+        .reference
+        .at(0.0)
+        .map_or_else(|_| Vector6::zeros(), |r| r.0);
+    let tau = pid_thrust(
+        controller,
+        &eta,
+        &Vector6::zeros(),
+        &Vector6::zeros(),
+        &(pose, Vector6::zeros()),
+    );
     (body * tau.fixed_rows::<3>(0), body * tau.fixed_rows::<3>(3))
 }
 
@@ -210,6 +221,8 @@ pub struct DynamicVessel<'a> {
     pub integral: Vector6<f64>,
     /// Thrust applied before the controller starts (the static holding thrust).
     pub hold_thrust: Vector6<f64>,
+    /// The controller's reference pose and rate at the step's midpoint.
+    pub reference: (Vector6<f64>, Vector6<f64>),
 }
 
 /// Outcome of the vessel's contribution at trial increments.
@@ -248,9 +261,12 @@ impl DynamicVessel<'_> {
             .filter(|c| time_mid >= c.start)
         {
             Some(controller) => {
-                let error = eta_error(&eta, &controller.reference);
+                let error = eta_error(&eta, &self.reference.0);
                 let integral = clamp_integral(controller, &(self.integral + 0.5 * dt * error));
-                (pid_thrust(controller, &eta, velocity_mid, &integral), error)
+                (
+                    pid_thrust(controller, &eta, velocity_mid, &integral, &self.reference),
+                    error,
+                )
             }
             None => (self.hold_thrust, Vector6::zeros()),
         };

@@ -1,0 +1,72 @@
+"""A moving DP reference: the PID follows a lay route (pl.Route) or a reference given as a callable of time."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pipelay as pl
+import pytest
+
+KP, KD = 2e5, 2e6
+
+
+def _follower(reference: object, **pid: object) -> pl.Model:
+    """The OSV carrying a light 10 m rod (no drag) under PD control about `reference`."""
+    section = pl.Section(EA=1e7, GA=1e7, GJ=1e4, EI=1e4, mass=1.0, outer_diameter=0.1)
+    model = pl.Model(pl.Rod.straight((0, 0, 0), (10, 0, 0), 2, section), pl.Sea(100.0))
+    controller = pl.PID(kp=[KP, KP, 0, 0, 0, 1e8], kd=[KD, KD, 0, 0, 0, 1e9], reference=reference, **pid)
+    model.attach_vessel("B", pl.Vessel.osv(), eta=[10, 0, -100, 0, 0, 0.0], controller=controller)
+    return model
+
+
+def _run(model: pl.Model, t_end: float = 600.0) -> pl.Results:
+    return model.simulation(model.static(), dt=0.5).run(t_end, progress=False)
+
+
+@pytest.mark.parametrize("heading", [0.0, 0.5])
+def test_route_is_followed_with_the_pd_lag(heading: float) -> None:
+    """At constant lay speed v the PD's steady state is a lag e = D₁₁ v / K_p behind the route (the surge
+    damping balanced by the proportional thrust, the derivative term seeing the route's rate), nothing across
+    it, and the vessel at the route's speed and heading."""
+    speed = 1.0
+    route = pl.Route((10.0, 0.0), heading=heading, speed=speed)
+    results = _run(_follower(route))
+    t = results.time[-1]
+    pose, rate = route.at(t)
+    assert np.allclose(rate[:2], speed * np.array([math.cos(heading), math.sin(heading)]))
+    offset = results.eta[-1, :2] - pose[:2]
+    along = offset @ [math.cos(heading), math.sin(heading)]
+    across = offset @ [-math.sin(heading), math.cos(heading)]
+    expected = -pl.Vessel.osv().D[0, 0] * speed / KP
+    print(f"heading {heading}: lag {along:.9f} m (expected {expected:.9f}), across {across:.2e} m")
+    assert along == pytest.approx(expected, rel=1e-5)
+    assert abs(across) < 1e-5
+    assert results.nu[-1, 0] == pytest.approx(speed, rel=1e-6)
+    assert results.eta[-1, 5] == pytest.approx(heading, abs=1e-7)
+
+
+def test_callable_reference_matches_the_route() -> None:
+    """The same route as callables of time: with its rate the runs agree to round-off; with the rate left to
+    central differences (exact for a straight line) they agree as well."""
+    route = pl.Route((10.0, 0.0), heading=0.3, speed=0.8, start_time=20.0)
+    reference = _run(_follower(route), 200.0)
+    pose = lambda t: route.at(t)[0]
+    rate = lambda t: route.at(t)[1]
+    with_rate = _run(_follower(pose, reference_rate=rate), 200.0)
+    differenced = _run(_follower(pose), 200.0)
+    assert np.abs(with_rate.eta - reference.eta).max() < 1e-9
+    # Central differences straddle the route's start at 20 s only within a millisecond of it.
+    assert np.abs(differenced.eta - reference.eta).max() < 1e-3
+
+
+def test_reference_callables_that_fail_name_themselves() -> None:
+    """A reference that turns NaN stops the run with an InputError naming `reference` and the time; bad
+    routes and a rate without a callable are rejected when built."""
+    model = _follower(lambda t: [10.0 + t, 0, 0, 0, 0, math.nan if t > 5.0 else 0.0])
+    with pytest.raises(pl.InputError, match=r"reference.*t = 5\.\d+ s"):
+        _run(model, 10.0)
+    with pytest.raises(pl.InputError, match="speed"):
+        pl.Route((0.0, 0.0), speed=math.nan)
+    with pytest.raises(pl.InputError, match="reference_rate"):
+        pl.PID(kp=[1] * 6, kd=[1] * 6, reference=[0] * 6, reference_rate=lambda t: [0] * 6)
