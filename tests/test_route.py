@@ -70,3 +70,30 @@ def test_reference_callables_that_fail_name_themselves() -> None:
         pl.Route((0.0, 0.0), speed=math.nan)
     with pytest.raises(pl.InputError, match="reference_rate"):
         pl.PID(kp=[1] * 6, kd=[1] * 6, reference=[0] * 6, reference_rate=lambda t: [0] * 6)
+
+
+def test_scenario_route() -> None:
+    """[controller.route] builds the same PID reference as pl.Route; with `reference` as well it is an error
+    naming both."""
+    import tomllib
+    from pathlib import Path
+
+    from pipelay.scenario import parse_scenario
+
+    path = Path(__file__).resolve().parent.parent / "examples" / "s_lay.toml"
+    data = tomllib.loads(path.read_text())
+    data["controller"].pop("reference")
+    data["controller"]["route"] = {"start": [660.0, 0.0], "speed": 0.5, "start_time": 10.0}
+    scenario = parse_scenario(data)
+    state = scenario.model.static()
+    results = scenario.model.simulation(state, dt=0.2).run(2.0, progress=False)
+    assert len(results.time) == 11
+    route = pl.Route((660.0, 0.0), speed=0.5, start_time=10.0)
+    assert np.allclose(route.at(30.0)[0], [670.0, 0, 0, 0, 0, 0])
+    data["controller"]["reference"] = [660.0, 0, 0, 0, 0, 0]
+    with pytest.raises(pl.InputError, match="controller.reference"):
+        parse_scenario(data)
+    data["controller"].pop("reference")
+    data["controller"]["route"]["speed"] = "fast"
+    with pytest.raises(pl.InputError, match="controller.route.speed"):
+        parse_scenario(data)

@@ -193,10 +193,19 @@ Gains are 6 numbers (a diagonal matrix) or a 6×6 matrix.
 | `kp`             | N/m, N·m/rad         | required | proportional gains                                 |
 | `kd`             | N·s/m, N·m·s/rad     | required | derivative gains                                   |
 | `ki`             | N/(m·s), N·m/(rad·s) | none     | integral gains; none: PD control                   |
-| `reference`      | m, rad               | required | η_ref = [x, y, z, φ, θ, ψ]                         |
+| `reference`      | m, rad               | required | η_ref = [x, y, z, φ, θ, ψ]; or give `[controller.route]` |
 | `start`          | s                    | 0        | time the controller takes over from holding thrust |
 | `integral_limit` | m·s, rad·s           | none     | bound on ∫(η − η_ref) dt, 6 numbers > 0            |
 | `thrust_limit`   | N, N, N·m            | none     | bound on thrust [surge, sway, yaw], > 0            |
+
+### `[controller.route]` — `pl.Route`: a moving reference along a lay route, instead of `reference`
+
+| key          | unit | default  | meaning                                         |
+|--------------|------|----------|-------------------------------------------------|
+| `start`      | m    | required | where the route starts, [x, y]                  |
+| `heading`    | rad  | 0        | the route's direction and the vessel's heading  |
+| `speed`      | m/s  | 0        | lay speed along the route                       |
+| `start_time` | s    | 0        | when the reference starts moving                |
 
 ### `[[environment]]` — `pl.Force`, one table per force on the vessel; needs `[vessel]`
 
@@ -646,6 +655,12 @@ _CONTROLLER: dict[str, _Check] = {
     "integral_limit": _Vector(6, "m·s, rad·s", _ETA, _POSITIVE),
     "thrust_limit": _Vector(3, "N, N, N·m", "[surge, sway, yaw]", _POSITIVE),
 }
+_ROUTE: dict[str, _Check] = {
+    "start": _Vector(2, "m", "[x, y]"),
+    "heading": _Number("rad"),
+    "speed": _Number("m/s"),
+    "start_time": _Number("s"),
+}
 _ENVIRONMENT: dict[str, _Check] = {
     "value": _Vector(6, "N, N·m", "[X, Y, Z, K, M, N]"),
     "start": _Number("s"),
@@ -682,7 +697,8 @@ KEYS: dict[str, tuple[str, ...]] = {
     "vessel": (*_VESSEL, "lay"),
     "vessel.lay": (*_LAY, "stinger"),
     "vessel.lay.stinger": tuple(_STINGER),
-    "controller": tuple(_CONTROLLER),
+    "controller": (*_CONTROLLER, "route"),
+    "controller.route": tuple(_ROUTE),
     "environment": tuple(_ENVIRONMENT),
     "solver": tuple(_SOLVER),
     "output": tuple(_OUTPUT),
@@ -1023,9 +1039,15 @@ def _read(data: object) -> tuple[_Plan, dict[str, Any]]:
         _fail("supports", "missing; hold the rod with [supports.A], [supports.B] or a [vessel]")
     controller = None
     if "controller" in top.values:
-        controller = _Table(top.values["controller"], "controller", KEYS["controller"]).read(
-            _CONTROLLER, required=("kp", "kd", "reference")
-        )
+        table = _Table(top.values["controller"], "controller", KEYS["controller"])
+        if "route" in table.values:
+            if "reference" in table.values:
+                _fail("controller.reference", "conflicts with [controller.route]: give one of them")
+            controller = table.read(_CONTROLLER, required=("kp", "kd"))
+            route = _Table(table.values["route"], "controller.route", KEYS["controller.route"])
+            controller["route"] = route.read(_ROUTE, required=("start",))
+        else:
+            controller = table.read(_CONTROLLER, required=("kp", "kd", "reference"))
     environment = [
         _Table(entry, f"environment[{i}]", KEYS["environment"]).read(_ENVIRONMENT, required=("value",))
         for i, entry in enumerate(_tables(top.values.get("environment", []), "environment"))
@@ -1163,7 +1185,11 @@ def _attach(model: pl.Model, vessel_arguments: dict[str, Any], plan: _Plan) -> N
     controller = None
     if plan.controller is not None:
         with _engine("controller", KEYS["controller"]):
-            controller = pl.PID(**plan.controller)
+            arguments = dict(plan.controller)
+            if "route" in arguments:
+                with _engine("controller.route", KEYS["controller.route"]):
+                    arguments["reference"] = pl.Route(**arguments.pop("route"))
+            controller = pl.PID(**arguments)
     environment = []
     for i, force in enumerate(plan.environment):
         with _engine(f"environment[{i}]", KEYS["environment"]):
