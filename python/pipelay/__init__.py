@@ -25,6 +25,7 @@ from pipelay._core import (
     SLay,
     State,
     Stinger,
+    TensionControl,
     Touchdown,
     Vessel,
 )
@@ -59,6 +60,7 @@ __all__ = [
     "Simulation",
     "State",
     "Stinger",
+    "TensionControl",
     "Touchdown",
     "Vessel",
     "checks",

@@ -31,6 +31,7 @@ __all__ = [
     "Simulation",
     "State",
     "Stinger",
+    "TensionControl",
     "Touchdown",
     "Vessel",
 ]
@@ -422,6 +423,22 @@ class Route:
         """η_ref and η̇_ref (6,) each at time t (s)."""
 
 @final
+class TensionControl:
+    """The lay-tension loop: moves the DP set-point along the reference's heading at −gain·(T − target) m/s."""
+
+    def __new__(
+        cls,
+        target: float,
+        gain: float,
+        start: float = 0.0,
+        rate_limit: float | None = None,
+        filter: float = 20.0,
+    ) -> TensionControl: ...
+    @property
+    def target(self) -> float:
+        """Target top tension (N)."""
+
+@final
 class PID:
     """PID on η: τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t), from `start` (s); the reference is
     η_ref (6,), a pl.Route or a callable of t (with `reference_rate`, or central differences)."""
@@ -436,6 +453,7 @@ class PID:
         integral_limit: _ArrayLike | None = None,
         thrust_limit: _ArrayLike | None = None,
         reference_rate: Callable[[float], _ArrayLike] | None = None,
+        tension: TensionControl | None = None,
     ) -> PID: ...
     @property
     def reference(self) -> _FloatArray:

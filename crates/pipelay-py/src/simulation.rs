@@ -270,6 +270,11 @@ impl Simulation {
                 parts.iter().flat_map(|p| p.iter().copied()).collect(),
                 6,
             )?;
+            rows(
+                "tension_loop",
+                vec![v.setpoint_offset, v.filtered_tension],
+                2,
+            )?;
         }
         Ok(dict)
     }
@@ -342,12 +347,29 @@ impl Simulation {
                     ));
                 }
                 let part = |k: usize| Vector6::from_column_slice(&data[6 * k..6 * k + 6]);
+                // The lay-tension loop's state (checkpoints written before it existed have none).
+                let tension_loop = match arrays.get_item("tension_loop")? {
+                    Some(value) => {
+                        let loop_state = flat(&value, "tension_loop")?;
+                        if loop_state.len() != 2 {
+                            return Err(input(
+                                "tension_loop",
+                                format!("{} values", loop_state.len()),
+                                "must hold the set-point offset and the filtered tension",
+                            ));
+                        }
+                        [loop_state[0], loop_state[1]]
+                    }
+                    None => [0.0, 0.0],
+                };
                 Some(VesselMotion {
                     velocity: part(0),
                     integral: part(1),
                     hold_thrust: part(2),
                     thrust: part(3),
                     pipe_force: part(4),
+                    setpoint_offset: tension_loop[0],
+                    filtered_tension: tension_loop[1],
                 })
             }
             None => None,

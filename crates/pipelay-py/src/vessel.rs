@@ -3,7 +3,7 @@ use crate::convert::{array, float_matrix6, to_numpy};
 use crate::errors::{input, to_py};
 use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
-use pipelay::vessel::control::{Pid, Reference};
+use pipelay::vessel::control::{Pid, Reference, TensionControl};
 use pipelay::vessel::EnvironmentForce;
 use pyo3::prelude::*;
 
@@ -100,6 +100,58 @@ fn gains(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Matrix6<f64>> {
     })
 }
 
+/// The lay-tension loop around the DP controller: it moves the set-point along the reference's heading at
+/// ṡ = −gain·(T_f − target) (m/s; T_f the pipe's top tension, N, through a first-order low-pass filter of time
+/// constant `filter`, s) from `start` (s), |ṡ| ≤ `rate_limit` (m/s).
+#[pyclass(module = "pipelay", name = "TensionControl", frozen)]
+#[derive(Clone)]
+pub struct PyTensionControl(pub TensionControl);
+
+#[pymethods]
+impl PyTensionControl {
+    #[new]
+    #[pyo3(signature = (target, gain, start=0.0, rate_limit=None, filter=20.0))]
+    fn new(
+        target: f64,
+        gain: f64,
+        start: f64,
+        rate_limit: Option<f64>,
+        filter: f64,
+    ) -> PyResult<Self> {
+        if !(filter.is_finite() && filter > 0.0) {
+            return Err(input(
+                "filter",
+                filter,
+                "must be a positive time constant (s)",
+            ));
+        }
+        if !target.is_finite() {
+            return Err(input("target", target, "must be a finite tension (N)"));
+        }
+        if !(gain.is_finite() && gain > 0.0) {
+            return Err(input("gain", gain, "must be a positive number (m/s per N)"));
+        }
+        if !start.is_finite() {
+            return Err(input("start", start, "must be a finite time (s)"));
+        }
+        if let Some(limit) = rate_limit.filter(|l| !(l.is_finite() && *l > 0.0)) {
+            return Err(input("rate_limit", limit, "must be a positive speed (m/s)"));
+        }
+        Ok(PyTensionControl(TensionControl {
+            target,
+            gain,
+            start,
+            rate_limit,
+            filter,
+        }))
+    }
+    /// Target top tension (N).
+    #[getter]
+    fn target(&self) -> f64 {
+        self.0.target
+    }
+}
+
 /// A reference's pose and rate as arrays.
 type PoseAndRate<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
@@ -154,7 +206,8 @@ impl PyRoute {
 /// A PID controller on η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t),
 /// η̃̇ = J(η)ν − η̇_ref(t), from `start` (s). PD when ki is None. `reference`: η_ref (6,), a pl.Route, or a
 /// callable of t returning (6,) (with `reference_rate`, a callable returning η̇_ref, or central differences
-/// over 1 ms). `integral_limit` (6,) bounds ∫η̃; `thrust_limit` (3,) bounds the thrust in surge (N), sway (N)
+/// over 1 ms). `tension`: a pl.TensionControl moving the set-point to hold the top tension.
+/// `integral_limit` (6,) bounds ∫η̃; `thrust_limit` (3,) bounds the thrust in surge (N), sway (N)
 /// and yaw (N·m).
 #[pyclass(module = "pipelay", name = "PID", frozen)]
 #[derive(Clone)]
@@ -163,7 +216,7 @@ pub struct PyPid(pub Pid);
 #[pymethods]
 impl PyPid {
     #[new]
-    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None))]
+    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None, tension=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         kp: &Bound<'_, PyAny>,
@@ -174,6 +227,7 @@ impl PyPid {
         integral_limit: Option<&Bound<'_, PyAny>>,
         thrust_limit: Option<&Bound<'_, PyAny>>,
         reference_rate: Option<&Bound<'_, PyAny>>,
+        tension: Option<&PyTensionControl>,
     ) -> PyResult<Self> {
         let Some(reference) = reference else {
             return Err(input(
@@ -212,6 +266,7 @@ impl PyPid {
                 .transpose()?
                 .unwrap_or_else(Matrix6::zeros),
             reference,
+            tension: tension.map(|t| t.0),
             start,
             integral_limit: integral_limit
                 .map(|l| array::<6>(l, "integral_limit").map(Vector6::from))

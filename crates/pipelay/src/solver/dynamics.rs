@@ -24,7 +24,7 @@ use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::solver::contact::{ContactRule, NodeStep, SeabedContact, Touchdown};
 pub use crate::solver::energy::Energy;
 use crate::solver::history::{History, Snapshot};
-use crate::vessel::control::clamp_integral;
+use crate::vessel::control::{clamp_integral, shifted};
 use crate::vessel::coupling::{
     pipe_force_on_vessel, vessel_pose, DynamicVessel, VesselContribution,
 };
@@ -89,6 +89,10 @@ pub struct VesselMotion {
     pub thrust: Vector6<f64>,
     /// The pipe's force and moment on the vessel over the last step, χ (body frame).
     pub pipe_force: Vector6<f64>,
+    /// How far the lay-tension loop has moved the set-point along the reference's heading (m).
+    pub setpoint_offset: f64,
+    /// The lay-tension loop's filtered top tension (N).
+    pub filtered_tension: f64,
 }
 
 impl DynamicState {
@@ -114,7 +118,17 @@ impl DynamicState {
             velocities[support.node] = support.velocity(time)?;
         }
         let vessel = model.vessel.as_ref().map(|_| {
-            let held = crate::solver::response::Response::new(model, &configuration).vessel;
+            let response = crate::solver::response::Response::new(model, &configuration);
+            let top = response
+                .section_forces
+                .get(
+                    model
+                        .vessel
+                        .as_ref()
+                        .map_or(0, |v| v.node.saturating_sub(1)),
+                )
+                .map_or(0.0, |f| f.x);
+            let held = response.vessel;
             let (hold_thrust, pipe_force) = held
                 .map_or((Vector6::zeros(), Vector6::zeros()), |v| {
                     (v.thrust, v.pipe_force)
@@ -125,6 +139,8 @@ impl DynamicState {
                 hold_thrust,
                 thrust: hold_thrust,
                 pipe_force,
+                setpoint_offset: 0.0,
+                filtered_tension: top,
             }
         });
         Ok(DynamicState {
@@ -239,6 +255,9 @@ pub struct Integrator {
     rod_force_at_vessel: Vector6<f64>,
     /// The controller's reference pose and rate at the current step's midpoint.
     reference_mid: (Vector6<f64>, Vector6<f64>),
+    /// The lay-tension loop's set-point offset and filtered tension at the end of the current step (m, N).
+    offset_next: f64,
+    filtered_next: f64,
     /// Seabed contact, if the model has a seabed.
     contact: Option<SeabedContact>,
 }
@@ -322,6 +341,8 @@ impl Integrator {
             vessel_step: None,
             rod_force_at_vessel: Vector6::zeros(),
             reference_mid: (Vector6::zeros(), Vector6::zeros()),
+            offset_next: 0.0,
+            filtered_next: 0.0,
         })
     }
 
@@ -477,6 +498,17 @@ impl Integrator {
         )
     }
 
+    /// Effective tension of the element at the vessel (N); 0 without a vessel.
+    pub fn top_tension(&self) -> f64 {
+        let Some(attachment) = &self.model.vessel else {
+            return 0.0;
+        };
+        let element = attachment.node.saturating_sub(1);
+        let reference = &self.model.rod.elements[element];
+        let strain = self.state.gauss[element].strain - reference.strain;
+        (self.model.rod.section.c_t() * strain).x
+    }
+
     /// Each roller's normal force in the current state (N); `None` without rollers.
     pub fn roller_forces(&self) -> Option<&[f64]> {
         self.assembler.rollers.as_ref().map(|r| &r.forces[..])
@@ -575,7 +607,26 @@ impl Integrator {
             .as_ref()
             .and_then(|v| v.controller.as_ref())
         {
-            self.reference_mid = controller.reference.at(time_mid)?;
+            let reference = controller.reference.at(time_mid)?;
+            // The lay-tension loop moves the set-point by the top tension measured at the step's start.
+            let (offset, filtered) = self
+                .state
+                .vessel
+                .as_ref()
+                .map_or((0.0, 0.0), |v| (v.setpoint_offset, v.filtered_tension));
+            let (rate, filtered_next) =
+                controller
+                    .tension
+                    .as_ref()
+                    .map_or((0.0, filtered), |tension| {
+                        (
+                            tension.rate(filtered, self.state.time),
+                            tension.filtered(filtered, self.top_tension(), dt),
+                        )
+                    });
+            self.offset_next = offset + rate * dt;
+            self.filtered_next = filtered_next;
+            self.reference_mid = shifted(reference, offset + 0.5 * rate * dt, rate);
         }
         self.predict(&targets, dt);
         let mut residual = f64::INFINITY;
@@ -937,6 +988,8 @@ impl Integrator {
             let time_mid = self.state.time + 0.5 * dt;
             motion.velocity = step.velocity_next;
             motion.thrust = step.thrust;
+            motion.setpoint_offset = self.offset_next;
+            motion.filtered_tension = self.filtered_next;
             // The rod's force on the vessel, −(vessel's force on the rod), is the vessel end's reaction.
             self.reactions[attachment.node] = -self.rod_force_at_vessel;
             if let Some(controller) = attachment

@@ -126,6 +126,63 @@ impl Reference {
     }
 }
 
+/// The lay-tension loop around the DP controller: it moves the set-point along the reference's heading
+/// to hold the pipe's top tension, ṡ = −k (T_f − T*) (the set-point backs off toward the touchdown while the
+/// tension is too high), bounded by `rate_limit`, from `start`. T_f is the top tension through a first-order
+/// low-pass filter of time constant `filter` (s): the loop must not feed the pipe's fast axial and contact
+/// oscillations back into the set-point, which pumps them up. It acts only through the reference, so the
+/// pipe–vessel system stays passive from thrust to velocity whatever the set-point does (the thrust's work
+/// is supplied work in the energy ledger).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TensionControl {
+    /// Target top tension T* (N).
+    pub target: f64,
+    /// k (m/s per N of tension error).
+    pub gain: f64,
+    /// Time the loop starts (s).
+    pub start: f64,
+    /// Bound on |ṡ| (m/s); `None`: unbounded.
+    pub rate_limit: Option<f64>,
+    /// Time constant of the tension filter (s).
+    pub filter: f64,
+}
+
+impl TensionControl {
+    /// The filtered tension after a step `dt` (s) from `filtered` with the measured `tension` (N): exact for a
+    /// tension held over the step.
+    pub fn filtered(&self, filtered: f64, tension: f64, dt: f64) -> f64 {
+        let weight = 1.0 - (-dt / self.filter).exp();
+        filtered + weight * (tension - filtered)
+    }
+
+    /// ṡ for the filtered top tension (N) at time t (s).
+    pub fn rate(&self, tension: f64, time: f64) -> f64 {
+        if time < self.start {
+            return 0.0;
+        }
+        let rate = -self.gain * (tension - self.target);
+        match self.rate_limit {
+            Some(limit) => rate.clamp(-limit, limit),
+            None => rate,
+        }
+    }
+}
+
+/// The reference moved by `offset` (m) along its own heading, its rate by `offset_rate` (m/s).
+pub fn shifted(
+    reference: (Vector6<f64>, Vector6<f64>),
+    offset: f64,
+    offset_rate: f64,
+) -> (Vector6<f64>, Vector6<f64>) {
+    let (mut pose, mut rate) = reference;
+    let (sin, cos) = pose[5].sin_cos();
+    pose[0] += offset * cos;
+    pose[1] += offset * sin;
+    rate[0] += offset_rate * cos;
+    rate[1] += offset_rate * sin;
+    (pose, rate)
+}
+
 /// A PID controller on the vessel's η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t),
 /// η̃̇ = J(η)ν − η̇_ref(t), active from `start`; thrust acts in surge, sway and yaw only.
 #[derive(Debug, Clone, PartialEq)]
@@ -141,6 +198,8 @@ pub struct Pid {
     pub integral_limit: Option<nalgebra::Vector6<f64>>,
     /// Bounds on the thrust in surge (N), sway (N) and yaw (N·m); `None`: unbounded.
     pub thrust_limit: Option<Vector3<f64>>,
+    /// The lay-tension loop that moves the set-point, if any.
+    pub tension: Option<TensionControl>,
 }
 
 /// Wraps an angle to (−π, π].
