@@ -47,12 +47,17 @@ class LayPosition:
     solves: int
 
 
-def lay_quantity(state: pl.State, target: str, **check: object) -> float:
-    """The lay quantity `target` (a key of TARGETS) of a static state; `check`: arguments of
-    ``pl.checks.dnv_st_f101`` for "sagbend_utilisation"."""
+def _check_target(target: str) -> None:
+    """An InputError unless `target` is a key of TARGETS."""
     if target not in TARGETS:
         allowed = ", ".join(TARGETS)
         raise pl.InputError(f"target: {target!r} is not a lay quantity; allowed: {allowed}")
+
+
+def lay_quantity(state: pl.State, target: str, **check: object) -> float:
+    """The lay quantity `target` (a key of TARGETS) of a static state; `check`: arguments of
+    ``pl.checks.dnv_st_f101`` for "sagbend_utilisation"."""
+    _check_target(target)
     summary = state.lay_summary()
     if summary is None:
         raise pl.InputError("target: the model holds no vessel end, so it has no lay summary")
@@ -132,9 +137,7 @@ def find_lay_position(
     """
     from scipy.optimize import brentq
 
-    if target not in TARGETS:
-        allowed = ", ".join(TARGETS)
-        raise pl.InputError(f"target: {target!r} is not a lay quantity; allowed: {allowed}")
+    _check_target(target)
     if not math.isfinite(value):
         raise pl.InputError(f"value: {value!r} must be a finite number")
     if not (math.isfinite(tolerance) and tolerance > 0):

@@ -66,33 +66,22 @@ struct LayState {
 }
 
 impl LayState {
+    /// From a configuration's section forces, its rollers' forces and its lay summary.
     fn new(
         model: &Model,
         configuration: &Configuration,
         section_forces: &[Vector6<f64>],
-        rollers: Option<(&[f64], &[usize])>,
-        touchdown: Option<&Touchdown>,
+        roller_forces: Option<&[f64]>,
+        summary: Option<LaySummary>,
     ) -> Self {
         let section = model.rod.section.clone();
         LayState {
             strain: section_forces.iter().map(|f| section.strain(f)).collect(),
-            roller_forces: rollers.map(|(f, _)| f.to_vec()),
-            summary: lay_summary(
-                model,
-                &configuration.positions,
-                &configuration.rotations,
-                section_forces,
-                rollers,
-                touchdown,
-            ),
+            roller_forces: roller_forces.map(<[f64]>::to_vec),
+            summary,
             section,
             roller_tops: roller_tops(model, &configuration.positions, &configuration.rotations),
-            arc_length: std::iter::once(0.0)
-                .chain(model.rod.elements.iter().scan(0.0, |arc, e| {
-                    *arc += e.length;
-                    Some(*arc)
-                }))
-                .collect(),
+            arc_length: model.rod.arc_lengths(),
             water: model.sea.as_ref().map(|sea| (sea.depth, sea.density)),
         }
     }
@@ -109,15 +98,24 @@ impl State {
         steps: usize,
     ) -> Self {
         let count = model.rod.node_count();
+        let rollers = response
+            .rollers
+            .as_ref()
+            .map(|r| (&r.forces[..], &r.elements[..]));
+        let summary = lay_summary(
+            model,
+            &configuration.positions,
+            &configuration.rotations,
+            &response.section_forces,
+            rollers,
+            response.seabed.as_ref().map(|s| &s.touchdown),
+        );
         let lay = LayState::new(
             model,
             &configuration,
             &response.section_forces,
-            response
-                .rollers
-                .as_ref()
-                .map(|r| (&r.forces[..], &r.elements[..])),
-            response.seabed.as_ref().map(|s| &s.touchdown),
+            rollers.map(|r| r.0),
+            summary,
         );
         State {
             lay,
@@ -155,20 +153,13 @@ impl State {
     pub fn from_integrator(integrator: &Integrator, iterations: usize) -> Self {
         let state = integrator.state();
         let section_forces = integrator.section_forces();
-        let rollers = integrator
-            .model()
-            .vessel
-            .as_ref()
-            .and(integrator.roller_forces());
-        let mut lay = LayState::new(
+        let lay = LayState::new(
             integrator.model(),
             &state.configuration,
             &section_forces,
-            None,
-            None,
+            integrator.roller_forces(),
+            integrator.lay_summary(&section_forces),
         );
-        lay.roller_forces = rollers.map(|f| f.to_vec());
-        lay.summary = integrator.lay_summary();
         State {
             lay,
             configuration: state.configuration.clone(),

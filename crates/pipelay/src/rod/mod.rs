@@ -144,4 +144,14 @@ impl Rod {
     pub fn length(&self) -> f64 {
         self.elements.iter().map(|e| e.length).sum()
     }
+
+    /// Each node's arc length from end A along the reference (n + 1 values, m).
+    pub fn arc_lengths(&self) -> Vec<f64> {
+        std::iter::once(0.0)
+            .chain(self.elements.iter().scan(0.0, |arc, e| {
+                *arc += e.length;
+                Some(*arc)
+            }))
+            .collect()
+    }
 }

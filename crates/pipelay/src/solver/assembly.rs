@@ -179,8 +179,11 @@ impl Assembler {
         }
         // Rollers couple the nodes within their reach to the vessel's node and to near neighbours.
         let rollers = model.vessel.as_ref().and_then(|attachment| {
-            let lengths: Vec<f64> = model.rod.elements.iter().map(|e| e.length).collect();
-            RollerContact::new(attachment, model.rod.section.outer_diameter, &lengths)
+            RollerContact::new(
+                attachment,
+                model.rod.section.outer_diameter,
+                &model.rod.arc_lengths(),
+            )
         });
         if let (Some(rollers), Some(attachment)) = (&rollers, &model.vessel) {
             let nodes = rollers.nodes();

@@ -400,18 +400,19 @@ impl Integrator {
     /// The current state as a record, reached after `iterations` Newton iterations.
     pub fn snapshot(&self, iterations: usize) -> Snapshot<'_> {
         let state = &self.state;
+        let section_forces = self.section_forces();
         Snapshot {
             time: state.time,
             positions: &state.configuration.positions,
             rotations: &state.configuration.rotations,
             velocities: &state.velocities,
-            section_forces: self.section_forces(),
+            lay: self.lay_summary(&section_forces),
+            section_forces,
             reactions: &self.reactions,
             energy: self.energy(),
             vessel: self.vessel_values(),
             touchdown: self.touchdown(),
             roller_forces: self.roller_forces(),
-            lay: self.lay_summary(),
             supplied_work: self.supplied_work,
             dissipated: self.dissipated,
             iterations,
@@ -482,14 +483,18 @@ impl Integrator {
         self.contact.as_ref().map(|contact| &contact.forces[..])
     }
 
-    /// The lay summary of the current state; `None` without a vessel.
-    pub fn lay_summary(&self) -> Option<crate::solver::lay_summary::LaySummary> {
+    /// The lay summary of the current state, whose section forces are `section_forces`; `None` without a
+    /// vessel.
+    pub fn lay_summary(
+        &self,
+        section_forces: &[Vector6<f64>],
+    ) -> Option<crate::solver::lay_summary::LaySummary> {
         let state = &self.state;
         crate::solver::lay_summary::lay_summary(
             &self.model,
             &state.configuration.positions,
             &state.configuration.rotations,
-            &self.section_forces(),
+            section_forces,
             self.assembler
                 .rollers
                 .as_ref()

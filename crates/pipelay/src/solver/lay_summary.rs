@@ -99,12 +99,7 @@ pub fn lay_summary(
     let node = attachment.node;
     let elements = model.rod.element_count();
     let top_element = if node == 0 { 0 } else { elements - 1 };
-    let arc_of_node: Vec<f64> = std::iter::once(0.0)
-        .chain(model.rod.elements.iter().scan(0.0, |arc, e| {
-            *arc += e.length;
-            Some(*arc)
-        }))
-        .collect();
+    let arc_of_node = model.rod.arc_lengths();
     // The lift-off element: of the rollers in contact, the one farthest from the hold point along the pipe.
     let liftoff = rollers.and_then(|(forces, elements)| {
         forces

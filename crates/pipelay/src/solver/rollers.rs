@@ -108,9 +108,9 @@ fn chord_distance(
 }
 
 impl RollerContact {
-    /// The rollers of `attachment` for a pipe of outer diameter `diameter` whose element reference lengths
-    /// are `lengths`; `None` without rollers.
-    pub fn new(attachment: &VesselAttachment, diameter: f64, lengths: &[f64]) -> Option<Self> {
+    /// The rollers of `attachment` for a pipe of outer diameter `diameter` whose nodes lie at reference arc
+    /// lengths `arcs` from end A ([`crate::rod::Rod::arc_lengths`]); `None` without rollers.
+    pub fn new(attachment: &VesselAttachment, diameter: f64, arcs: &[f64]) -> Option<Self> {
         let lay = attachment.lay.as_ref().filter(|l| !l.rollers.is_empty())?;
         let to_end = attachment.angle;
         let rollers = lay
@@ -126,30 +126,20 @@ impl RollerContact {
                 }
             })
             .collect::<Vec<_>>();
-        let count = lengths.len();
-        let longest = lengths.iter().cloned().fold(0.0, f64::max);
+        let count = arcs.len() - 1;
+        let total = arcs[count];
+        let longest = arcs.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
         let reach = 1.5 * lay.reach() + 3.0 * longest;
         let end_node = attachment.node;
-        // Elements whose reference arc length from the held end is within reach.
+        // Elements whose reference arc length from the held end is within reach: from end A, those starting
+        // within it; from end B, those ending within it.
         let elements = if end_node == 0 {
-            let mut arc = 0.0;
-            let last = lengths
-                .iter()
-                .position(|l| {
-                    arc += l;
-                    arc > reach
-                })
-                .map_or(count, |e| e + 1);
-            0..last
+            0..arcs[..count].iter().take_while(|&&s| s <= reach).count()
         } else {
-            let mut arc = 0.0;
-            let first = lengths
+            let first = arcs[1..]
                 .iter()
-                .rposition(|l| {
-                    arc += l;
-                    arc > reach
-                })
-                .unwrap_or(0);
+                .position(|&s| total - s <= reach)
+                .unwrap_or(count);
             first..count
         };
         Some(RollerContact {
@@ -442,7 +432,12 @@ mod tests {
             surface: 0.0,
             lay: Some(lay.clone()),
         };
-        let contact = RollerContact::new(&attachment, 0.6, &[5.0; 11]).unwrap();
+        let contact = RollerContact::new(
+            &attachment,
+            0.6,
+            &(0..12).map(|i| 5.0 * i as f64).collect::<Vec<_>>(),
+        )
+        .unwrap();
         // The pipe follows the stinger's arc 1 cm too low (pressed into the rollers), then hangs straight.
         let centre = Vector3::new(-5.0, 0.0, 40.0);
         let positions = (0..12)
