@@ -6,6 +6,7 @@ use crate::state::State;
 use crate::structure::{Rod, Sea};
 use crate::vessel::{PyForce, PyPid, Vessel};
 use nalgebra::{Matrix3, Vector3};
+use pipelay::model::PayOutSpeed;
 use pipelay::solver::assembly::Configuration;
 use pipelay::solver::response::Response;
 use pipelay::solver::statics::{self, Start, StaticOptions};
@@ -73,6 +74,34 @@ impl Model {
         self.0
             .drive(end, position, velocity, rotation)
             .map_err(to_py)
+    }
+
+    /// Pays pipe out at `end` ("A" or "B") during a simulation at `speed` (m/s of unstretched pipe; a number or
+    /// a callable of t; negative pays in). The end must be held by the vessel (through its tensioner or tower)
+    /// or driven; new elements have the end element's present length.
+    #[pyo3(signature = (end="B", speed=None))]
+    fn pay_out(&mut self, end: &str, speed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        let Some(speed) = speed else {
+            return Err(input(
+                "speed",
+                "missing",
+                "must be given: a number (m/s) or a callable of t",
+            ));
+        };
+        let speed = match speed.extract::<f64>() {
+            Ok(v) => PayOutSpeed::Constant(v),
+            Err(_) if speed.is_callable() => {
+                PayOutSpeed::Function(scalar_function(speed, "speed")?)
+            }
+            Err(_) => {
+                return Err(input(
+                    "speed",
+                    speed.repr().map_or("?".into(), |r| r.to_string()),
+                    "must be a number (m/s) or a callable of t",
+                ))
+            }
+        };
+        self.0.pay_out(end, speed).map_err(to_py)
     }
 
     /// A fixed-direction force (3,) (N) and moment (3,) (N·m) in e at a node (index, negative from the end,

@@ -36,6 +36,51 @@ impl Simulation {
     }
 }
 
+/// The rod of a checkpoint written with pay-out (arrays `mesh_nodes`, `mesh_frames`, `mesh_elements`).
+fn restored_rod(
+    model: &Model,
+    get: &dyn Fn(&str) -> PyResult<Vec<f64>>,
+) -> PyResult<pipelay::rod::Rod> {
+    let (nodes, frames, elements) = (
+        get("mesh_nodes")?,
+        get("mesh_frames")?,
+        get("mesh_elements")?,
+    );
+    let count = elements.len() / 7;
+    if elements.len() != 7 * count
+        || nodes.len() != 3 * (count + 1)
+        || frames.len() != 4 * (count + 1)
+    {
+        return Err(input(
+            "mesh_elements",
+            format!(
+                "{} element, {} node and {} frame values",
+                elements.len(),
+                nodes.len(),
+                frames.len()
+            ),
+            "must hold n × 7, (n + 1) × 3 and (n + 1) × 4 values",
+        ));
+    }
+    let vector = |v: &[f64]| Vector3::from_column_slice(v);
+    Ok(pipelay::rod::Rod {
+        nodes: nodes.chunks_exact(3).map(vector).collect(),
+        frames: frames
+            .chunks_exact(4)
+            .map(|q| UnitQuaternion::new_normalize(Quaternion::new(q[3], q[0], q[1], q[2])))
+            .collect(),
+        elements: elements
+            .chunks_exact(7)
+            .map(|e| pipelay::rod::element::ElementReference {
+                length: e[0],
+                strain: vector(&e[1..4]),
+                curvature: vector(&e[4..7]),
+            })
+            .collect(),
+        section: model.rod.section.clone(),
+    })
+}
+
 /// Array of `shape` from flat row-major data.
 fn shaped<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
     Ok(PyArray1::from_slice(py, data)
@@ -154,8 +199,7 @@ impl Simulation {
         if let Some(bar) = &bar {
             bar.call_method0("close")?;
         }
-        let last_node = self.integrator.model().rod.element_count();
-        let results = Results { history, last_node };
+        let results = Results::from_history(history);
         match outcome {
             Ok(()) => Ok(results),
             Err(error) => {
@@ -182,9 +226,40 @@ impl Simulation {
             vec![
                 self.integrator.supplied_work(),
                 self.integrator.dissipated(),
+                self.integrator.pay_out_energy(),
             ],
-            2,
+            3,
         )?;
+        let model = self.integrator.model();
+        if model.pay_out.is_some() {
+            // Pay-out changes the mesh: the checkpoint carries the rod's reference as it is now.
+            let rod = &model.rod;
+            rows(
+                "mesh_nodes",
+                rod.nodes.iter().flat_map(|p| p.iter().copied()).collect(),
+                3,
+            )?;
+            rows(
+                "mesh_frames",
+                rod.frames
+                    .iter()
+                    .flat_map(|q| q.coords.iter().copied())
+                    .collect(),
+                4,
+            )?;
+            rows(
+                "mesh_elements",
+                rod.elements
+                    .iter()
+                    .flat_map(|e| {
+                        std::iter::once(e.length)
+                            .chain(e.strain.iter().copied())
+                            .chain(e.curvature.iter().copied())
+                    })
+                    .collect(),
+                7,
+            )?;
+        }
         rows(
             "positions",
             state
@@ -288,7 +363,13 @@ impl Simulation {
                 None => Err(input(key, "missing", "must be present in the checkpoint")),
             }
         };
-        let model = model.0.clone();
+        let model = match arrays.get_item("mesh_elements")? {
+            Some(_) => model
+                .0
+                .with_rod(restored_rod(&model.0, &get)?)
+                .map_err(to_py)?,
+            None => model.0.clone(),
+        };
         let nodes = model.rod.node_count();
         let elements = model.rod.element_count();
         let vectors = |key: &str, count: usize| -> PyResult<Vec<Vector3<f64>>> {
@@ -406,8 +487,20 @@ impl Simulation {
         };
         let ledger = get("ledger")?;
         let mut simulation = Simulation::from_state(model, state, dt)?;
-        if let [supplied, dissipated] = ledger[..] {
-            simulation.integrator.restore_ledger(supplied, dissipated);
+        match ledger[..] {
+            [supplied, dissipated] => simulation
+                .integrator
+                .restore_ledger(supplied, dissipated, 0.0),
+            [supplied, dissipated, pay_out] => simulation
+                .integrator
+                .restore_ledger(supplied, dissipated, pay_out),
+            _ => {
+                return Err(input(
+                    "ledger",
+                    format!("{} values", ledger.len()),
+                    "must hold the supplied work, the dissipation and the pay-out energy",
+                ))
+            }
         }
         Ok(simulation)
     }
@@ -587,11 +680,23 @@ impl Results {
         dict.set_item("total", PyArray1::from_slice(py, &total))?;
         Ok(dict)
     }
-    /// Work done on the system since the start of the run (T,) (J): point loads, driven supports and the
-    /// current's share of the drag.
+    /// Work done on the system since the start of the run (T,) (J): point loads, driven supports, the
+    /// current's share of the drag and the energy pay-out brought in.
     #[getter]
     fn supplied_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.history.supplied_work)
+    }
+    /// The pipe's unstretched length at each record (T,) (m): it changes with pay-out.
+    #[getter]
+    fn length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.length)
+    }
+    /// Energy pay-out brought in since the start of the run (T,) (J), part of `supplied_work`: the work of the
+    /// tensioner (or driven end) on the pipe it lets out, the energy the added pipe carries, and the energy
+    /// change of mesh changes.
+    #[getter]
+    fn pay_out_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.pay_out_energy)
     }
     /// Energy dissipated since the start of the run (T,) (J): never decreasing.
     #[getter]
@@ -696,6 +801,15 @@ impl Results {
         h.supplied_work = get("supplied_work")?;
         h.dissipated = get("dissipated")?;
         h.iterations = get("iterations")?.iter().map(|&i| i as usize).collect();
+        // Results written before pay-out existed have neither: the length is then unknown (NaN).
+        h.length = optional("length")?;
+        if h.length.is_empty() {
+            h.length = vec![f64::NAN; h.time.len()];
+        }
+        h.pay_out_energy = optional("pay_out_energy")?;
+        if h.pay_out_energy.is_empty() {
+            h.pay_out_energy = vec![0.0; h.time.len()];
+        }
         h.seabed = optional("seabed_energy")?;
         if h.seabed.is_empty() {
             h.seabed = vec![0.0; h.time.len()];

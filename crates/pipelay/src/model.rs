@@ -187,6 +187,55 @@ pub struct Model {
     pub point_loads: Vec<PointLoad>,
     /// A vessel holding one end, if any.
     pub vessel: Option<VesselAttachment>,
+    /// Pipe paid out (or in) at one end, if any.
+    pub pay_out: Option<PayOut>,
+}
+
+/// Pay-out speed (m/s of unstretched pipe; negative: pay-in).
+#[derive(Clone)]
+pub enum PayOutSpeed {
+    Constant(f64),
+    Function(TimeFunction<f64>),
+}
+
+impl fmt::Debug for PayOutSpeed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PayOutSpeed::Constant(v) => write!(f, "Constant({v})"),
+            PayOutSpeed::Function(_) => write!(f, "Function"),
+        }
+    }
+}
+
+/// Pipe paid out through a vessel's tensioner or tower, or at a driven end: the end element's unstretched
+/// length grows at the pay-out speed; when it passes 1.5 `element_length` it is split, and on pay-in it is
+/// joined with its neighbour when it falls below 0.5 `element_length`.
+#[derive(Debug, Clone)]
+pub struct PayOut {
+    /// The end: true for end A (node 0), false for end B (node n).
+    pub at_start: bool,
+    pub speed: PayOutSpeed,
+    /// The length of the elements pay-out adds (m): that of the end element when pay-out was set.
+    pub element_length: f64,
+}
+
+impl PayOut {
+    /// The speed at time t (s), checked finite.
+    pub fn speed_at(&self, time: f64) -> Result<f64> {
+        let speed = match &self.speed {
+            PayOutSpeed::Constant(v) => *v,
+            PayOutSpeed::Function(f) => f(time)
+                .map_err(|message| Error::input("pay_out speed", format!("t = {time}"), message))?,
+        };
+        if !speed.is_finite() {
+            return Err(Error::input(
+                "pay_out speed",
+                format!("{speed} at t = {time} s"),
+                "must be a finite speed (m/s)",
+            ));
+        }
+        Ok(speed)
+    }
 }
 
 impl Model {
@@ -204,6 +253,7 @@ impl Model {
             supports: Vec::new(),
             point_loads: Vec::new(),
             vessel: None,
+            pay_out: None,
         })
     }
 
@@ -243,6 +293,14 @@ impl Model {
                 "end",
                 format!("{end:?}"),
                 "must not carry a vessel: the vessel holds that end (use the other end)",
+            ));
+        }
+        let paid_out = self.growing_element().is_some_and(|(_, end)| end == node);
+        if paid_out && !matches!(kind, SupportKind::Drive { .. }) {
+            return Err(Error::input(
+                "end",
+                format!("{:?}", if node == 0 { "A" } else { "B" }),
+                "pays pipe out: it may be driven but not clamped or pinned",
             ));
         }
         self.supports.retain(|s| s.node != node);
@@ -423,6 +481,93 @@ impl Model {
         load.scale_at(0.0)?;
         self.point_loads.push(load);
         Ok(())
+    }
+
+    /// Pays pipe out at `end` at `speed` (m/s; negative pays in). The end must carry the vessel or be driven:
+    /// pipe cannot pass through a clamp or a pin.
+    pub fn pay_out(&mut self, end: &str, speed: PayOutSpeed) -> Result<()> {
+        let node = self.end_node(end)?;
+        let held = self
+            .supports
+            .iter()
+            .find(|s| s.node == node)
+            .map(|s| &s.kind);
+        let by_vessel = self.vessel.as_ref().is_some_and(|v| v.node == node);
+        match held {
+            Some(SupportKind::Drive { .. }) => {}
+            Some(_) => {
+                return Err(Error::input(
+                    "end",
+                    format!("{end:?}, which is clamped or pinned"),
+                    "pay-out needs the end the vessel holds or a driven end (pipe cannot pass a clamp or pin)",
+                ))
+            }
+            None if by_vessel => {}
+            None => {
+                return Err(Error::input(
+                    "end",
+                    format!("{end:?}, which is free"),
+                    "pay-out needs the end the vessel holds or a driven end",
+                ))
+            }
+        }
+        let pay_out = PayOut {
+            at_start: node == 0,
+            speed,
+            element_length: self.rod.elements[node.saturating_sub(1)].length,
+        };
+        pay_out.speed_at(0.0)?;
+        self.pay_out = Some(pay_out);
+        Ok(())
+    }
+
+    /// The element that grows with pay-out and its end node, if pipe is paid out.
+    pub fn growing_element(&self) -> Option<(usize, usize)> {
+        let pay_out = self.pay_out.as_ref()?;
+        let n = self.rod.element_count();
+        Some(if pay_out.at_start { (0, 0) } else { (n - 1, n) })
+    }
+
+    /// Renumbers node references after a node was inserted (`delta` = 1) or removed (`delta` = −1) at index
+    /// `at`: every reference to a node at or after `at` moves by `delta`.
+    pub fn renumber_nodes(&mut self, at: usize, delta: isize) {
+        let shift = |node: &mut usize| {
+            if *node >= at {
+                *node = node.saturating_add_signed(delta);
+            }
+        };
+        self.supports.iter_mut().for_each(|s| shift(&mut s.node));
+        self.point_loads.iter_mut().for_each(|l| shift(&mut l.node));
+        if let Some(vessel) = &mut self.vessel {
+            shift(&mut vessel.node);
+        }
+    }
+
+    /// The model with its rod replaced by `rod`, a remeshing of it by pay-out (e.g. read from a checkpoint):
+    /// the references to nodes move with the nodes pay-out added or removed.
+    pub fn with_rod(&self, rod: Rod) -> Result<Model> {
+        let added = rod.node_count() as isize - self.rod.node_count() as isize;
+        if added != 0 && self.pay_out.is_none() {
+            return Err(Error::input(
+                "rod",
+                format!("{} nodes", rod.node_count()),
+                format!(
+                    "must have this model's {} nodes (only pay-out changes the mesh)",
+                    self.rod.node_count()
+                ),
+            ));
+        }
+        let mut model = self.clone();
+        if let Some(pay_out) = &self.pay_out {
+            let at = if pay_out.at_start {
+                1
+            } else {
+                self.rod.element_count()
+            };
+            model.renumber_nodes(at, added);
+        }
+        model.rod = rod;
+        Ok(model)
     }
 
     /// Submerged weight per unit reference length (N/m, along +e3): (m − ρ_w A_b) g (text under eq. 17).

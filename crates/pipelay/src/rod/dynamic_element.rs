@@ -75,11 +75,19 @@ pub struct ElementStep {
 
 /// Internal forces of one step and, if asked, their tangent with respect to [Δφ1, θ1, Δφ2, θ2].
 /// `chord` is φ2 − φ1 at step n; `increments` the unknowns [Δφ1, θ1, Δφ2, θ2].
+///
+/// `length_start` is the element's reference length L_n at step n, `reference.length` the length L_{n+1} at
+/// n+1 (they differ only for the element that grows with pay-out). Γ_{n+1} = Λ_{n+1}ᵀφ′_{n+1} − E1 with
+/// φ′ = chord/L_{n+1}, K_{n+1}L_{n+1} = K_nL_n + cof(Λ̄)ᵀ(θ2 − θ1): each level's strain is its own, so the
+/// averaged stress sees no jump when L changes. The forces then do the work
+/// L_{n+1}[N̄·(Γ_{n+1} − Γ̃_n) + M̄·(K_{n+1} − K̃_n)] with Γ̃_n, K̃_n the step-n strains at length L_{n+1};
+/// the rest of the change of stored energy is the energy pay-out brings in.
 #[allow(clippy::too_many_arguments)]
 pub fn step(
     chord: &Vector3<f64>,
     increments: &ElementVector,
     gauss: &GaussPoint,
+    length_start: f64,
     reference: &ElementReference,
     c_t: &Matrix3<f64>,
     c_r: &Matrix3<f64>,
@@ -87,6 +95,8 @@ pub fn step(
     tangent: Option<&mut ElementMatrix>,
 ) -> ElementStep {
     let l0 = reference.length;
+    // K̃_n: the step-n relative rotation K_nL_n spread over the length L_{n+1}.
+    let curvature_start = gauss.curvature * (length_start / l0);
     let identity = Matrix3::identity();
     let dphi1 = increments.fixed_rows::<3>(0).into_owned();
     let theta1 = increments.fixed_rows::<3>(3).into_owned();
@@ -106,7 +116,7 @@ pub fn step(
     let tangent_next = tangent_n + (dphi2 - dphi1) / l0;
     let tangent_mid = 0.5 * (tangent_n + tangent_next);
     let strain_next = rotation_next.transpose() * tangent_next - Vector3::x();
-    let curvature_next = gauss.curvature + cofactor.transpose() * theta_prime;
+    let curvature_next = curvature_start + cofactor.transpose() * theta_prime;
     let (strain_alg, curvature_alg) = match rule {
         StressRule::AverageStrain => (
             0.5 * (gauss.strain + strain_next),
@@ -116,7 +126,7 @@ pub fn step(
             let rotation_mid = cayley(&(0.5 * theta_g)) * gauss.rotation;
             (
                 rotation_mid.transpose() * tangent_mid - Vector3::x(),
-                gauss.curvature + 0.5 * cofactor.transpose() * theta_prime,
+                curvature_start + 0.5 * cofactor.transpose() * theta_prime,
             )
         }
     };
@@ -228,7 +238,17 @@ mod tests {
     fn tangent_matches_finite_differences() {
         let (chord, gauss, reference, c_t, c_r) = case();
         let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
-            step(&chord, u, &gauss, &reference, &c_t, &c_r, rule, k)
+            step(
+                &chord,
+                u,
+                &gauss,
+                reference.length,
+                &reference,
+                &c_t,
+                &c_r,
+                rule,
+                k,
+            )
         };
         for scale in [0.0, 0.5, 2.0] {
             let u = increments(scale);
@@ -254,7 +274,17 @@ mod tests {
     fn work_equals_the_change_of_stored_energy() {
         let (chord, gauss, reference, c_t, c_r) = case();
         let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
-            step(&chord, u, &gauss, &reference, &c_t, &c_r, rule, k)
+            step(
+                &chord,
+                u,
+                &gauss,
+                reference.length,
+                &reference,
+                &c_t,
+                &c_r,
+                rule,
+                k,
+            )
         };
         for scale in [0.1, 1.0, 3.0] {
             let u = increments(scale);
@@ -273,13 +303,115 @@ mod tests {
         }
     }
 
+    /// A growing element (L_n → L_{n+1}): the tangent still matches finite differences, and the work of the
+    /// forces is L_{n+1}[N̄·(Γ_{n+1} − Γ̃_n) + M̄·(K_{n+1} − K̃_n)] with the step-n strains at length L_{n+1}.
+    #[test]
+    fn growing_element_tangent_and_work() {
+        let (chord, gauss, reference, c_t, c_r) = case();
+        let length_start = 0.93 * reference.length;
+        // The stored strain is that of the step-n chord at the step-n length.
+        let gauss = GaussPoint {
+            strain: gauss.rotation.transpose() * chord / length_start - Vector3::x(),
+            ..gauss
+        };
+        let run = |u: &ElementVector, k: Option<&mut ElementMatrix>| {
+            let rule = StressRule::AverageStrain;
+            step(
+                &chord,
+                u,
+                &gauss,
+                length_start,
+                &reference,
+                &c_t,
+                &c_r,
+                rule,
+                k,
+            )
+        };
+        let u = increments(1.0);
+        let mut k = ElementMatrix::zeros();
+        let s = run(&u, Some(&mut k));
+        let h = 1e-6;
+        let mut worst: f64 = 0.0;
+        for j in 0..12 {
+            let (mut up, mut um) = (u, u);
+            up[j] += h;
+            um[j] -= h;
+            let column = (run(&up, None).forces - run(&um, None).forces) / (2.0 * h);
+            worst = worst.max((column - k.column(j)).abs().max());
+        }
+        assert!(worst < 1e-7 * k.abs().max(), "{worst:e}");
+        let l = reference.length;
+        let strain_start = gauss.rotation.transpose() * chord / l - Vector3::x();
+        let curvature_start = gauss.curvature * (length_start / l);
+        let force = c_t * (0.5 * (gauss.strain + s.next.strain) - reference.strain);
+        let moment = c_r * (0.5 * (gauss.curvature + s.next.curvature) - reference.curvature);
+        let expected = l
+            * (force.dot(&(s.next.strain - strain_start))
+                + moment.dot(&(s.next.curvature - curvature_start)));
+        let work = s.forces.dot(&u);
+        assert!(
+            (work - expected).abs() < 1e-12 * expected.abs(),
+            "{work} vs {expected}"
+        );
+    }
+
+    /// Steady pay-out: an element that moves rigidly while its chord grows with its length keeps its strains,
+    /// and its forces are those of the unchanged strains (no jump from the growth).
+    #[test]
+    fn steady_growth_keeps_the_strains() {
+        let (chord, gauss, reference, c_t, c_r) = case();
+        let length_start = 0.9 * reference.length;
+        let gauss = GaussPoint {
+            strain: gauss.rotation.transpose() * chord / length_start - Vector3::x(),
+            ..gauss
+        };
+        let translation = Vector3::new(0.3, -0.1, 0.2);
+        let mut u = ElementVector::zeros();
+        u.fixed_rows_mut::<3>(0).copy_from(&translation);
+        let growth = chord * (reference.length / length_start - 1.0);
+        u.fixed_rows_mut::<3>(6).copy_from(&(translation + growth));
+        let s = step(
+            &chord,
+            &u,
+            &gauss,
+            length_start,
+            &reference,
+            &c_t,
+            &c_r,
+            StressRule::AverageStrain,
+            None,
+        );
+        assert!((s.next.strain - gauss.strain).norm() < 1e-14);
+        // K L is kept (the nodes do not rotate relative to each other): K_{n+1} = K_n L_n / L_{n+1}.
+        let curvature = gauss.curvature * (length_start / reference.length);
+        assert!((s.next.curvature - curvature).norm() < 1e-14);
+        let axial = (gauss.rotation * (c_t * (gauss.strain - reference.strain))).norm();
+        let f2 = s.forces.fixed_rows::<3>(6).into_owned();
+        assert!(
+            (f2.norm() - axial).abs() < 1e-9 * axial,
+            "{} vs {axial}",
+            f2.norm()
+        );
+    }
+
     /// Rigid increments (the same translation, or a rotation c about the origin) do no internal work
     /// and the internal forces carry no net force or moment.
     #[test]
     fn internal_forces_are_balanced() {
         let (chord, gauss, reference, c_t, c_r) = case();
         let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
-            step(&chord, u, &gauss, &reference, &c_t, &c_r, rule, k)
+            step(
+                &chord,
+                u,
+                &gauss,
+                reference.length,
+                &reference,
+                &c_t,
+                &c_r,
+                rule,
+                k,
+            )
         };
         let u = increments(1.0);
         let s = run(&u, StressRule::AverageStrain, None);

@@ -145,6 +145,45 @@ impl Rod {
         self.elements.iter().map(|e| e.length).sum()
     }
 
+    /// Splits element `element` at a fraction `fraction` ∈ (0, 1) of its length from its first node: a node
+    /// is inserted at index `element + 1`, on the element's reference chord, with the geodesic frame between
+    /// its ends; both halves keep the element's reference strains (Γ0, K0 are per length).
+    pub fn split_element(&mut self, element: usize, fraction: f64) {
+        let parent = self.elements[element];
+        let (a, b) = (element, element + 1);
+        let node = self.nodes[a] + (self.nodes[b] - self.nodes[a]) * fraction;
+        let frame = self.frames[a].slerp(&self.frames[b], fraction);
+        let first = ElementReference {
+            length: fraction * parent.length,
+            ..parent
+        };
+        let second = ElementReference {
+            length: (1.0 - fraction) * parent.length,
+            ..parent
+        };
+        self.nodes.insert(b, node);
+        self.frames.insert(b, frame);
+        self.elements[element] = first;
+        self.elements.insert(element + 1, second);
+    }
+
+    /// Joins elements `element` and `element + 1` into one by removing the node between them; the joined
+    /// element has their summed length and the length-weighted mean reference strains.
+    pub fn join_elements(&mut self, element: usize) {
+        let (first, second) = (self.elements[element], self.elements[element + 1]);
+        let length = first.length + second.length;
+        let mean =
+            |x: Vector3<f64>, y: Vector3<f64>| (x * first.length + y * second.length) / length;
+        self.elements[element] = ElementReference {
+            length,
+            strain: mean(first.strain, second.strain),
+            curvature: mean(first.curvature, second.curvature),
+        };
+        self.elements.remove(element + 1);
+        self.nodes.remove(element + 1);
+        self.frames.remove(element + 1);
+    }
+
     /// Each node's arc length from end A along the reference (n + 1 values, m).
     pub fn arc_lengths(&self) -> Vec<f64> {
         std::iter::once(0.0)

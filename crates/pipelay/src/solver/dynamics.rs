@@ -18,12 +18,13 @@ use crate::environment::drag::morison_drag;
 use crate::error::{positive, Error, Result};
 use crate::model::Model;
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
-use crate::rod::element::{ElementMatrix, ElementVector};
+use crate::rod::element::{ElementMatrix, ElementReference, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::solver::contact::{ContactRule, NodeStep, SeabedContact, Touchdown};
 pub use crate::solver::energy::Energy;
 use crate::solver::history::{History, Snapshot};
+use crate::solver::pay_out::{self, MeshChange};
 use crate::vessel::control::{clamp_integral, shifted};
 use crate::vessel::coupling::{
     pipe_force_on_vessel, vessel_pose, DynamicVessel, VesselContribution,
@@ -200,15 +201,43 @@ struct NodalProperties {
     damping: Vec<Vector3<f64>>,
 }
 
+/// The element that grows with pay-out in the current step.
+#[derive(Debug, Clone, Copy)]
+struct Growth {
+    element: usize,
+    /// Its reference length at the step's start (m); the model holds the length at the step's end.
+    length_start: f64,
+    /// Work of its internal forces over the step (J).
+    internal_work: f64,
+}
+
 impl NodalProperties {
-    fn new(model: &Model) -> Self {
+    /// Added mass per unit length (kg/m).
+    fn added_mass(model: &Model) -> f64 {
         let section = &model.rod.section;
-        let added = model.sea.as_ref().map_or(0.0, |sea| {
+        model.sea.as_ref().map_or(0.0, |sea| {
             section.added_mass[1]
                 * sea.density
                 * std::f64::consts::FRAC_PI_4
                 * section.outer_diameter.powi(2)
-        });
+        })
+    }
+
+    /// Recomputes the lumps of `node` from the lengths of its elements.
+    fn recompute(&mut self, model: &Model, node: usize) {
+        let section = &model.rod.section;
+        let elements = &model.rod.elements;
+        let tributary = 0.5
+            * (node.checked_sub(1).map_or(0.0, |e| elements[e].length)
+                + elements.get(node).map_or(0.0, |e| e.length));
+        self.mass[node] = tributary * (section.mass + Self::added_mass(model));
+        self.inertia[node] = tributary * section.inertia;
+        self.damping[node] = tributary * section.rotational_damping;
+    }
+
+    fn new(model: &Model) -> Self {
+        let section = &model.rod.section;
+        let added = Self::added_mass(model);
         let count = model.rod.node_count();
         let mut props = NodalProperties {
             mass: vec![0.0; count],
@@ -260,6 +289,23 @@ pub struct Integrator {
     filtered_next: f64,
     /// Seabed contact, if the model has a seabed.
     contact: Option<SeabedContact>,
+    /// With pay-out: the growing element in the current step.
+    growth: Option<Growth>,
+    /// Energy pay-out has brought in since the start (J): the work of the tensioner on the pipe it holds plus
+    /// the energy of the pipe it adds, and the energy change of mesh changes.
+    pay_out_energy: f64,
+}
+
+/// Round-off floor of the residual norm (N): internal forces carry errors of about 1e-16·EA per element, a
+/// vessel's restoring about 1e-16·G.
+fn round_off(model: &Model) -> f64 {
+    1e-13
+        * (model.rod.section.translational_stiffness.max()
+            * (model.rod.element_count() as f64).sqrt()
+            + model
+                .vessel
+                .as_ref()
+                .map_or(0.0, |v| v.vessel.restoring.abs().max()))
 }
 
 /// The Cayley parameter θ of a rotation: cay(θ) = R (quaternion (w, v) ↦ 2v/w).
@@ -314,13 +360,7 @@ impl Integrator {
         )
         .nodal_reactions;
         let nodal = NodalProperties::new(&model);
-        let round_off = 1e-13
-            * (model.rod.section.translational_stiffness.max()
-                * (model.rod.element_count() as f64).sqrt()
-                + model
-                    .vessel
-                    .as_ref()
-                    .map_or(0.0, |v| v.vessel.restoring.abs().max()));
+        let round_off = round_off(&model);
         let contact = assembler.contact.take();
         Ok(Integrator {
             contact,
@@ -343,7 +383,19 @@ impl Integrator {
             reference_mid: (Vector6::zeros(), Vector6::zeros()),
             offset_next: 0.0,
             filtered_next: 0.0,
+            growth: None,
+            pay_out_energy: 0.0,
         })
+    }
+
+    /// Energy pay-out has brought in since the start (J); counted in [`Self::supplied_work`].
+    pub fn pay_out_energy(&self) -> f64 {
+        self.pay_out_energy
+    }
+
+    /// The pipe's unstretched length (m).
+    pub fn length(&self) -> f64 {
+        self.model.rod.length()
     }
 
     /// The current state.
@@ -361,15 +413,18 @@ impl Integrator {
         &self.model
     }
 
-    /// Work supplied since the start (J): point loads, driven supports, the current's share of the drag.
+    /// Work supplied since the start (J): point loads, driven supports, the current's share of the drag, and
+    /// the energy pay-out brought in.
     pub fn supplied_work(&self) -> f64 {
         self.supplied_work
     }
 
-    /// Restores the work and dissipation ledger (J), e.g. from a checkpoint.
-    pub fn restore_ledger(&mut self, supplied_work: f64, dissipated: f64) {
+    /// Restores the ledger (J), e.g. from a checkpoint: work supplied, energy dissipated, and the part of the
+    /// supplied work that pay-out brought in.
+    pub fn restore_ledger(&mut self, supplied_work: f64, dissipated: f64, pay_out_energy: f64) {
         self.supplied_work = supplied_work;
         self.dissipated = dissipated;
+        self.pay_out_energy = pay_out_energy;
     }
 
     /// Energy dissipated since the start (J): drag on the relative velocity and rotational damping.
@@ -415,6 +470,8 @@ impl Integrator {
             roller_forces: self.roller_forces(),
             supplied_work: self.supplied_work,
             dissipated: self.dissipated,
+            length: self.length(),
+            pay_out_energy: self.pay_out_energy,
             iterations,
         }
     }
@@ -633,13 +690,152 @@ impl Integrator {
             self.filtered_next = filtered_next;
             self.reference_mid = shifted(reference, offset + 0.5 * rate * dt, rate);
         }
+        let grown = self.start_growth(dt)?;
         self.predict(&targets, dt);
+        let outcome = self.newton(&scales, time_mid, dt);
+        if outcome.is_err() {
+            self.undo_growth();
+        }
+        let report = outcome?;
+        let elastic = self.growth.map_or(0.0, |growth| {
+            let section = &self.model.rod.section;
+            let (c_t, c_r) = (section.c_t(), section.c_r());
+            let reference = self.model.rod.elements[growth.element];
+            let start = ElementReference {
+                length: growth.length_start,
+                ..reference
+            };
+            self.next_gauss[growth.element].energy(&reference, &c_t, &c_r)
+                - self.state.gauss[growth.element].energy(&start, &c_t, &c_r)
+                - growth.internal_work
+        });
+        self.commit(dt);
+        self.book_pay_out(grown + elastic);
+        self.remesh()?;
+        Ok(report)
+    }
+
+    /// Books energy that pay-out brought in (J).
+    fn book_pay_out(&mut self, energy: f64) {
+        self.pay_out_energy += energy;
+        self.supplied_work += energy;
+    }
+
+    /// With pay-out: sets the end element's length to its value at the step's end (the speed at the step's
+    /// midpoint times Δt added) and its nodes' lumps to match. Returns the energy the change of mass brings in
+    /// at the step's start (kinetic, and the potential of the submerged weight).
+    fn start_growth(&mut self, dt: f64) -> Result<f64> {
+        self.growth = None;
+        let (Some(pay_out), Some((element, _))) =
+            (&self.model.pay_out, self.model.growing_element())
+        else {
+            return Ok(0.0);
+        };
+        let time = self.state.time;
+        let speed = pay_out.speed_at(time + 0.5 * dt)?;
+        let length_start = self.model.rod.elements[element].length;
+        let length_next = length_start + speed * dt;
+        if length_next < 0.05 * pay_out.element_length {
+            let reason = if self.model.rod.element_count() == 1 {
+                "pay-in has reached the last element: the pipe cannot be paid in further"
+            } else {
+                "pays in more than half an element in one step: |speed|·dt must stay below 0.45 element_length"
+            };
+            return Err(Error::input(
+                "pay_out speed",
+                format!("{speed} m/s at t = {time} s"),
+                reason,
+            ));
+        }
+        let before = self.element_lump_energy(element);
+        self.model.rod.elements[element].length = length_next;
+        self.nodal.recompute(&self.model, element);
+        self.nodal.recompute(&self.model, element + 1);
+        self.growth = Some(Growth {
+            element,
+            length_start,
+            internal_work: 0.0,
+        });
+        Ok(self.element_lump_energy(element) - before)
+    }
+
+    /// Restores the end element's length and lumps after a failed step.
+    fn undo_growth(&mut self) {
+        if let Some(growth) = self.growth.take() {
+            self.model.rod.elements[growth.element].length = growth.length_start;
+            self.nodal.recompute(&self.model, growth.element);
+            self.nodal.recompute(&self.model, growth.element + 1);
+        }
+    }
+
+    /// Kinetic energy of an element's two nodes and the potential of its submerged weight (J).
+    fn element_lump_energy(&self, element: usize) -> f64 {
+        let state = &self.state;
+        let kinetic = |i: usize| {
+            let w = state.body_angular_velocities[i];
+            0.5 * self.nodal.mass[i] * state.velocities[i].norm_squared()
+                + 0.5 * w.dot(&self.nodal.inertia[i].component_mul(&w))
+        };
+        let positions = &state.configuration.positions;
+        kinetic(element) + kinetic(element + 1)
+            - 0.5
+                * self.model.rod.elements[element].length
+                * self.model.submerged_weight()
+                * (positions[element].z + positions[element + 1].z)
+    }
+
+    /// With pay-out: splits or joins the end element when its length calls for it, rebuilds what depends on
+    /// the mesh and books the energy change of the new mesh (a split keeps it to round-off and the
+    /// discretisation's O(h²)).
+    fn remesh(&mut self) -> Result<()> {
+        let Some(pay_out) = &self.model.pay_out else {
+            return Ok(());
+        };
+        // The speed at the end of the step, with the velocities it goes with.
+        let speed = pay_out.speed_at(self.state.time)?;
+        let before = self.energy().total();
+        let Some(change) =
+            pay_out::remesh(&mut self.model, &mut self.state, &mut self.reactions, speed)
+        else {
+            return Ok(());
+        };
+        let rollers = self.assembler.rollers.take();
+        let mut assembler = Assembler::new(&self.model);
+        if let (Some(new), Some(old)) = (&mut assembler.rollers, rollers) {
+            new.energy_end = old.energy_end;
+            new.forces = old.forces;
+            new.nearest_elements = old
+                .nearest_elements
+                .iter()
+                .map(|&e| match change {
+                    MeshChange::Inserted(node) if e + 1 >= node => e + 1,
+                    MeshChange::Removed(node) if e + 1 >= node => e.saturating_sub(1),
+                    _ => e,
+                })
+                .collect();
+        }
+        self.contact = assembler.contact.take();
+        self.assembler = assembler;
+        self.nodal = NodalProperties::new(&self.model);
+        let count = self.model.rod.node_count();
+        self.increments = vec![0.0; NODE_DOFS * count];
+        self.magnitude = vec![0.0; NODE_DOFS * count];
+        self.correction = vec![0.0; self.assembler.dofs.free];
+        self.next_gauss.clone_from(&self.state.gauss);
+        self.round_off = round_off(&self.model);
+        let after = self.energy().total();
+        self.book_pay_out(after - before);
+        Ok(())
+    }
+
+    /// Newton's method on the step's increments.
+    fn newton(&mut self, scales: &[f64], time_mid: f64, dt: f64) -> Result<StepReport> {
         let mut residual = f64::INFINITY;
         let mut converged = false;
         let mut iterations = 0;
         for iteration in 0..=self.options.max_iterations {
             iterations = iteration;
-            self.assemble(&scales, time_mid, dt)?;
+            self.assemble(scales, time_mid, dt)?;
             let mut free2 = 0.0;
             let mut scale2 = 0.0;
             for ((r, m), eq) in self
@@ -702,7 +898,7 @@ impl Integrator {
             if correction2 <= 1e-30 * size2
                 && residual <= 1e3 * self.options.tolerance * scale2.sqrt()
             {
-                self.assemble(&scales, time_mid, dt)?;
+                self.assemble(scales, time_mid, dt)?;
                 converged = true;
                 iterations += 1;
                 break;
@@ -720,7 +916,6 @@ impl Integrator {
                 ),
             });
         }
-        self.commit(dt);
         Ok(StepReport {
             iterations,
             residual,
@@ -773,6 +968,9 @@ impl Integrator {
                 &chord,
                 &increments,
                 &state.gauss[e],
+                self.growth
+                    .filter(|g| g.element == e)
+                    .map_or(reference.length, |g| g.length_start),
                 reference,
                 &c_t,
                 &c_r,
@@ -780,6 +978,9 @@ impl Integrator {
                 Some(&mut k),
             );
             self.next_gauss[e] = step.next;
+            if let Some(growth) = self.growth.as_mut().filter(|g| g.element == e) {
+                growth.internal_work = step.forces.dot(&increments);
+            }
             let mut forces = step.forces;
             for (m, f) in self.magnitude[base..base + 12]
                 .iter_mut()

@@ -31,14 +31,21 @@ pub struct Snapshot<'a> {
     /// Work supplied and energy dissipated since the integrator started (J).
     pub supplied_work: f64,
     pub dissipated: f64,
+    /// The pipe's unstretched length (m).
+    pub length: f64,
+    /// Energy pay-out brought in since the integrator started (J; part of `supplied_work`).
+    pub pay_out_energy: f64,
     /// Newton iterations of the step that led to this state.
     pub iterations: usize,
 }
 
 /// Time series of a run, stored flat (row-major: time first) for cheap hand-over to arrays.
+///
+/// With pay-out the number of nodes changes during a run: node series are as wide as the most nodes any
+/// record had, and the rows of records with fewer nodes end in NaN.
 #[derive(Debug, Clone, Default)]
 pub struct History {
-    /// Number of nodes n + 1.
+    /// Number of nodes n + 1 (the most of any record).
     pub nodes: usize,
     /// Times (s).
     pub time: Vec<f64>,
@@ -85,9 +92,14 @@ pub struct History {
     pub dissipated: Vec<f64>,
     /// Newton iterations of the step that led to each record (0 for the first).
     pub iterations: Vec<usize>,
+    /// The pipe's unstretched length at each record (m).
+    pub length: Vec<f64>,
+    /// Energy pay-out brought in since the start of the run (J; part of `supplied_work`).
+    pub pay_out_energy: Vec<f64>,
     /// Ledger values at the start of the run, so that the record starts from zero.
     supplied_offset: f64,
     dissipated_offset: f64,
+    pay_out_offset: f64,
 }
 
 impl History {
@@ -97,6 +109,7 @@ impl History {
             nodes: first.positions.len(),
             supplied_offset: first.supplied_work,
             dissipated_offset: first.dissipated,
+            pay_out_offset: first.pay_out_energy,
             ..History::default()
         };
         history.record(first);
@@ -117,7 +130,9 @@ impl History {
         let n = self.nodes;
         let vessel = !self.eta.is_empty();
         let seabed = !self.touchdown_arc_length.is_empty();
-        let fields: [(&str, usize, usize); 26] = [
+        let fields: [(&str, usize, usize); 28] = [
+            ("length", self.length.len(), 1),
+            ("pay_out_energy", self.pay_out_energy.len(), 1),
             ("seabed_energy", self.seabed.len(), 1),
             ("roller_energy", self.rollers.len(), 1),
             (
@@ -202,9 +217,33 @@ impl History {
         self.time.is_empty()
     }
 
+    /// Widens the node series to `nodes` nodes, padding earlier rows with NaN.
+    fn widen(&mut self, nodes: usize) {
+        let old = self.nodes;
+        let records = self.len();
+        let pad = |data: &mut Vec<f64>, width_old: usize, width_new: usize| {
+            let mut wide = Vec::with_capacity(records * width_new);
+            for row in data.chunks_exact(width_old.max(1)).take(records) {
+                wide.extend_from_slice(row);
+                wide.resize(wide.len() + width_new - width_old, f64::NAN);
+            }
+            *data = wide;
+        };
+        pad(&mut self.positions, 3 * old, 3 * nodes);
+        pad(&mut self.velocities, 3 * old, 3 * nodes);
+        pad(&mut self.rotations, 9 * old, 9 * nodes);
+        let elements = |n: usize| 6 * n.saturating_sub(1);
+        pad(&mut self.section_forces, elements(old), elements(nodes));
+        self.nodes = nodes;
+    }
+
     /// Appends a record.
     pub fn record(&mut self, snapshot: &Snapshot) {
-        self.time.push(snapshot.time);
+        let nodes = snapshot.positions.len();
+        if nodes > self.nodes {
+            self.widen(nodes);
+        }
+        let missing = self.nodes - nodes;
         for (p, v) in snapshot.positions.iter().zip(snapshot.velocities) {
             self.positions.extend_from_slice(p.as_slice());
             self.velocities.extend_from_slice(v.as_slice());
@@ -220,6 +259,15 @@ impl History {
         for f in &snapshot.section_forces {
             self.section_forces.extend_from_slice(f.as_slice());
         }
+        let nan = |data: &mut Vec<f64>, count: usize| data.resize(data.len() + count, f64::NAN);
+        nan(&mut self.positions, 3 * missing);
+        nan(&mut self.velocities, 3 * missing);
+        nan(&mut self.rotations, 9 * missing);
+        nan(&mut self.section_forces, 6 * missing);
+        self.time.push(snapshot.time);
+        self.length.push(snapshot.length);
+        self.pay_out_energy
+            .push(snapshot.pay_out_energy - self.pay_out_offset);
         let reactions = snapshot.reactions;
         self.reaction_a.extend_from_slice(reactions[0].as_slice());
         self.reaction_b

@@ -9,6 +9,7 @@ pub mod history;
 pub mod laid_catenary;
 pub mod lay_summary;
 pub mod linsolve;
+pub mod pay_out;
 pub mod response;
 pub mod rollers;
 pub mod statics;
