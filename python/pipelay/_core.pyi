@@ -552,6 +552,12 @@ class Results:
     def supplied_work(self) -> _FloatArray:
         """Work done on the system since the start of the run (T,) (J)."""
     @property
+    def length(self) -> _FloatArray:
+        """Unstretched pipe length at each record (T,) (m)."""
+    @property
+    def pay_out_energy(self) -> _FloatArray:
+        """Energy pay-out brought in since the start of the run (T,) (J), part of supplied_work."""
+    @property
     def dissipated(self) -> _FloatArray:
         """Energy dissipated since the start of the run (T,) (J)."""
     @property
@@ -614,6 +620,8 @@ class Model:
         held by lay equipment (`lay`)."""
     def simulation(self, state: State | None = None, dt: float = 0.05) -> Simulation:
         """A time simulation from `state` (default: self.static()) with time step `dt` (s)."""
+    def pay_out(self, end: _End = "B", speed: float | Callable[[float], float] | None = None) -> None:
+        """Pay pipe out (speed > 0, m/s) or in (< 0) at the vessel's or a driven end during a simulation."""
     def point_load(
         self,
         node: int | _End,

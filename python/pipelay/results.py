@@ -3,7 +3,9 @@ checkpoints that let a long run be resumed exactly.
 
 The netCDF layout (`Results.to_xarray`): dimensions ``time``, ``node`` (n + 1), ``element`` (n), ``axis`` (x, y,
 z of frame e), ``column`` (of a rotation matrix) and ``dof`` (6 components: force/moment or η/ν entries);
-every variable carries ``units`` and ``long_name`` attributes.
+every variable carries ``units`` and ``long_name`` attributes. With pay-out the mesh grows during a run: ``node``
+and ``element`` count the most any record had, and the node and element values a record did not have are NaN
+(the last valid node of a record is end B).
 """
 
 from __future__ import annotations
@@ -69,6 +71,12 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
         "touchdown arc length along the reference from end A, NaN: none",
     ),
     "laid_length": (("time",), "m", "reference length of pipe on the seabed"),
+    "length": (("time",), "m", "unstretched pipe length (changes with pay-out)"),
+    "pay_out_energy": (
+        ("time",),
+        "J",
+        "energy pay-out brought in since the start of the run (in supplied_work)",
+    ),
     "supplied_work": (("time",), "J", "work supplied since the start of the run"),
     "dissipated": (("time",), "J", "energy dissipated since the start of the run"),
     "iterations": (("time",), "1", "Newton iterations of the step leading to the record"),
@@ -95,6 +103,8 @@ def _arrays(results: Results) -> dict[str, np.ndarray]:
         "seabed_energy": energy["seabed"],
         "roller_energy": energy["rollers"],
         "total_energy": energy["total"],
+        "length": results.length,
+        "pay_out_energy": results.pay_out_energy,
         "supplied_work": results.supplied_work,
         "dissipated": results.dissipated,
         "iterations": results.iterations,

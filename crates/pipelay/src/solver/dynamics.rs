@@ -209,6 +209,8 @@ struct Growth {
     length_start: f64,
     /// Work of its internal forces over the step (J).
     internal_work: f64,
+    /// The pay-out speed over the step (m/s).
+    speed: f64,
 }
 
 impl NodalProperties {
@@ -711,7 +713,7 @@ impl Integrator {
         });
         self.commit(dt);
         self.book_pay_out(grown + elastic);
-        self.remesh()?;
+        self.remesh();
         Ok(report)
     }
 
@@ -755,6 +757,7 @@ impl Integrator {
             element,
             length_start,
             internal_work: 0.0,
+            speed,
         });
         Ok(self.element_lump_energy(element) - before)
     }
@@ -787,17 +790,18 @@ impl Integrator {
     /// With pay-out: splits or joins the end element when its length calls for it, rebuilds what depends on
     /// the mesh and books the energy change of the new mesh (a split keeps it to round-off and the
     /// discretisation's O(h²)).
-    fn remesh(&mut self) -> Result<()> {
-        let Some(pay_out) = &self.model.pay_out else {
-            return Ok(());
+    fn remesh(&mut self) {
+        let Some(growth) = self.growth else {
+            return;
         };
-        // The speed at the end of the step, with the velocities it goes with.
-        let speed = pay_out.speed_at(self.state.time)?;
         let before = self.energy().total();
-        let Some(change) =
-            pay_out::remesh(&mut self.model, &mut self.state, &mut self.reactions, speed)
-        else {
-            return Ok(());
+        let Some(change) = pay_out::remesh(
+            &mut self.model,
+            &mut self.state,
+            &mut self.reactions,
+            growth.speed,
+        ) else {
+            return;
         };
         let rollers = self.assembler.rollers.take();
         let mut assembler = Assembler::new(&self.model);
@@ -825,7 +829,6 @@ impl Integrator {
         self.round_off = round_off(&self.model);
         let after = self.energy().total();
         self.book_pay_out(after - before);
-        Ok(())
     }
 
     /// Newton's method on the step's increments.
