@@ -39,3 +39,4 @@ bench: $(STAMP)
 	$(BIN)/python benches/seabed_cost.py
 	$(BIN)/python benches/seabed_statics.py
 	$(BIN)/python benches/lay_cost.py
+	$(BIN)/python benches/pay_out_rollers.py
