@@ -3,6 +3,7 @@ use crate::convert::{matrix3, vector3};
 use nalgebra::{Matrix3, Vector3};
 use pipelay::model::TimeFunction;
 use pyo3::prelude::*;
+use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
@@ -15,7 +16,26 @@ pub fn take_interrupt() -> bool {
     INTERRUPTED.swap(false, Ordering::SeqCst)
 }
 
-/// Wraps `callable(t)`, converting its result with `convert`; a Python error becomes the message.
+thread_local! {
+    /// The exception a user callable raised last on this thread, with the message the engine carries for it:
+    /// the error that reaches Python is chained to it (`raise ... from`), so the user's own exception and
+    /// traceback are kept.
+    static FAILED_CALLABLE: RefCell<Option<(String, PyErr)>> = const { RefCell::new(None) };
+}
+
+/// The exception behind an engine error whose message contains a failed callable's message, if any.
+pub fn take_callable_error(message: &str) -> Option<PyErr> {
+    FAILED_CALLABLE.with(|slot| {
+        let mut slot = slot.borrow_mut();
+        match slot.as_ref() {
+            Some((text, _)) if message.contains(text.as_str()) => slot.take().map(|(_, e)| e),
+            _ => None,
+        }
+    })
+}
+
+/// Wraps `callable(t)`, converting its result with `convert`; a Python error becomes the message (and is kept
+/// for [`take_callable_error`]).
 fn wrap<T: 'static>(
     callable: Py<PyAny>,
     argument: &'static str,
@@ -27,7 +47,13 @@ fn wrap<T: 'static>(
                 if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
                     INTERRUPTED.store(true, Ordering::SeqCst);
                 }
-                format!("{argument}({time}) raised {e}")
+                let kind = e
+                    .get_type(py)
+                    .name()
+                    .map_or_else(|_| "Exception".to_string(), |n| n.to_string());
+                let message = format!("{argument}({time}) raised {kind}: {}", e.value(py));
+                FAILED_CALLABLE.with(|slot| *slot.borrow_mut() = Some((message.clone(), e)));
+                message
             })?;
             convert(&value, argument).map_err(|e| e.to_string())
         })

@@ -148,7 +148,18 @@ impl Simulation {
             ));
         }
         let steps = ((t_end - start) / dt - 1e-9).ceil().max(0.0) as usize;
-        let mut history = History::starting_at(&self.integrator.snapshot(0));
+        let records = steps / record_every as usize + 1;
+        let nodes = self.integrator.model().rod.node_count();
+        pipelay::memory::check(
+            "t_end",
+            t_end,
+            records as f64 * nodes as f64 * pipelay::memory::RECORD_BYTES_PER_NODE,
+            &format!(
+                "{records} records of {nodes} nodes (stream them with output=, or raise record_every)"
+            ),
+        )
+        .map_err(to_py)?;
+        let mut history = History::starting_at(&self.integrator.snapshot(0)).map_err(to_py)?;
         let bar = if progress && steps >= 200 {
             let tqdm = py.import("tqdm")?.getattr("tqdm")?;
             let kwargs = PyDict::new(py);

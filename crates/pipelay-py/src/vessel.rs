@@ -118,34 +118,10 @@ impl PyTensionControl {
         rate_limit: Option<f64>,
         filter: f64,
     ) -> PyResult<Self> {
-        if !(filter.is_finite() && filter > 0.0) {
-            return Err(input(
-                "filter",
-                filter,
-                "must be a positive time constant (s)",
-            ));
-        }
-        if !target.is_finite() {
-            return Err(input("target", target, "must be a finite tension (N)"));
-        }
-        if !(gain.is_finite() && gain > 0.0) {
-            return Err(input("gain", gain, "must be a positive number (m/s per N)"));
-        }
-        if !start.is_finite() {
-            return Err(input("start", start, "must be a finite time (s)"));
-        }
-        if let Some(limit) = rate_limit.filter(|l| !(l.is_finite() && *l > 0.0)) {
-            return Err(input("rate_limit", limit, "must be a positive speed (m/s)"));
-        }
-        Ok(PyTensionControl(TensionControl {
-            target,
-            gain,
-            start,
-            rate_limit,
-            filter,
-        }))
+        TensionControl::new(target, gain, start, rate_limit, filter)
+            .map(PyTensionControl)
+            .map_err(to_py)
     }
-    /// Target top tension (N).
     #[getter]
     fn target(&self) -> f64 {
         self.0.target
@@ -176,28 +152,11 @@ impl PyRoute {
     #[pyo3(signature = (start, heading=0.0, speed=0.0, start_time=0.0))]
     fn new(start: &Bound<'_, PyAny>, heading: f64, speed: f64, start_time: f64) -> PyResult<Self> {
         let start = nalgebra::Vector2::from(array::<2>(start, "start")?);
-        for (name, value, unit) in [
-            ("heading", heading, "rad"),
-            ("speed", speed, "m/s"),
-            ("start_time", start_time, "s"),
-        ] {
-            if !value.is_finite() {
-                return Err(input(
-                    name,
-                    value,
-                    &format!("must be a finite number ({unit})"),
-                ));
-            }
-        }
-        Ok(PyRoute(Reference::Route {
-            start,
-            heading,
-            speed,
-            start_time,
-        }))
+        Reference::route(start, heading, speed, start_time)
+            .map(PyRoute)
+            .map_err(to_py)
     }
 
-    /// η_ref and η̇_ref (6,) each at time `t` (s).
     fn at<'py>(&self, py: Python<'py>, t: f64) -> PyResult<PoseAndRate<'py>> {
         pose_and_rate(py, &self.0, t)
     }
@@ -246,7 +205,7 @@ impl PyPid {
                     .transpose()?,
             }
         } else {
-            Reference::Fixed(Vector6::from(array::<6>(reference, "reference")?))
+            Reference::fixed(Vector6::from(array::<6>(reference, "reference")?)).map_err(to_py)?
         };
         if reference_rate.is_some() && !matches!(reference, Reference::Function { .. }) {
             return Err(input(
@@ -255,29 +214,26 @@ impl PyPid {
                 "belongs to a reference given as a callable of t",
             ));
         }
-        if !start.is_finite() {
-            return Err(input("start", start, "must be a finite time (s)"));
-        }
-        Ok(PyPid(Pid {
-            kp: gains(kp, "kp")?,
-            kd: gains(kd, "kd")?,
-            ki: ki
-                .map(|k| gains(k, "ki"))
+        Pid::new(
+            gains(kp, "kp")?,
+            gains(kd, "kd")?,
+            ki.map(|k| gains(k, "ki"))
                 .transpose()?
                 .unwrap_or_else(Matrix6::zeros),
             reference,
-            tension: tension.map(|t| t.0),
             start,
-            integral_limit: integral_limit
+            integral_limit
                 .map(|l| array::<6>(l, "integral_limit").map(Vector6::from))
                 .transpose()?,
-            thrust_limit: thrust_limit
+            thrust_limit
                 .map(|l| array::<3>(l, "thrust_limit").map(Vector3::from))
                 .transpose()?,
-        }))
+            tension.map(|t| t.0),
+        )
+        .map(PyPid)
+        .map_err(to_py)
     }
 
-    /// η_ref (6,) at t = 0.
     #[getter]
     fn reference<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let (pose, _) = self.0.reference.at(0.0).map_err(to_py)?;
@@ -304,13 +260,9 @@ impl PyForce {
     #[new]
     #[pyo3(signature = (value, start=0.0))]
     fn new(value: &Bound<'_, PyAny>, start: f64) -> PyResult<Self> {
-        if !start.is_finite() {
-            return Err(input("start", start, "must be a finite time (s)"));
-        }
-        Ok(PyForce(EnvironmentForce {
-            value: Vector6::from(array::<6>(value, "value")?),
-            start,
-        }))
+        EnvironmentForce::new(Vector6::from(array::<6>(value, "value")?), start)
+            .map(PyForce)
+            .map_err(to_py)
     }
     /// The force and moment (6,).
     #[getter]

@@ -26,6 +26,13 @@ pub enum Error {
         /// What went wrong, e.g. "load step fell below 1e-6".
         reason: String,
     },
+    /// Memory for a buffer could not be reserved.
+    Memory {
+        /// What the buffer is for.
+        what: String,
+        /// The bytes asked for.
+        bytes: f64,
+    },
 }
 
 impl Error {
@@ -60,6 +67,11 @@ impl fmt::Display for Error {
             } => write!(
                 f,
                 "{context} failed: {reason} (reached {reached:.6}, {iterations} Newton iterations, residual {residual:.3e})"
+            ),
+            Error::Memory { what, bytes } => write!(
+                f,
+                "out of memory: could not reserve {} for {what}",
+                crate::memory::human(*bytes)
             ),
         }
     }

@@ -242,6 +242,13 @@ impl Model {
     /// A free rod, optionally in a sea.
     pub fn new(rod: Rod, sea: Option<Sea>, gravity: f64) -> Result<Self> {
         non_negative("gravity", gravity, "m/s²")?;
+        let elements = rod.element_count();
+        crate::memory::check(
+            "rod",
+            format!("a rod of {elements} elements"),
+            elements as f64 * crate::memory::SOLVER_BYTES_PER_ELEMENT,
+            "solving it",
+        )?;
         if let Some(sea) = &sea {
             let horizontal: Vec<_> = rod.nodes.iter().map(|p| p.xy()).collect();
             sea.check_seabed_below_surface(&horizontal)?;
@@ -318,7 +325,7 @@ impl Model {
         let node = self.end_node(end)?;
         let position = self.checked_position(node, position)?;
         let rotation = match rotation {
-            None => self.rod.frames[node],
+            None => self.rod.frames.get(node).copied().unwrap_or_default(),
             Some(r) => checked_rotation("rotation", &r)?,
         };
         self.add_support(node, SupportKind::Clamp { position, rotation })
@@ -337,7 +344,7 @@ impl Model {
         position: Option<Vector3<f64>>,
     ) -> Result<Vector3<f64>> {
         match position {
-            None => Ok(self.rod.nodes[node]),
+            None => Ok(self.rod.nodes.get(node).copied().unwrap_or_default()),
             Some(p) => {
                 finite("position", p.as_slice())?;
                 Ok(p)
@@ -514,7 +521,11 @@ impl Model {
         let pay_out = PayOut {
             at_start: node == 0,
             speed,
-            element_length: self.rod.elements[node.saturating_sub(1)].length,
+            element_length: self
+                .rod
+                .elements
+                .get(node.saturating_sub(1))
+                .map_or(0.0, |e| e.length),
         };
         pay_out.speed_at(0.0)?;
         self.pay_out = Some(pay_out);

@@ -7,6 +7,8 @@
 //! differences), so that δ is continuous across cells (∇b of a bilinear surface is not) and a plane given as
 //! a grid is the same seabed as the plane. The contact force −k d δ ∇δ then acts along the local normal
 //! (b_x, b_y, −1)/√(1 + |∇b|²) up to terms of the order of the penetration times the change of slope.
+// Indexing cannot go out of bounds here: Grid indices found by searching the validated, sorted axes (at least 2 points each).
+#![allow(clippy::indexing_slicing)]
 use crate::error::{finite, Error, Result};
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 

@@ -1,4 +1,6 @@
 //! A steady current: a velocity profile over depth that starts at a given time.
+// Indexing cannot go out of bounds here: Profile indices found by searching the validated, increasing depths (at least 2, as many as velocities).
+#![allow(clippy::indexing_slicing)]
 use crate::error::{finite, Error, Result};
 use nalgebra::Vector3;
 

@@ -7,6 +7,8 @@
 //! N = C_T(Γ̄ − Γ0), M = C_R(K̄ − K0), pushed forward as n = Λ̄N, m = cof(Λ̄)M, do work equal to the
 //! change of stored energy: the scheme conserves energy, and (being a weak form tested with rigid motions)
 //! linear and angular momentum.
+// Indexing cannot go out of bounds here: Fixed-size 12-vectors and 3-vectors indexed by constants.
+#![allow(clippy::indexing_slicing)]
 use super::element::{
     midpoint_frame_and_strains, nodal_difference, Block3x12, ElementMatrix, ElementReference,
     ElementVector,

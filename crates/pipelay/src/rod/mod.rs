@@ -1,4 +1,6 @@
 //! The rod: its stress-free reference (nodes, nodal frames, elements) and the element it is made of.
+// Indexing cannot go out of bounds here: Node and element indices of the rod this module builds (nodes.len() = elements + 1, checked at construction).
+#![allow(clippy::indexing_slicing)]
 pub mod dynamic_element;
 pub mod element;
 pub mod section;
@@ -36,7 +38,14 @@ impl Rod {
         for node in &nodes {
             finite("nodes", node.as_slice())?;
         }
-        let mut chords = Vec::with_capacity(nodes.len() - 1);
+        let count = nodes.len();
+        crate::memory::check(
+            "nodes",
+            format!("{count} nodes"),
+            count as f64 * crate::memory::ROD_BYTES_PER_ELEMENT,
+            "the rod's reference",
+        )?;
+        let mut chords = crate::memory::vec_with_capacity(count - 1, "the rod's chords")?;
         for (i, pair) in nodes.windows(2).enumerate() {
             let chord = pair[1] - pair[0];
             let length = chord.norm();
@@ -67,7 +76,7 @@ impl Rod {
                 }
             })
             .collect();
-        let mut frames = Vec::with_capacity(nodes.len());
+        let mut frames = crate::memory::vec_with_capacity(count, "the rod's frames")?;
         let mut frame = minimal_rotation(&Vector3::x(), &tangents[0]);
         frames.push(quat_from_matrix(&frame));
         for pair in tangents.windows(2) {
@@ -100,9 +109,14 @@ impl Rod {
                 "must differ from start",
             ));
         }
-        let nodes = (0..=elements)
-            .map(|i| start + (end - start) * (i as f64 / elements as f64))
-            .collect();
+        crate::memory::check(
+            "elements",
+            elements,
+            elements as f64 * crate::memory::ROD_BYTES_PER_ELEMENT,
+            "the rod's reference",
+        )?;
+        let mut nodes = crate::memory::vec_with_capacity(elements + 1, "the rod's nodes")?;
+        nodes.extend((0..=elements).map(|i| start + (end - start) * (i as f64 / elements as f64)));
         Self::new(nodes, section)
     }
 

@@ -1,5 +1,7 @@
 //! Global assembly: the residual r = f_int − f_ext over all nodal DOFs and the tangent K = ∂r/∂q on
 //! the free DOFs, scattered into a fixed sparse pattern (node-major [x_a, θ_a], block tridiagonal).
+// Indexing cannot go out of bounds here: Node, element and DOF indices of the mesh the assembler was built for (sizes fixed at construction).
+#![allow(clippy::indexing_slicing)]
 use crate::environment::drag::element_current_drag;
 use crate::model::Model;
 use crate::rod::element::{evaluate, ElementMatrix};
@@ -229,8 +231,10 @@ impl Assembler {
                         if let (Some(row), Some(col)) =
                             (dofs.equation[global(e, i)], dofs.equation[global(e, j)])
                         {
-                            map[12 * j + i] =
-                                lu.position(row, col).expect("entry in the pattern") as u32;
+                            // The pattern was built from these very element blocks.
+                            #[allow(clippy::expect_used)]
+                            let position = lu.position(row, col).expect("entry in the pattern");
+                            map[12 * j + i] = position as u32;
                         }
                     }
                 }
@@ -255,8 +259,10 @@ impl Assembler {
                             dofs.equation[NODE_DOFS * node + j],
                         );
                         if let (Some(row), Some(col)) = (row, col) {
-                            map[NODE_DOFS * j + i] =
-                                lu.position(row, col).expect("entry in the pattern") as u32;
+                            // The pattern was built from these very node blocks.
+                            #[allow(clippy::expect_used)]
+                            let position = lu.position(row, col).expect("entry in the pattern");
+                            map[NODE_DOFS * j + i] = position as u32;
                         }
                     }
                 }

@@ -23,6 +23,8 @@
 //! statics the force is −Ke at the current state. In the energy–momentum step it is −Kē (ē the step's mean)
 //! plus −½(KΔe·Δp)Δx/|Δx|², which makes the work exactly −Δψ − D with the dissipation D = (Ke_{n+1})·Δp ≥ 0
 //! (Δp the slip of the return map). Its tangent is taken by central differences of this nodal kernel.
+// Indexing cannot go out of bounds here: Node and element indices of the mesh the contact was built for.
+#![allow(clippy::indexing_slicing)]
 use crate::environment::bathymetry::{Bathymetry, Penetration};
 use crate::environment::seabed::Seabed;
 use crate::rod::element::ElementMatrix;

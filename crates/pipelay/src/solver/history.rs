@@ -2,6 +2,10 @@
 //!
 //! A record is made from a [`Snapshot`], a view of one state that the integrator hands over: the history
 //! knows nothing of how states are computed.
+// Indexing cannot go out of bounds here: Snapshots always hold at least one node's reactions (a rod has at least 2 nodes).
+#![allow(clippy::indexing_slicing)]
+use crate::error::Result;
+use crate::memory::{reserve, vec_with_capacity};
 use crate::solver::contact::Touchdown;
 use crate::solver::energy::Energy;
 use crate::solver::lay_summary::LaySummary;
@@ -104,7 +108,7 @@ pub struct History {
 
 impl History {
     /// An empty history whose first record is `first`; its ledger counts from there.
-    pub fn starting_at(first: &Snapshot) -> Self {
+    pub fn starting_at(first: &Snapshot) -> Result<Self> {
         let mut history = History {
             nodes: first.positions.len(),
             supplied_offset: first.supplied_work,
@@ -112,8 +116,8 @@ impl History {
             pay_out_offset: first.pay_out_energy,
             ..History::default()
         };
-        history.record(first);
-        history
+        history.record(first)?;
+        Ok(history)
     }
 
     /// An empty history of a rod with `nodes` nodes (to be filled field by field, e.g. from a file).
@@ -218,31 +222,38 @@ impl History {
     }
 
     /// Widens the node series to `nodes` nodes, padding earlier rows with NaN.
-    fn widen(&mut self, nodes: usize) {
+    fn widen(&mut self, nodes: usize) -> Result<()> {
         let old = self.nodes;
         let records = self.len();
-        let pad = |data: &mut Vec<f64>, width_old: usize, width_new: usize| {
-            let mut wide = Vec::with_capacity(records * width_new);
+        let pad = |data: &mut Vec<f64>, width_old: usize, width_new: usize| -> Result<()> {
+            let mut wide = vec_with_capacity(records * width_new, "the records of the run")?;
             for row in data.chunks_exact(width_old.max(1)).take(records) {
                 wide.extend_from_slice(row);
                 wide.resize(wide.len() + width_new - width_old, f64::NAN);
             }
             *data = wide;
+            Ok(())
         };
-        pad(&mut self.positions, 3 * old, 3 * nodes);
-        pad(&mut self.velocities, 3 * old, 3 * nodes);
-        pad(&mut self.rotations, 9 * old, 9 * nodes);
+        pad(&mut self.positions, 3 * old, 3 * nodes)?;
+        pad(&mut self.velocities, 3 * old, 3 * nodes)?;
+        pad(&mut self.rotations, 9 * old, 9 * nodes)?;
         let elements = |n: usize| 6 * n.saturating_sub(1);
-        pad(&mut self.section_forces, elements(old), elements(nodes));
+        pad(&mut self.section_forces, elements(old), elements(nodes))?;
         self.nodes = nodes;
+        Ok(())
     }
 
-    /// Appends a record.
-    pub fn record(&mut self, snapshot: &Snapshot) {
+    /// Appends a record; [`crate::Error::Memory`] (and nothing recorded) if there is no room for it.
+    pub fn record(&mut self, snapshot: &Snapshot) -> Result<()> {
         let nodes = snapshot.positions.len();
         if nodes > self.nodes {
-            self.widen(nodes);
+            self.widen(nodes)?;
         }
+        let what = "the records of the run (stream them with output=, or record less often)";
+        reserve(&mut self.positions, 3 * self.nodes, what)?;
+        reserve(&mut self.velocities, 3 * self.nodes, what)?;
+        reserve(&mut self.rotations, 9 * self.nodes, what)?;
+        reserve(&mut self.section_forces, 6 * self.nodes, what)?;
         let missing = self.nodes - nodes;
         for (p, v) in snapshot.positions.iter().zip(snapshot.velocities) {
             self.positions.extend_from_slice(p.as_slice());
@@ -306,5 +317,6 @@ impl History {
         self.dissipated
             .push(snapshot.dissipated - self.dissipated_offset);
         self.iterations.push(snapshot.iterations);
+        Ok(())
     }
 }

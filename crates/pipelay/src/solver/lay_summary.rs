@@ -6,6 +6,8 @@
 //! down from the hold point the pipe steepens over the **overbend** and flattens again over the **sagbend**
 //! to the touchdown (end A without a seabed contact); they meet at the inflection point, where the pipe is
 //! steepest.
+// Indexing cannot go out of bounds here: Node and element indices of the state summarised (the vessel's node is a node of its mesh).
+#![allow(clippy::indexing_slicing)]
 use crate::model::Model;
 use crate::solver::contact::Touchdown;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};

@@ -8,6 +8,8 @@
 //! border unknowns (at most six, the vessel node's), the system [A B; C D][x; z] = [r; s] is solved by block
 //! elimination instead: A (the rod with the border held) by the sparse LU, X = A⁻¹B once per factorisation,
 //! the Schur complement D − C X (at most 6×6) densely, then x = A⁻¹r − X z. Cost stays linear in the unknowns.
+// Indexing cannot go out of bounds here: Row and column indices of the pattern the solver built.
+#![allow(clippy::indexing_slicing)]
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{
     lu_in_place, lu_in_place_scratch, PartialPivLuParams,
@@ -95,6 +97,9 @@ impl SparseLu {
         } else {
             let pattern =
                 SymbolicSparseColMatRef::new_checked(size, size, &col_ptr, None, &row_idx);
+            // The pattern is square and sorted by construction, and the model's size was checked against the
+            // memory (crate::memory) before: faer's only remaining failure would be an index overflow.
+            #[allow(clippy::expect_used)]
             let symbolic = factorize_symbolic_lu(pattern, Default::default())
                 .expect("symbolic LU of an assembler-built pattern");
             let factor_scratch =

@@ -9,6 +9,8 @@
 //! element's end rotations, both halves keep the element's curvature K and the Gauss rotation interpolated
 //! the same way, and the new node is placed where the two halves carry the same force (n₁ = n₂, a 3×3 solve),
 //! so the tension through the split does not jump. Velocities and the seabed slips are interpolated.
+// Indexing cannot go out of bounds here: The end element and its nodes, indices of the mesh being changed (checked non-empty).
+#![allow(clippy::indexing_slicing)]
 use crate::model::Model;
 use crate::rod::dynamic_element::GaussPoint;
 use crate::so3::{exp, log_quat};

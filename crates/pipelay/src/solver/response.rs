@@ -1,4 +1,6 @@
 //! What users read off a configuration: section forces, tension, support reactions and energy.
+// Indexing cannot go out of bounds here: Node and element indices of the configuration evaluated (the model's mesh).
+#![allow(clippy::indexing_slicing)]
 use crate::model::Model;
 use crate::rod::element::evaluate;
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};

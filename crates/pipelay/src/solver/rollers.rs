@@ -23,6 +23,8 @@
 //!
 //! **Tangent.** Central differences of each active roller's residual in its few nodal unknowns (at most
 //! [`MAX_NODES`] pipe nodes and N), checked against differences of the assembled residual in the tests.
+// Indexing cannot go out of bounds here: Roller, node and element indices of the contact's own mesh and roller list.
+#![allow(clippy::indexing_slicing)]
 use crate::so3::{cayley, exp, skew};
 use crate::solver::contact::ContactRule;
 use crate::vessel::lay::Roller;

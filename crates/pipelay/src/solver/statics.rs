@@ -4,6 +4,8 @@
 //! The path from the stress-free reference has two stages along one parameter s ∈ [0, 2]: first the
 //! loads grow (λ = s) with the supports at the reference, so that a hanging line is in tension before
 //! its ends move; then the supports move to their prescribed positions and rotations (μ = s − 1).
+// Indexing cannot go out of bounds here: Node, element and DOF indices of the mesh being solved.
+#![allow(clippy::indexing_slicing)]
 use crate::error::{Error, Result};
 use crate::model::{Model, SupportTarget};
 use crate::so3::{exp_quat, log_quat, minimal_rotation, quat_from_matrix};

@@ -1,5 +1,7 @@
 //! The DP controller (eqs. 44–45): PID on η with a bounded integral, thrust in surge, sway and yaw, about a
 //! fixed reference, a lay route or a reference given as a function of time.
+// Indexing cannot go out of bounds here: 6-vectors of the vessel's degrees of freedom indexed by constants.
+#![allow(clippy::indexing_slicing)]
 use super::euler;
 use crate::error::{finite, Error, Result};
 use crate::model::TimeFunction;
@@ -200,6 +202,146 @@ pub struct Pid {
     pub thrust_limit: Option<Vector3<f64>>,
     /// The lay-tension loop that moves the set-point, if any.
     pub tension: Option<TensionControl>,
+}
+
+/// Checks a gain matrix: finite, symmetric and positive semi-definite (K_p and K_d so, the controller is
+/// passive: its storage ½η̃ᵀK_pη̃ ≥ 0 and its damping η̃̇ᵀK_dη̃̇ ≥ 0).
+fn check_gain(argument: &str, gain: &Matrix6<f64>) -> Result<()> {
+    finite(argument, gain.as_slice())?;
+    let scale = gain.abs().max().max(f64::MIN_POSITIVE);
+    let asymmetry = (gain - gain.transpose()).abs().max();
+    if asymmetry > 1e-9 * scale {
+        return Err(Error::input(
+            argument,
+            format!("a matrix with |K − Kᵀ| = {asymmetry:.3e}"),
+            "must be symmetric (a diagonal (6,) or a symmetric (6, 6) gain)",
+        ));
+    }
+    let lowest = gain.symmetric_eigenvalues().min();
+    if lowest < -1e-12 * scale {
+        return Err(Error::input(
+            argument,
+            format!("a matrix with eigenvalue {lowest:.6e}"),
+            "must be positive semi-definite (no negative gain), so that the controller is passive",
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that every component of `limits` is finite and > 0.
+fn check_limits(argument: &str, limits: &[f64], unit: &str) -> Result<()> {
+    match limits.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+        Some(v) => Err(Error::input(
+            argument,
+            v,
+            format!("must hold finite bounds > 0 ({unit})"),
+        )),
+        None => Ok(()),
+    }
+}
+
+impl Reference {
+    /// A fixed pose, checked finite.
+    pub fn fixed(pose: Vector6<f64>) -> Result<Self> {
+        finite("reference", pose.as_slice())?;
+        Ok(Reference::Fixed(pose))
+    }
+
+    /// A lay route, checked finite.
+    pub fn route(start: Vector2<f64>, heading: f64, speed: f64, start_time: f64) -> Result<Self> {
+        finite("start", start.as_slice())?;
+        for (name, value, unit) in [
+            ("heading", heading, "rad"),
+            ("speed", speed, "m/s"),
+            ("start_time", start_time, "s"),
+        ] {
+            if !value.is_finite() {
+                return Err(Error::input(
+                    name,
+                    value,
+                    format!("must be a finite number ({unit})"),
+                ));
+            }
+        }
+        Ok(Reference::Route {
+            start,
+            heading,
+            speed,
+            start_time,
+        })
+    }
+}
+
+impl TensionControl {
+    /// A checked lay-tension loop.
+    pub fn new(
+        target: f64,
+        gain: f64,
+        start: f64,
+        rate_limit: Option<f64>,
+        filter: f64,
+    ) -> Result<Self> {
+        crate::error::positive("filter", filter, "s (a time constant)")?;
+        if !target.is_finite() {
+            return Err(Error::input(
+                "target",
+                target,
+                "must be a finite tension (N)",
+            ));
+        }
+        crate::error::positive("gain", gain, "(m/s per N)")?;
+        if !start.is_finite() {
+            return Err(Error::input("start", start, "must be a finite time (s)"));
+        }
+        if let Some(limit) = rate_limit {
+            crate::error::positive("rate_limit", limit, "m/s")?;
+        }
+        Ok(TensionControl {
+            target,
+            gain,
+            start,
+            rate_limit,
+            filter,
+        })
+    }
+}
+
+impl Pid {
+    /// A checked PID: gains finite, symmetric and positive semi-definite, limits finite and > 0, start finite.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        kp: Matrix6<f64>,
+        kd: Matrix6<f64>,
+        ki: Matrix6<f64>,
+        reference: Reference,
+        start: f64,
+        integral_limit: Option<Vector6<f64>>,
+        thrust_limit: Option<Vector3<f64>>,
+        tension: Option<TensionControl>,
+    ) -> Result<Self> {
+        check_gain("kp", &kp)?;
+        check_gain("kd", &kd)?;
+        check_gain("ki", &ki)?;
+        if !start.is_finite() {
+            return Err(Error::input("start", start, "must be a finite time (s)"));
+        }
+        if let Some(limit) = &integral_limit {
+            check_limits("integral_limit", limit.as_slice(), "m·s, rad·s")?;
+        }
+        if let Some(limit) = &thrust_limit {
+            check_limits("thrust_limit", limit.as_slice(), "N, N, N·m")?;
+        }
+        Ok(Pid {
+            kp,
+            kd,
+            ki,
+            reference,
+            start,
+            integral_limit,
+            thrust_limit,
+            tension,
+        })
+    }
 }
 
 /// Wraps an angle to (−π, π].

@@ -9,6 +9,8 @@
 //! yaw are held at η by stiff springs whose force is the holding thrust (or, with a controller active at
 //! t = 0, by the controller's K_p). Dynamics: the vessel's momentum-form step of [`crate::vessel::rigid_body`], with
 //! damping, thrust (hold or PID) and environment as a body-frame generalised force at the step midpoint.
+// Indexing cannot go out of bounds here: 6-vectors and the vessel node of the mesh (set by attach_vessel).
+#![allow(clippy::indexing_slicing)]
 use super::control::{clamp_integral, eta_error, pid_thrust, thrust_only, Pid};
 use super::euler;
 use super::rigid_body::{vessel_step, VesselState};

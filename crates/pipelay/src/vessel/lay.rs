@@ -53,6 +53,12 @@ pub fn stinger_rollers(
     if count == 0 {
         return Err(Error::input("rollers", 0, "must be at least 1"));
     }
+    crate::memory::check(
+        "rollers",
+        count,
+        count as f64 * (std::mem::size_of::<Roller>() as f64 + 100.0),
+        "the rollers and their contacts",
+    )?;
     if length / radius > std::f64::consts::PI {
         return Err(Error::input(
             "stinger length",

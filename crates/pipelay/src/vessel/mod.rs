@@ -14,6 +14,15 @@ pub struct EnvironmentForce {
     pub start: f64,
 }
 
+impl EnvironmentForce {
+    /// A checked force: finite value and start.
+    pub fn new(value: nalgebra::Vector6<f64>, start: f64) -> crate::Result<Self> {
+        crate::error::finite("value", value.as_slice())?;
+        crate::error::finite("start", &[start])?;
+        Ok(EnvironmentForce { value, start })
+    }
+}
+
 /// A vessel holding one end of the rod (eq. 5): the rod's end node is the vessel's reference point CO,
 /// and the rod's end frame is R_t^e(L) = R_b^e R_b^tᵀ with the fixed clamp angle R_b^t(β).
 #[derive(Debug, Clone, PartialEq)]

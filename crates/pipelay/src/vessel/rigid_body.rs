@@ -13,6 +13,8 @@
 //! Hydrostatic restoring g(η) = Gη is the gradient of V = ½qᵀG_r q in director form,
 //! q = (z − z_0, (Λe2)·e3, −(Λe1)·e3) ≈ (heave, roll, pitch) for small angles: yaw-invariant and, being
 //! quadratic in q with q linear in (x, Λ), exactly integrated by the midpoint of q.
+// Indexing cannot go out of bounds here: 6×6 matrices and 6-vectors indexed by constants.
+#![allow(clippy::indexing_slicing)]
 use crate::error::{finite, Error, Result};
 use crate::so3::{cayley, skew};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
