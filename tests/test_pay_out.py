@@ -190,6 +190,8 @@ def test_steady_lay_settles_to_the_static_configuration() -> None:
     energy = res.energy["total"]
     balance = energy - energy[0] - res.supplied_work + res.dissipated
     assert np.abs(balance).max() < 1e-9 * np.abs(energy).max()
+    # Passive from thrust and pay-out to velocity: the stored energy never exceeds its start plus the supply.
+    assert res.passivity_margin() <= 1e-9 * np.abs(energy).max()
 
 
 def test_a_speed_that_turns_nan_stops_the_run_and_keeps_what_was_computed() -> None:
