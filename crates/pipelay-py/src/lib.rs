@@ -9,6 +9,7 @@ mod simulation;
 mod state;
 mod structure;
 mod vessel;
+mod waves;
 
 use pyo3::prelude::*;
 
@@ -24,6 +25,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<structure::Rod>()?;
     m.add_class::<structure::Current>()?;
     m.add_class::<structure::Sea>()?;
+    m.add_class::<waves::Waves>()?;
     m.add_class::<seabed::Seabed>()?;
     m.add_class::<seabed::Bathymetry>()?;
     m.add_class::<seabed::Touchdown>()?;

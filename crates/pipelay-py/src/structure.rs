@@ -309,8 +309,8 @@ impl Current {
     }
 }
 
-/// Water: depth (m; the surface is z = −depth), density (kg/m³), an optional current and an optional seabed
-/// (without one the pipe passes through the bottom).
+/// Water: depth (m; the surface is z = −depth), density (kg/m³), an optional current, an optional seabed
+/// (without one the pipe passes through the bottom) and optional waves.
 #[pyclass(module = "pipelay", name = "Sea", frozen)]
 #[derive(Clone)]
 pub struct Sea(pub sea::Sea);
@@ -318,21 +318,33 @@ pub struct Sea(pub sea::Sea);
 #[pymethods]
 impl Sea {
     #[new]
-    #[pyo3(signature = (depth, density=1025.0, current=None, seabed=None))]
+    #[pyo3(signature = (depth, density=1025.0, current=None, seabed=None, waves=None))]
     fn new(
         depth: f64,
         density: f64,
         current: Option<&Current>,
         seabed: Option<&crate::seabed::Seabed>,
+        waves: Option<&crate::waves::Waves>,
     ) -> PyResult<Self> {
-        sea::Sea::new(
+        let sea = sea::Sea::new(
             depth,
             density,
             current.map(|c| c.0.clone()),
             seabed.map(|s| s.0.clone()),
         )
-        .map(Sea)
-        .map_err(to_py)
+        .map_err(to_py)?;
+        Ok(Sea(match waves {
+            Some(w) => sea.with_waves(w.sea_state.clone()),
+            None => sea,
+        }))
+    }
+    /// The sea state, if any, resolved for this depth.
+    #[getter]
+    fn waves(&self) -> Option<crate::waves::Waves> {
+        self.0.waves.clone().map(|sea_state| crate::waves::Waves {
+            sea_state,
+            depth: Some(self.0.depth),
+        })
     }
     /// Water depth (m).
     #[getter]

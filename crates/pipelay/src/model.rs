@@ -1,5 +1,6 @@
 //! A model: the rod, the sea, gravity, supports (eqs. 20–21) and point loads.
 use crate::environment::sea::Sea;
+use crate::environment::waves::WaveField;
 use crate::error::{finite, non_negative, Error, Result};
 use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
@@ -189,6 +190,8 @@ pub struct Model {
     pub vessel: Option<VesselAttachment>,
     /// Pipe paid out (or in) at one end, if any.
     pub pay_out: Option<PayOut>,
+    /// The sea's waves resolved for its depth and this gravity, if it has any.
+    pub waves: Option<WaveField>,
 }
 
 /// Pay-out speed (m/s of unstretched pipe; negative: pay-in).
@@ -253,7 +256,15 @@ impl Model {
             let horizontal: Vec<_> = rod.nodes.iter().map(|p| p.xy()).collect();
             sea.check_seabed_below_surface(&horizontal)?;
         }
+        let waves = match sea
+            .as_ref()
+            .and_then(|sea| sea.waves.as_ref().map(|w| (sea, w)))
+        {
+            Some((sea, waves)) => Some(WaveField::new(waves, sea.depth, gravity)?),
+            None => None,
+        };
         Ok(Model {
+            waves,
             rod,
             sea,
             gravity,

@@ -5,3 +5,4 @@ pub mod current;
 pub mod drag;
 pub mod sea;
 pub mod seabed;
+pub mod waves;

@@ -1,6 +1,7 @@
-//! The sea: depth, water density, current and the seabed.
+//! The sea: depth, water density, current, waves and the seabed.
 use super::current::Current;
 use super::seabed::Seabed;
+use super::waves::Waves;
 use crate::error::{non_negative, positive, Error, Result};
 use nalgebra::{Vector2, Vector3};
 
@@ -13,6 +14,8 @@ pub struct Sea {
     pub current: Option<Current>,
     /// Contact with the seabed; `None`: the pipe passes through it.
     pub seabed: Option<Seabed>,
+    /// The sea state, if any (resolved for the depth and gravity by the model).
+    pub waves: Option<Waves>,
 }
 
 impl Sea {
@@ -30,9 +33,16 @@ impl Sea {
             density,
             current,
             seabed,
+            waves: None,
         };
         sea.check_seabed_below_surface(&[Vector2::zeros()])?;
         Ok(sea)
+    }
+
+    /// The same sea with waves.
+    pub fn with_waves(mut self, waves: Waves) -> Self {
+        self.waves = Some(waves);
+        self
     }
 
     /// Checks that the seabed lies below the surface at the horizontal points `points` (and everywhere on a

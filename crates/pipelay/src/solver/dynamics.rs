@@ -999,16 +999,46 @@ impl Integrator {
             forces[8] -= nodal_weight;
             self.magnitude[base + 2] += nodal_weight.abs();
             self.magnitude[base + 8] += nodal_weight.abs();
+            let dphi1 = increments.fixed_rows::<3>(0).into_owned();
+            let dphi2 = increments.fixed_rows::<3>(6).into_owned();
+            let positions = &state.configuration.positions;
+            // The waves at the element's midpoint, and their Froude–Krylov and added-mass load
+            // (1 + C_a) ρ A u̇ (isotropic, as the added mass), whose work is supplied.
+            let waves = match (&model.waves, &model.sea) {
+                (Some(waves), Some(sea)) => {
+                    let midpoint = 0.5 * (positions[e] + positions[e + 1]) + 0.25 * (dphi1 + dphi2);
+                    let kinematics = waves.kinematics(&midpoint, time_mid);
+                    let inertia = (1.0 + section.added_mass[1])
+                        * sea.density
+                        * section.displaced_area
+                        * reference.length
+                        * kinematics.acceleration;
+                    work.supplied += 0.5 * inertia.dot(&(dphi1 + dphi2));
+                    for a in 0..2 {
+                        for i in 0..3 {
+                            forces[NODE_DOFS * a + i] -= 0.5 * inertia[i];
+                            self.magnitude[base + NODE_DOFS * a + i] += 0.5 * inertia[i].abs();
+                        }
+                    }
+                    Some(kinematics)
+                }
+                _ => None,
+            };
             if let (Some(sea), true) = (&model.sea, k_axial + k_normal > 0.0) {
-                let dphi1 = increments.fixed_rows::<3>(0).into_owned();
-                let dphi2 = increments.fixed_rows::<3>(6).into_owned();
                 let tangent_mid = (chord + 0.5 * (dphi2 - dphi1)) / reference.length;
                 let stretch = tangent_mid.norm();
                 let t = tangent_mid / stretch;
                 let length = reference.length * stretch;
                 let z_mid =
                     0.5 * (positions[e].z + positions[e + 1].z) + 0.25 * (dphi1.z + dphi2.z);
-                let (flow, flow_gradient) = sea.current_at(z_mid, time_mid);
+                let (current, current_shear) = sea.current_at(z_mid, time_mid);
+                // ∂U/∂x at the midpoint: the current's shear with depth and the waves' gradient.
+                let mut flow_gradient = current_shear * Vector3::z().transpose();
+                let mut flow = current;
+                if let Some(kinematics) = &waves {
+                    flow += kinematics.velocity;
+                    flow_gradient += kinematics.velocity_gradient;
+                }
                 let velocity = 0.5 * (dphi1 + dphi2) / dt;
                 let relative = flow - velocity;
                 let drag = morison_drag(&relative, &t, k_axial, k_normal);
@@ -1019,7 +1049,7 @@ impl Integrator {
                 let projector = Matrix3::identity() - t * t.transpose();
                 let d_chord = 0.5 * (drag.force * t.transpose() + drag.d_tangent * projector);
                 let d_flow = length * drag.d_flow;
-                let d_depth = 0.25 * d_flow * flow_gradient * Vector3::z().transpose();
+                let d_depth = 0.25 * d_flow * flow_gradient;
                 let d_velocity = -0.5 / dt * d_flow;
                 let d1 = -d_chord + d_depth + d_velocity;
                 let d2 = d_chord + d_depth + d_velocity;

@@ -1,0 +1,136 @@
+//! Python class Waves: a sea state (regular, JONSWAP or a given spectrum) and its surface elevation.
+use crate::convert::flat;
+use crate::errors::{input, to_py};
+use numpy::PyArray1;
+use pipelay::environment::waves::{WaveField, Waves as SeaState};
+use pyo3::prelude::*;
+
+/// Standard gravity for a sea state's own elevation (the model resolves it again with its gravity).
+const GRAVITY: f64 = 9.81;
+
+/// A sea state: linear wave components. `depth` (m) is the water depth it is resolved for (None: deep water,
+/// until a pl.Sea takes it).
+#[pyclass(module = "pipelay", name = "Waves", frozen)]
+#[derive(Clone)]
+pub struct Waves {
+    pub sea_state: SeaState,
+    pub depth: Option<f64>,
+}
+
+#[pymethods]
+impl Waves {
+    /// A regular (Airy) wave: crest-to-trough `height` (m), `period` (s), travelling along `direction` (rad,
+    /// from e1 toward e2).
+    #[staticmethod]
+    #[pyo3(signature = (height, period, direction=0.0))]
+    fn regular(height: f64, period: f64, direction: f64) -> PyResult<Self> {
+        SeaState::regular(height, period, direction)
+            .map(|sea_state| Waves {
+                sea_state,
+                depth: None,
+            })
+            .map_err(to_py)
+    }
+
+    /// A JONSWAP sea state: significant height `hs` (m), peak period `tp` (s), peak enhancement `gamma`,
+    /// mean direction `direction` (rad), `components` components with random phases (and, with `spreading`
+    /// s, directions from cos^2s) drawn from `seed`.
+    #[staticmethod]
+    #[pyo3(signature = (hs, tp, gamma=3.3, direction=0.0, seed=0, components=200, spreading=None))]
+    fn jonswap(
+        hs: f64,
+        tp: f64,
+        gamma: f64,
+        direction: f64,
+        seed: u64,
+        components: i64,
+        spreading: Option<f64>,
+    ) -> PyResult<Self> {
+        let count = usize::try_from(components)
+            .map_err(|_| input("components", components, "must be an integer >= 1"))?;
+        SeaState::jonswap(hs, tp, gamma, direction, spreading, seed, count)
+            .map(|sea_state| Waves {
+                sea_state,
+                depth: None,
+            })
+            .map_err(to_py)
+    }
+
+    /// A sea state from a spectrum: `frequencies` ω (rad/s, increasing) and `densities` S(ω) (m²·s/rad),
+    /// interpolated linearly.
+    #[staticmethod]
+    #[pyo3(signature = (frequencies, densities, direction=0.0, seed=0, components=200, spreading=None))]
+    fn spectrum(
+        frequencies: &Bound<'_, PyAny>,
+        densities: &Bound<'_, PyAny>,
+        direction: f64,
+        seed: u64,
+        components: i64,
+        spreading: Option<f64>,
+    ) -> PyResult<Self> {
+        let count = usize::try_from(components)
+            .map_err(|_| input("components", components, "must be an integer >= 1"))?;
+        SeaState::from_spectrum(
+            &flat(frequencies, "frequencies")?,
+            &flat(densities, "densities")?,
+            direction,
+            spreading,
+            seed,
+            count,
+        )
+        .map(|sea_state| Waves {
+            sea_state,
+            depth: None,
+        })
+        .map_err(to_py)
+    }
+
+    /// Surface elevation (m, up) at times `t` (s; a number or an array) and the point (x, y) (m).
+    #[pyo3(signature = (t, x=0.0, y=0.0))]
+    fn elevation<'py>(
+        &self,
+        py: Python<'py>,
+        t: &Bound<'_, PyAny>,
+        x: f64,
+        y: f64,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let times = flat(t, "t")?;
+        pipelay::error::finite("x", &[x, y]).map_err(to_py)?;
+        let field =
+            WaveField::new(&self.sea_state, self.depth.unwrap_or(1e5), GRAVITY).map_err(to_py)?;
+        let values: Vec<f64> = times
+            .iter()
+            .map(|&time| field.elevation(x, y, time))
+            .collect();
+        Ok(PyArray1::from_vec(py, values))
+    }
+
+    /// Significant height 4√m0 of the components (m).
+    #[getter]
+    fn hs(&self) -> f64 {
+        self.sea_state.significant_height()
+    }
+
+    /// The components as arrays (amplitude (m), frequency (rad/s), direction (rad), phase (rad)), (N,) each.
+    #[getter]
+    fn components<'py>(&self, py: Python<'py>) -> [Bound<'py, PyArray1<f64>>; 4] {
+        let c = &self.sea_state.components;
+        let column = |f: fn(&pipelay::environment::waves::WaveComponent) -> f64| {
+            PyArray1::from_vec(py, c.iter().map(f).collect())
+        };
+        [
+            column(|c| c.amplitude),
+            column(|c| c.frequency),
+            column(|c| c.direction),
+            column(|c| c.phase),
+        ]
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Waves({} components, Hs = {:.3} m)",
+            self.sea_state.components.len(),
+            self.sea_state.significant_height()
+        )
+    }
+}
