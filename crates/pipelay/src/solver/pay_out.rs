@@ -13,9 +13,9 @@
 #![allow(clippy::indexing_slicing)]
 use crate::model::Model;
 use crate::rod::dynamic_element::GaussPoint;
-use crate::so3::{exp, log_quat};
+use crate::so3::log_quat;
 use crate::solver::dynamics::DynamicState;
-use nalgebra::{Matrix3, UnitQuaternion, Vector2, Vector3, Vector6};
+use nalgebra::{UnitQuaternion, Vector2, Vector3, Vector6};
 
 /// What a mesh change did, for the integrator to follow.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -81,34 +81,42 @@ fn split(
     // Ψ: the material relative rotation of the element's ends; the rotation field is R_a exp(sΨ).
     let relative = log_quat(&(ra.inverse() * rb));
     let rotation = ra * UnitQuaternion::from_scaled_axis(relative * fraction);
-    // Midpoint triads of the halves, from the element's Gauss rotation (at s = ½) along the same geodesic.
-    let first_rotation = gauss.rotation * exp(&(relative * (0.5 * (fraction - 1.0))));
-    let second_rotation = gauss.rotation * exp(&(relative * (0.5 * fraction)));
+    // Both halves keep the element's Gauss point: its rotation Λ, strain Γ and curvature K (the energy–momentum
+    // step carries them as state; they are per length). With the node on the chord at `fraction`, each half's
+    // strain Λᵀc_i/l_i − E1 is then the element's exactly, bent or not.
     let (first_length, second_length) =
         (fraction * parent.length, (1.0 - fraction) * parent.length);
-    // n_i = Λ_i C(Λ_iᵀ c_i / l_i − E1 − Γ0); n₁ = n₂ is linear in the new node's position x.
-    let c_t = section.c_t();
-    let rest = c_t * (Vector3::x() + parent.strain);
-    let stiffness = |r: &Matrix3<f64>| r * c_t * r.transpose();
-    let (k1, k2) = (
-        stiffness(&first_rotation) / first_length,
-        stiffness(&second_rotation) / second_length,
-    );
     let (xa, xb) = (config.positions[a], config.positions[b]);
-    // The node carries its share of the submerged weight: n₁ − n₂ = ½(l₁ + l₂) w e3 (the weight is in e3).
+    // Moved off the chord by δ, the halves' forces differ by Λ C Λᵀ δ (1/l₁ + 1/l₂): the node carries its share
+    // of the submerged weight when n₁ − n₂ = ½(l₁ + l₂) w e3 (the weight acts along e3).
+    let stiffness = gauss.rotation
+        * section.c_t()
+        * gauss.rotation.transpose()
+        * (1.0 / first_length + 1.0 / second_length);
     let weight = Vector3::z() * (0.5 * parent.length * model.submerged_weight());
-    let rhs = k1 * xa + k2 * xb + first_rotation * rest - second_rotation * rest + weight;
-    let position = (k1 + k2)
-        .lu()
-        .solve(&rhs)
-        .unwrap_or_else(|| xa + (xb - xa) * fraction);
-    let half = |r: Matrix3<f64>, chord: Vector3<f64>, l: f64| GaussPoint {
-        rotation: r,
-        strain: r.transpose() * chord / l - Vector3::x(),
-        curvature: gauss.curvature,
+    let offset = stiffness.lu().solve(&weight).unwrap_or_else(Vector3::zeros);
+    let position = xa + (xb - xa) * fraction + offset;
+    // The bending moment varies along the element as the shear force's lever: m′ = −φ′ × n. With the same
+    // moment in both halves the new node would carry the unbalanced ½ l n × φ′; each half takes the moment at
+    // its own midpoint instead (K_i = K + C_R⁻¹ Λᵀ Δm_i), which balances it.
+    let force = gauss.rotation * (section.c_t() * (gauss.strain - parent.strain));
+    let tangent = gauss.rotation * (gauss.strain + Vector3::x());
+    let moment_gradient = -tangent.cross(&force);
+    let compliance = section
+        .c_r()
+        .try_inverse()
+        .unwrap_or_else(nalgebra::Matrix3::zeros);
+    let half = |chord: Vector3<f64>, l: f64, midpoint: f64| GaussPoint {
+        rotation: gauss.rotation,
+        strain: gauss.rotation.transpose() * chord / l - Vector3::x(),
+        curvature: gauss.curvature
+            + compliance
+                * (gauss.rotation.transpose()
+                    * moment_gradient
+                    * ((midpoint - 0.5) * parent.length)),
     };
-    let first = half(first_rotation, position - xa, first_length);
-    let second = half(second_rotation, xb - position, second_length);
+    let first = half(position - xa, first_length, 0.5 * fraction);
+    let second = half(xb - position, second_length, 0.5 * (1.0 + fraction));
     let mix3 = |u: &Vector3<f64>, v: &Vector3<f64>| u * (1.0 - fraction) + v * fraction;
     let spin = mix3(
         &(ra * state.body_angular_velocities[a]),
