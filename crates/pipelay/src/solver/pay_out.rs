@@ -96,27 +96,18 @@ fn split(
     let weight = Vector3::z() * (0.5 * parent.length * model.submerged_weight());
     let offset = stiffness.lu().solve(&weight).unwrap_or_else(Vector3::zeros);
     let position = xa + (xb - xa) * fraction + offset;
-    // The bending moment varies along the element as the shear force's lever: m′ = −φ′ × n. With the same
-    // moment in both halves the new node would carry the unbalanced ½ l n × φ′; each half takes the moment at
-    // its own midpoint instead (K_i = K + C_R⁻¹ Λᵀ Δm_i), which balances it.
-    let force = gauss.rotation * (section.c_t() * (gauss.strain - parent.strain));
-    let tangent = gauss.rotation * (gauss.strain + Vector3::x());
-    let moment_gradient = -tangent.cross(&force);
-    let compliance = section
-        .c_r()
-        .try_inverse()
-        .unwrap_or_else(nalgebra::Matrix3::zeros);
-    let half = |chord: Vector3<f64>, l: f64, midpoint: f64| GaussPoint {
+    // Both halves take the element's Gauss point as it is. The bending moment of a sheared rod varies along it
+    // (m′ = −φ′ × n), which a one-point element cannot show: the new node is left with the moment ½ l n × φ′
+    // unbalanced, released as a small vibration. Giving each half the moment at its own midpoint instead
+    // balanced the node but added ½ Σ l_i Δm_i²/EI of strain energy at each split, which fed back through the
+    // shear force and pumped a long J-lay run unstable; this embedding changes no energy at all.
+    let half = |chord: Vector3<f64>, l: f64| GaussPoint {
         rotation: gauss.rotation,
         strain: gauss.rotation.transpose() * chord / l - Vector3::x(),
-        curvature: gauss.curvature
-            + compliance
-                * (gauss.rotation.transpose()
-                    * moment_gradient
-                    * ((midpoint - 0.5) * parent.length)),
+        curvature: gauss.curvature,
     };
-    let first = half(position - xa, first_length, 0.5 * fraction);
-    let second = half(xb - position, second_length, 0.5 * (1.0 + fraction));
+    let first = half(position - xa, first_length);
+    let second = half(xb - position, second_length);
     let mix3 = |u: &Vector3<f64>, v: &Vector3<f64>| u * (1.0 - fraction) + v * fraction;
     let spin = mix3(
         &(ra * state.body_angular_velocities[a]),
