@@ -40,3 +40,4 @@ bench: $(STAMP)
 	$(BIN)/python benches/seabed_statics.py
 	$(BIN)/python benches/lay_cost.py
 	$(BIN)/python benches/pay_out_rollers.py
+	$(BIN)/python benches/memory.py

@@ -5,6 +5,9 @@
     pipelay check SCENARIO
     pipelay plot RESULTS.nc --plots DIR
 
+`pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
+flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
+
 Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
 still written), 2 bad input (the message names the scenario key; no traceback), 130 interrupted by Ctrl-C
 (the results computed so far are written, and a checkpoint if asked for).
@@ -24,7 +27,7 @@ import numpy as np
 import pipelay as pl
 from pipelay import plots
 from pipelay.lay import TARGETS, find_lay_position
-from pipelay.results import checkpoint, load, resume, to_netcdf
+from pipelay.results import checkpoint, load, resume
 from pipelay.scenario import Scenario, load_scenario, parse_scenario
 
 INTERRUPTED = 130
@@ -37,8 +40,14 @@ def _parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True)
     run = commands.add_parser("run", help="statics, then a simulation to solver.t_end; writes netCDF results")
     run.add_argument("scenario", type=Path, help="scenario file (TOML)")
-    run.add_argument("-o", "--output", type=Path, required=True, help="results file (netCDF)")
-    run.add_argument("--plots", type=Path, help="directory for figures")
+    run.add_argument(
+        "-o",
+        "--output",
+        type=Path,
+        required=True,
+        help="results file (netCDF), written as the run goes (OUTPUT.part until it ends)",
+    )
+    run.add_argument("--plots", type=Path, help="directory for figures (reads the whole results file back)")
     run.add_argument(
         "--checkpoint", type=Path, help="write the final (or interrupted) state here to resume later"
     )
@@ -134,41 +143,52 @@ def _lay_lines(summary: dict[str, Any], rollers: np.ndarray | None) -> list[str]
     return lines
 
 
-def _run_summary(results: pl.Results) -> str:
-    """Extremes of a run, one per line: top tension, largest bending moment, touchdown range."""
-    top = np.linalg.norm(results.reaction("B")[:, :3], axis=1)
-    moment = np.hypot(results.section_forces[..., 4], results.section_forces[..., 5])
-    lines = [
-        f"top tension |F_B|       {top.min() / 1e3:10.1f} … {top.max() / 1e3:.1f} kN",
-        f"largest bending moment  {moment.max() / 1e3:10.1f} kN m (t = {results.time[np.argmax(moment.max(axis=1))]:g} s)",
-    ]
-    summary = results.lay_summary()
-    if summary is not None:
+def _run_summary(path: Path) -> str:
+    """The records, time span and extremes of a run, read from its results file a slice of records at a time:
+    top tension, largest bending moment, lay summary, touchdown range."""
+    import xarray as xr
+
+    lines = []
+    with xr.open_dataset(path, engine="h5netcdf") as data:
+        time = data["time"].values
+        lines.append(f"results: {path} ({len(time)} records, t = {time[0]:g} … {time[-1]:g} s)")
+        if "reaction_B" in data:
+            top = np.linalg.norm(data["reaction_B"].values[:, :3], axis=1)
+            lines.append(f"top tension |F_B|       {top.min() / 1e3:10.1f} … {top.max() / 1e3:.1f} kN")
+        if "section_forces" in data and data.sizes["element"] > 0:
+            forces = data["section_forces"]
+            rows = max(1, 2**22 // (forces.shape[1] * forces.shape[2]))  # 32 MB at a time
+            blocks = (forces[i : i + rows].values for i in range(0, len(time), rows))
+            # nanmax: with pay-out the shorter meshes' rows end in NaN.
+            moment = np.concatenate([np.nanmax(np.hypot(b[..., 4], b[..., 5]), axis=1) for b in blocks])
+            lines.append(
+                f"largest bending moment  {moment.max() / 1e3:10.1f} kN m (t = {time[np.argmax(moment)]:g} s)"
+            )
         for key, label, scale, unit in (
             ("top_tension", "lay: top tension       ", 1e-3, "kN"),
             ("departure_angle", "lay: departure angle   ", 180 / np.pi, "°"),
             ("overbend_strain", "lay: overbend strain   ", 100.0, "%"),
             ("sagbend_strain", "lay: sagbend strain    ", 100.0, "%"),
         ):
-            series = summary[key] * scale
-            if np.any(np.isfinite(series)):
-                lines.append(f"{label} {np.nanmin(series):10.4g} … {np.nanmax(series):.4g} {unit}")
-    arc = results.touchdown_arc_length
-    if arc is not None:
-        if np.any(np.isfinite(arc)):
-            lines.append(f"touchdown (from A)      {np.nanmin(arc):10.2f} … {np.nanmax(arc):.2f} m")
-        else:
-            lines.append("touchdown               none: the pipe never touches the seabed")
+            if key in data:
+                series = data[key].values * scale
+                if np.any(np.isfinite(series)):
+                    lines.append(f"{label} {np.nanmin(series):10.4g} … {np.nanmax(series):.4g} {unit}")
+        if "touchdown_arc_length" in data:
+            arc = data["touchdown_arc_length"].values
+            if np.any(np.isfinite(arc)):
+                lines.append(f"touchdown (from A)      {np.nanmin(arc):10.2f} … {np.nanmax(arc):.2f} m")
+            else:
+                lines.append("touchdown               none: the pipe never touches the seabed")
     return "\n".join(lines)
 
 
-def _write(results: pl.Results, args: argparse.Namespace, scenario: Scenario) -> None:
-    path = to_netcdf(results, args.output)
-    print(f"results: {path} ({len(results)} records, t = {results.time[0]:g} … {results.time[-1]:g} s)")
-    print(_run_summary(results))
+def _write(args: argparse.Namespace, scenario: Scenario) -> None:
+    """The summary of the run streamed to ``args.output``, and its figures (from the file read back)."""
+    print(_run_summary(args.output))
     if args.plots:
         for figure in plots.all_figures(
-            results, args.plots, reference=_reference(scenario), depth=_depth(scenario)
+            load(args.output), args.plots, reference=_reference(scenario), depth=_depth(scenario)
         ):
             print(f"figure: {figure}")
 
@@ -189,19 +209,22 @@ def _run(args: argparse.Namespace) -> int:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            results = simulation.run(
-                scenario.t_end, progress=not args.no_progress, record_every=scenario.record_every
+            # Streamed to the file as the run goes: memory stays flat; the file is complete on failure or Ctrl-C.
+            simulation.run(
+                scenario.t_end,
+                progress=not args.no_progress,
+                record_every=scenario.record_every,
+                output=args.output,
             )
         except pl.ConvergenceError as failure:
             print(f"pipelay: solve failed: {failure}", file=sys.stderr)
-            results = failure.results
             status = 1
     if any("interrupted" in str(w.message) for w in caught):
         print(
             f"pipelay: interrupted at t = {simulation.time:g} s; keeping the results so far", file=sys.stderr
         )
         status = INTERRUPTED
-    _write(results, args, scenario)
+    _write(args, scenario)
     if args.checkpoint:
         print(f"checkpoint: {checkpoint(simulation, args.checkpoint)} (t = {simulation.time:g} s)")
     return status

@@ -5,14 +5,18 @@ The netCDF layout (`Results.to_xarray`): dimensions ``time``, ``node`` (n + 1), 
 z of frame e), ``column`` (of a rotation matrix) and ``dof`` (6 components: force/moment or η/ν entries);
 every variable carries ``units`` and ``long_name`` attributes. With pay-out the mesh grows during a run: ``node``
 and ``element`` count the most any record had, and the node and element values a record did not have are NaN
-(the last valid node of a record is end B).
+(the last valid node of a record is end B). A run streamed to a file (``Simulation.run(..., output=path)``,
+pipelay.streaming) writes the same layout with ``time``, ``node`` and ``element`` unlimited, holding the variables
+of the groups it recorded (``GROUPS``) and a global attribute ``recorded_groups``.
 """
 
 from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Callable, Iterable
 from datetime import UTC, datetime
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -20,7 +24,7 @@ import numpy as np
 
 from pipelay._core import InputError, Model, Results, Simulation
 
-__all__ = ["checkpoint", "load", "resume", "to_netcdf", "to_xarray"]
+__all__ = ["GROUPS", "LOAD_GROUPS", "checkpoint", "load", "resume", "to_netcdf", "to_xarray"]
 
 AXES = ["x", "y", "z"]
 FORCE_DOFS = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"]
@@ -88,44 +92,102 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
 ENERGY_KEYS = ["pipe_kinetic", "pipe_strain", "pipe_gravity", "vessel_kinetic", "vessel_potential"]
 
 
-def _arrays(results: Results) -> dict[str, np.ndarray]:
-    """Every recorded array of `results`, by its netCDF name."""
-    energy = results.energy
-    arrays: dict[str, np.ndarray] = {
-        "positions": results.positions,
-        "rotations": results.rotations,
-        "velocities": results.velocities,
-        "section_forces": results.section_forces,
-        "tension": results.tension,
-        "reaction_A": results.reaction("A"),
-        "reaction_B": results.reaction("B"),
-        **{key: energy[key] for key in ENERGY_KEYS},
-        "seabed_energy": energy["seabed"],
-        "roller_energy": energy["rollers"],
-        "total_energy": energy["total"],
-        "length": results.length,
-        "pay_out_energy": results.pay_out_energy,
-        "supplied_work": results.supplied_work,
-        "dissipated": results.dissipated,
-        "iterations": results.iterations,
-    }
-    for key in (
-        "touchdown",
-        "touchdown_arc_length",
-        "laid_length",
-        "eta",
-        "nu",
-        "tau",
-        "chi",
+# The groups of variables a streamed run can record (``Simulation.run(..., output=path, record=groups)``);
+# ``time`` is always recorded. A group the model lacks (a vessel, a seabed, lay equipment) is simply absent.
+GROUPS: dict[str, tuple[str, ...]] = {
+    "positions": ("positions",),
+    "rotations": ("rotations",),
+    "velocities": ("velocities",),
+    "section_forces": ("section_forces", "tension"),
+    "reactions": ("reaction_A", "reaction_B"),
+    "energy": (
+        *ENERGY_KEYS,
+        "seabed_energy",
+        "roller_energy",
+        "total_energy",
+        "supplied_work",
+        "dissipated",
+        "pay_out_energy",
+        "length",
+        "iterations",
+    ),
+    "vessel": ("eta", "nu", "tau", "chi"),
+    "seabed": ("touchdown", "touchdown_arc_length", "laid_length"),
+    "lay": (
         "roller_reactions",
-    ):
-        value = getattr(results, key)
-        if value is not None:
-            arrays[key] = value
-    summary = results.lay_summary()
-    if summary is not None:
+        "top_tension",
+        "departure_angle",
+        "liftoff_roller",
+        "liftoff_arc_length",
+        "inflection_arc_length",
+        "layback",
+        "overbend_strain",
+        "sagbend_strain",
+        "sagbend_moment",
+    ),
+}
+# The groups ``load`` needs to build a Results (the engine's Results has no missing arrays).
+LOAD_GROUPS = ("positions", "rotations", "velocities", "section_forces", "reactions", "energy")
+# Variables the engine's Results cannot do without.
+_REQUIRED = (
+    "positions",
+    "rotations",
+    "velocities",
+    "section_forces",
+    "reaction_A",
+    "reaction_B",
+    *ENERGY_KEYS,
+    "supplied_work",
+    "dissipated",
+    "iterations",
+)
+
+
+def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, np.ndarray]:
+    """The recorded arrays of `results` by their netCDF name: all of them, or only those in `names` (the others
+    are not even fetched from the engine). Series the model does not have (no vessel, say) are left out."""
+    cache: dict[str, Any] = {}
+
+    def part(key: str) -> Any:
+        if "energy" not in cache:
+            cache["energy"] = results.energy
+        return cache["energy"][key]
+
+    def summary(key: str) -> Any:
+        if "lay" not in cache:
+            cache["lay"] = results.lay_summary()
+        return None if cache["lay"] is None else cache["lay"][key]
+
+    getters: dict[str, Callable[[], Any]] = {
+        "positions": lambda: results.positions,
+        "rotations": lambda: results.rotations,
+        "velocities": lambda: results.velocities,
+        "section_forces": lambda: results.section_forces,
+        "tension": lambda: results.tension,
+        "reaction_A": lambda: results.reaction("A"),
+        "reaction_B": lambda: results.reaction("B"),
+        **{key: partial(part, key) for key in ENERGY_KEYS},
+        "seabed_energy": lambda: part("seabed"),
+        "roller_energy": lambda: part("rollers"),
+        "total_energy": lambda: part("total"),
+        "length": lambda: results.length,
+        "pay_out_energy": lambda: results.pay_out_energy,
+        "supplied_work": lambda: results.supplied_work,
+        "dissipated": lambda: results.dissipated,
+        "iterations": lambda: results.iterations,
+        **{
+            key: partial(getattr, results, key)
+            for key in ("touchdown", "touchdown_arc_length", "laid_length", "eta", "nu", "tau", "chi")
+        },
+        "roller_reactions": lambda: results.roller_reactions,
         # touchdown_arc_length is recorded with the seabed already.
-        arrays.update({key: value for key, value in summary.items() if key != "touchdown_arc_length"})
+        **{key: partial(summary, key) for key in GROUPS["lay"][1:]},
+    }
+    arrays: dict[str, np.ndarray] = {}
+    for name in getters if names is None else names:
+        value = getters[name]()
+        if value is not None:
+            arrays[name] = value
     return arrays
 
 
@@ -148,13 +210,17 @@ def to_xarray(results: Results) -> Any:
         "column": ("column", AXES),
         "dof": ("dof", np.arange(6), {"long_name": "component: force/moment or eta/nu entry"}),
     }
-    attrs = {
+    return xr.Dataset(variables, coords=coords, attrs=_file_attributes())
+
+
+def _file_attributes() -> dict[str, str]:
+    """The global attributes of a results file."""
+    return {
         "title": "pipelay simulation results",
         "conventions": "SI units; frame e: origin at the seabed end, e1 lay direction, e3 down",
         "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "force_dofs": " ".join(FORCE_DOFS),
     }
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
 
 
 def _atomic_write(path: Path, write: Any) -> None:
@@ -180,13 +246,24 @@ def to_netcdf(results: Results, path: str | os.PathLike[str]) -> Path:
 
 
 def load(path: str | os.PathLike[str]) -> Results:
-    """Reads results written by ``Results.to_netcdf`` back, bit for bit."""
+    """Reads results written by ``Results.to_netcdf`` or streamed by ``Simulation.run(..., output=path)`` back,
+    bit for bit. A streamed file recorded with only some groups (``record=...``) loads if it has the groups a
+    Results is made of (``LOAD_GROUPS``: positions, rotations, velocities, section_forces, reactions, energy);
+    the optional ones (vessel, seabed, lay) are then None in the Results. A file without one of those groups
+    raises InputError naming the missing groups: read it with ``xarray.open_dataset(path)``."""
     import xarray as xr
 
     target = Path(path)
     if not target.is_file():
         raise InputError(f"path: no results file at {str(target)!r}")
     with xr.open_dataset(target, engine="h5netcdf") as dataset:
+        missing = [name for name in _REQUIRED if name not in dataset.data_vars]
+        if missing:
+            groups = [group for group in GROUPS if any(name in GROUPS[group] for name in missing)]
+            raise InputError(
+                f"path: a results file with the groups {', '.join(LOAD_GROUPS)} to make a Results (read any "
+                f"results file with xarray.open_dataset), got {str(target)!r} without {', '.join(groups)}"
+            )
         arrays = {name: dataset[name].values for name in dataset.data_vars if name in LAYOUT}
         arrays["time"] = dataset["time"].values
         nodes = int(dataset.sizes["node"])
