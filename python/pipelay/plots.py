@@ -1,5 +1,6 @@
-"""Figures of a pipelay run: pipe shapes, vessel motion, top tension, tension and bending along the pipe, and
-the energy balance.
+"""Figures of a pipelay run: pipe shapes, vessel motion, top tension, tension and bending along the pipe, the
+energy balance, and for a lay with pay-out the touchdown's track, the laid pipe's deviation from the route and
+the top tension of several runs.
 
 Every function returns a :class:`matplotlib.figure.Figure` drawn on its own Agg canvas (pyplot is not used, so
 neither the user's backend nor pyplot's list of open figures is touched) and, when ``path`` is given, also
@@ -19,7 +20,7 @@ Usage::
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any, Literal
 
@@ -29,17 +30,21 @@ from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from pipelay._core import Results, State
+from pipelay._core import Results, Route, State
 
 __all__ = [
     "all_figures",
     "energy",
+    "lay_accuracy",
     "lay_configuration",
+    "lay_deviation",
     "lay_summary",
     "shape",
     "tension_and_bending",
+    "tension_comparison",
     "top_tension",
     "touchdown_path",
+    "touchdown_track",
     "vessel_motion",
 ]
 
@@ -49,6 +54,8 @@ DPI = 120
 _LINESTYLES = ("-", "--", "-.", ":")
 _PathLike = str | os.PathLike[str]
 _End = Literal["A", "B"]
+_RouteLike = Route | tuple[Sequence[float], float]
+"""A lay route: a pl.Route, or its line as ((x, y), heading) (m, rad)."""
 
 
 def _figure(
@@ -102,9 +109,110 @@ def _end_force(results: Results, end: _End) -> tuple[npt.NDArray[np.float64], st
     if end not in ("A", "B"):
         raise ValueError(f"end must be 'A' (node 0, seabed end) or 'B' (node n, top end), got {end!r}")
     eta = results.eta
-    node = results.positions[:, 0 if end == "A" else -1]
+    node = results.positions[:, 0] if end == "A" else _last_nodes(results.positions)
     holder = "vessel" if eta is not None and np.allclose(node, eta[:, :3], atol=1e-6) else "support"
     return results.reaction(end)[:, :3], holder
+
+
+def _last_nodes(positions: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """The position of end B in each record (T, 3): the last node that is not NaN padding (a record of a run
+    with pay-out has as many nodes as its mesh had then)."""
+    finite = np.all(np.isfinite(positions), axis=2)
+    last = positions.shape[1] - 1 - np.argmax(finite[:, ::-1], axis=1)
+    return positions[np.arange(len(positions)), last]
+
+
+def _pays_out(results: Results) -> bool:
+    """Whether the run paid pipe out or in (its unstretched length changed)."""
+    length = getattr(results, "length", None)
+    return length is not None and len(length) > 0 and bool(np.ptp(length) > 0.0)
+
+
+def _route_line(
+    results: Results, route: _RouteLike | None
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], str]:
+    """The route's start (2,), its unit direction (2,) and a legend label. None: the vessel's first position
+    and heading."""
+    if isinstance(route, Route):
+        pose, _ = route.at(-1e30)  # before its start time a route waits at its start
+        origin, heading, label = np.asarray(pose[:2], dtype=float), float(pose[5]), "route"
+    elif route is not None:
+        start, heading = route
+        origin, heading, label = np.asarray(start, dtype=float), float(heading), "route"
+        if origin.shape != (2,) or not np.all(np.isfinite(origin)) or not np.isfinite(heading):
+            raise ValueError(f"route must be a pl.Route or ((x, y), heading) in m and rad, got {route!r}")
+    else:
+        eta = results.eta
+        if eta is None:
+            raise ValueError("without a vessel the route must be given: a pl.Route or ((x, y), heading)")
+        origin, heading, label = eta[0, :2].copy(), float(eta[0, 5]), "route (the vessel's starting heading)"
+    return origin, np.array([np.cos(heading), np.sin(heading)]), label
+
+
+def _along_across(
+    points: npt.NDArray[np.float64], origin: npt.NDArray[np.float64], direction: npt.NDArray[np.float64]
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Distance along the route's line from `origin` and signed lateral offset of points (..., ≥ 2) (m), positive
+    to starboard: along b2 = (−sin ψ, cos ψ) of a vessel on the route's heading ψ (e3 points down)."""
+    offset = points[..., :2] - origin
+    return offset @ direction, offset @ np.array([-direction[1], direction[0]])
+
+
+def lay_deviation(
+    results: Results, route: _RouteLike | None = None, record: int = -1
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Where the laid pipe lies relative to the route: the distance along the route from its start (m) and the
+    lateral deviation from it (m, positive to starboard, the right of the route's heading) of each node on the
+    seabed, from end A to the touchdown, in one record.
+
+    A node is laid when its arc length from end A (measured along the record's positions) is at most the
+    touchdown's arc length from A.
+
+    Args:
+        results: a run of a model with a seabed.
+        route: the lay route, a pl.Route or ((x, y), heading) (m, rad); None: the line through the vessel's
+            first position along its first heading.
+        record: which record (an index into results.time; −1: the last).
+
+    Returns:
+        Two arrays (k,), empty when the pipe does not touch the seabed in that record.
+
+    Raises:
+        ValueError: the results have no seabed, or no vessel and no route is given.
+    """
+    arc = results.touchdown_arc_length
+    if arc is None:
+        raise ValueError("lay_deviation needs results of a model with a seabed (pl.Sea(seabed=...))")
+    origin, direction, _ = _route_line(results, route)
+    p = results.positions[record]
+    p = p[np.all(np.isfinite(p), axis=1)]
+    reached = arc[record]
+    if not np.isfinite(reached):
+        return np.empty(0), np.empty(0)
+    s = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(p, axis=0), axis=1))))
+    return _along_across(p[s <= reached + 1e-9], origin, direction)
+
+
+def _top_tension_series(results: Results) -> npt.NDArray[np.float64]:
+    """Top tension (T,) (N): the lay summary's with lay equipment or a vessel, else |force| at end B."""
+    summary = results.lay_summary()
+    if summary is not None:
+        return np.asarray(summary["top_tension"], dtype=float)
+    return np.linalg.norm(results.reaction("B")[:, :3], axis=1)
+
+
+def _moving_average(
+    time: npt.NDArray[np.float64], values: npt.NDArray[np.float64], window: float
+) -> npt.NDArray[np.float64]:
+    """The mean of `values` over the trailing `window` seconds at each time (NaN values left out)."""
+    finite = np.isfinite(values)
+    total = np.concatenate(([0.0], np.cumsum(np.where(finite, values, 0.0))))
+    count = np.concatenate(([0], np.cumsum(finite)))
+    first = np.searchsorted(time, time - window, side="left")
+    last = np.arange(1, len(time) + 1)
+    n = count[last] - count[first]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(n > 0, (total[last] - total[first]) / np.maximum(n, 1), np.nan)
 
 
 def shape(
@@ -359,6 +467,176 @@ def touchdown_path(results: Results, path: _PathLike | None = None) -> Figure:
     return _finish(figure, axes, path)
 
 
+def touchdown_track(
+    results: Results, route: _RouteLike | None = None, path: _PathLike | None = None
+) -> Figure:
+    """The touchdown's track against the vessel's during a lay: plan view of both with the route, and how far
+    each has advanced along the route over time (parallel lines in a steady lay, layback apart).
+
+    Args:
+        results: a run of a model with a vessel and a seabed.
+        route: the lay route, a pl.Route or ((x, y), heading) (m, rad); None: the line through the vessel's
+            first position along its first heading.
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, two axes: plan view (x, y), advance along the route against time (m).
+
+    Raises:
+        ValueError: the results have no vessel or no seabed.
+    """
+    touchdown, eta = results.touchdown, results.eta
+    if touchdown is None or eta is None:
+        raise ValueError("touchdown_track needs results of a model with a vessel and a seabed")
+    origin, direction, label = _route_line(results, route)
+    time = results.time
+    figure, axes = _figure(12.0, 4.8, 1, 2)
+    plan, advance = axes
+    ends = np.array([0.0, 1.0])
+    reach = _along_across(
+        np.vstack([eta[:, :2], touchdown[np.isfinite(touchdown[:, 0]), :2]]), origin, direction
+    )
+    span = np.array([reach[0].min(), reach[0].max()])
+    line = origin + np.outer(span[0] + ends * (span[1] - span[0]), direction)
+    plan.plot(line[:, 0], line[:, 1], color="0.5", linestyle=":", linewidth=2, label=label)
+    plan.plot(eta[:, 0], eta[:, 1], color="tab:blue", label="vessel (CO)")
+    plan.plot(touchdown[:, 0], touchdown[:, 1], color="k", label="touchdown")
+    finite = np.flatnonzero(np.isfinite(touchdown[:, 0]))
+    for k, marker, color in ((0, "o", "tab:green"), (-1, "s", "tab:red")):
+        plan.plot(*eta[k, :2], marker=marker, color=color, linestyle="none")
+        if len(finite):
+            plan.plot(*touchdown[finite[k], :2], marker=marker, color=color, linestyle="none")
+    plan.plot([], [], "o", color="tab:green", label=_time_label(time[0]))
+    plan.plot([], [], "s", color="tab:red", label=_time_label(time[-1]))
+    plan.set_xlabel("x (m)")
+    plan.set_ylabel("y (m)")
+    plan.set_title("Plan view (y axis scaled to fit)")
+    plan.legend(fontsize=8, loc="best")
+    vessel_along, _ = _along_across(eta[:, :2], origin, direction)
+    touchdown_along, _ = _along_across(touchdown[:, :2], origin, direction)
+    advance.plot(time, vessel_along - vessel_along[0], color="tab:blue", label="vessel")
+    if len(finite):
+        advance.plot(
+            time, touchdown_along - touchdown_along[finite[0]], color="k", linestyle="--", label="touchdown"
+        )
+    advance.set_xlabel("time t (s)")
+    advance.set_ylabel("advance along the route (m)")
+    advance.set_title("Advance since the start")
+    advance.legend(fontsize=8, loc="best")
+    figure.suptitle("Touchdown and vessel tracks")
+    return _finish(figure, axes, path)
+
+
+def lay_accuracy(
+    results: Results,
+    route: _RouteLike | None = None,
+    times: Sequence[float] | None = None,
+    path: _PathLike | None = None,
+) -> Figure:
+    """Lay accuracy: the lateral deviation of the laid pipe's nodes from the route against the distance along
+    it (see `lay_deviation`), with the stretch laid during the run marked.
+
+    Args:
+        results: a run of a model with a seabed (and a vessel, unless `route` is given).
+        route: the lay route, a pl.Route or ((x, y), heading) (m, rad); None: the line through the vessel's
+            first position along its first heading.
+        times: times (s); each shows the nearest record. None: the last record.
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, one axes (m).
+
+    Raises:
+        ValueError: the results have no seabed, or no vessel and no route is given.
+    """
+    if results.touchdown is None:
+        raise ValueError("lay_accuracy needs results of a model with a seabed (pl.Sea(seabed=...))")
+    time = results.time
+    records = [len(time) - 1] if times is None else _records(time, times)
+    origin, direction, label = _route_line(results, route)
+    touchdown_along, touchdown_across = _along_across(results.touchdown, origin, direction)
+    figure, axes = _figure(10.0, 4.5, 1, 1)
+    (axis,) = axes
+    axis.axhline(0.0, color="0.5", linestyle=":", linewidth=2, label=label)
+    worst = 0.0
+    for j, k in enumerate(records):
+        along, across = lay_deviation(results, route, k)
+        if len(across):
+            worst = max(worst, float(np.max(np.abs(across))))
+        lines = axis.plot(along, across, label=f"laid pipe, {_time_label(time[k])}", **_style(j))
+        if np.isfinite(touchdown_along[k]):
+            axis.plot(
+                touchdown_along[k],
+                touchdown_across[k],
+                marker="v",
+                markersize=9,
+                color=lines[0].get_color(),
+                linestyle="none",
+            )
+    finite = np.flatnonzero(np.isfinite(touchdown_along))
+    if len(finite) and finite[-1] > finite[0]:
+        first, last = touchdown_along[finite[0]], touchdown_along[finite[-1]]
+        axis.axvspan(
+            min(first, last), max(first, last), color="tab:orange", alpha=0.12, label="laid during the run"
+        )
+    axis.set_xlabel("distance along the route from its start (m)")
+    axis.set_ylabel("lateral deviation from the route (m, + to starboard)")
+    axis.set_title(f"Lay accuracy: largest deviation {worst:.2f} m (▼ touchdown)")
+    axis.legend(fontsize=8, loc="best")
+    return _finish(figure, axes, path)
+
+
+def tension_comparison(
+    runs: Mapping[str, Results],
+    target: float | None = None,
+    window: float = 20.0,
+    path: _PathLike | None = None,
+) -> Figure:
+    """Top tension against time for several runs (e.g. with and without the lay-tension loop): each run's
+    series thin and its trailing mean over `window` seconds thick.
+
+    The top tension is the lay summary's (at the tensioner or tower) for a run with a vessel, else the force at
+    end B.
+
+    Args:
+        runs: label → run, in legend order.
+        target: a tension to mark (N), e.g. the loop's target.
+        window: length of the trailing mean (s), > 0.
+        path: where to save the figure, if anywhere.
+
+    Returns:
+        The figure, one axes (kN).
+    """
+    if not runs:
+        raise ValueError("runs is empty: give at least one labelled run")
+    if not window > 0.0:
+        raise ValueError(f"window must be a length of time > 0 (s), got {window!r}")
+    figure, axes = _figure(10.0, 4.8, 1, 1)
+    (axis,) = axes
+    for j, (name, results) in enumerate(runs.items()):
+        tension = _top_tension_series(results) / 1e3
+        color = f"C{j}"
+        axis.plot(results.time, tension, color=color, linewidth=0.5, alpha=0.45)
+        mean = _moving_average(results.time, tension, window)
+        axis.plot(
+            results.time,
+            mean,
+            color=color,
+            linewidth=2.0,
+            linestyle=_LINESTYLES[j % 4],
+            label=f"{name} ({window:g} s mean)",
+        )
+    if target is not None:
+        axis.axhline(
+            target / 1e3, color="k", linestyle=":", linewidth=1.2, label=f"target {target / 1e3:g} kN"
+        )
+    axis.set_xlabel("time t (s)")
+    axis.set_ylabel("top tension (kN)")
+    axis.set_title("Top tension")
+    axis.legend(fontsize=8, loc="best")
+    return _finish(figure, axes, path)
+
+
 def lay_configuration(state: State, path: _PathLike | None = None, **check: Any) -> Figure:
     """A lay configuration: the pipe on the stinger's rollers and down to the seabed (side view, whole and near
     the vessel), and the strain and DNV-ST-F101 utilisations along the pipe.
@@ -464,18 +742,22 @@ def all_figures(
     directory: _PathLike,
     reference: npt.ArrayLike | None = None,
     depth: float | None = None,
+    route: _RouteLike | None = None,
 ) -> list[Path]:
     """Write every figure that applies to `results` into `directory` (created if missing).
 
     Files: shape.png, vessel_motion.png (only with a vessel), touchdown.png (only with a seabed),
-    top_tension.png (end B), lay_summary.png (only with lay equipment's rollers), tension_bending.png,
-    energy.png, with the default times.
+    touchdown_track.png and lay_accuracy.png (only with pay-out, a vessel and a seabed), top_tension.png
+    (end B), lay_summary.png (only with lay equipment's rollers), tension_bending.png, energy.png, with the
+    default times.
 
     Args:
         results: a run.
         directory: the output folder.
         reference: η_ref for `vessel_motion` (m, rad; NaN entries not drawn); unused without a vessel.
         depth: water depth (m) for `shape`'s sea surface and seabed lines.
+        route: the lay route for the pay-out figures, a pl.Route or ((x, y), heading) (m, rad); None: the line
+            through the vessel's first position along its first heading.
 
     Returns:
         The paths written, in the order above.
@@ -490,6 +772,11 @@ def all_figures(
     if results.touchdown is not None:
         written.append(out / "touchdown.png")
         touchdown_path(results, path=written[-1])
+        if results.eta is not None and _pays_out(results):
+            written.append(out / "touchdown_track.png")
+            touchdown_track(results, route=route, path=written[-1])
+            written.append(out / "lay_accuracy.png")
+            lay_accuracy(results, route=route, path=written[-1])
     written.append(out / "top_tension.png")
     top_tension(results, path=written[-1])
     if results.lay_summary() is not None and results.roller_reactions is not None:

@@ -207,6 +207,35 @@ Gains are 6 numbers (a diagonal matrix) or a 6×6 matrix.
 | `speed`      | m/s  | 0        | lay speed along the route                       |
 | `start_time` | s    | 0        | when the reference starts moving                |
 
+### `[controller.tension]` — `pl.TensionControl`: the lay-tension loop, `PID(tension=...)`
+
+Moves the DP set-point along the reference's heading (the route's, or ψ of a fixed `reference`) at
+−gain · (T_f − target) m/s, T_f the top tension low-passed with the `filter` time constant.
+
+| key          | unit     | default  | meaning                                                 |
+|--------------|----------|----------|---------------------------------------------------------|
+| `target`     | N        | required | top tension to hold                                     |
+| `gain`       | m/(s·N)  | required | set-point speed per newton of tension error, > 0        |
+| `start`      | s        | 0        | time the loop starts                                    |
+| `rate_limit` | m/s      | none     | bound on the set-point's speed, > 0                     |
+| `filter`     | s        | 20       | time constant of the tension's low-pass filter, > 0     |
+
+### `[pay_out]` — `model.pay_out(end, speed)`: pipe paid out (or in) through the tensioner or tower
+
+The end must be the one `[vessel]` holds or a driven `[supports]` end. The speed rises smoothly from 0 at
+`start_time` to `speed` over `ramp` seconds, v(t) = speed · (3s² − 2s³), s = (t − start_time)/ramp clipped
+to [0, 1] (a sudden start sends an axial shock v·√(EA·m) through the pipe): the length paid out by t ≥
+start_time + ramp is speed · (t − start_time − ramp/2). A route starts at full speed: a pay-out that starts
+with it falls speed · ramp/2 behind the vessel, which lifts laid pipe off the seabed; starting it ramp/2
+earlier (`start_time` = the route's − ramp/2) keeps the length paid out equal to the route's advance.
+
+| key          | unit | default  | meaning                                                                           |
+|--------------|------|----------|-----------------------------------------------------------------------------------|
+| `end`        | —    | "B"      | the end the pipe is paid out at, "A" or "B"                                       |
+| `speed`      | m/s  | required | of unstretched pipe (< 0 pays in), or `"route"`: the speed of `[controller.route]` |
+| `start_time` | s    | 0        | when the pay-out starts; with speed = "route", the route's `start_time`           |
+| `ramp`       | s    | 60       | time over which the speed rises to its value, ≥ 0 (0: at once)                   |
+
 ### `[[environment]]` — `pl.Force`, one table per force on the vessel; needs `[vessel]`
 
 | key     | unit   | default  | meaning                                         |
@@ -249,7 +278,7 @@ from typing import Any, Literal, NoReturn, cast
 
 import pipelay as pl
 
-__all__ = ["KEYS", "MAX_ELEMENTS", "Scenario", "load_scenario", "parse_scenario"]
+__all__ = ["KEYS", "MAX_ELEMENTS", "Scenario", "SmoothStart", "load_scenario", "parse_scenario"]
 
 MAX_ELEMENTS = 1_000_000
 """Largest number of elements a scenario's `[rod]` may ask for."""
@@ -497,6 +526,28 @@ class _NumberOrVector(_Check):
 
 
 @dataclass(frozen=True)
+class _NumberOrWord(_Check):
+    """A finite number in `unit`, or one of a few words."""
+
+    unit: str
+    options: tuple[str, ...]
+
+    def describe(self) -> str:
+        """What is allowed."""
+        return f"a number{_paren(self.unit)} or {_either(self.options)}"
+
+    def __call__(self, value: object, path: str) -> float | str:
+        """The float, or the word."""
+        if isinstance(value, str):
+            if value not in self.options:
+                _fail(path, f"must be {self.describe()}, got {_show(value)}")
+            return value
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            _fail(path, f"must be {self.describe()}, got {_show(value)}")
+        return _Number(self.unit)(value, path)
+
+
+@dataclass(frozen=True)
 class _Gains(_Check):
     """Controller gains: 6 numbers (a diagonal matrix) or a 6×6 matrix."""
 
@@ -661,6 +712,20 @@ _ROUTE: dict[str, _Check] = {
     "speed": _Number("m/s"),
     "start_time": _Number("s"),
 }
+_TENSION: dict[str, _Check] = {
+    "target": _Number("N"),
+    "gain": _Number("m/(s·N)", _POSITIVE),
+    "start": _Number("s"),
+    "rate_limit": _Number("m/s", _POSITIVE),
+    "filter": _Number("s", _POSITIVE),
+}
+_PAY_OUT: dict[str, _Check] = {
+    "end": _Choice(("A", "B")),
+    "speed": _NumberOrWord("m/s", ("route",)),
+    "start_time": _Number("s"),
+    "ramp": _Number("s", _NON_NEGATIVE),
+}
+_PAY_OUT_RAMP = 60.0
 _ENVIRONMENT: dict[str, _Check] = {
     "value": _Vector(6, "N, N·m", "[X, Y, Z, K, M, N]"),
     "start": _Number("s"),
@@ -678,7 +743,7 @@ _OUTPUT: dict[str, _Check] = {
 _GRAVITY = _Number("m/s²", _NON_NEGATIVE)
 _TOP: dict[str, _Check] = {"title": _Text(), "description": _Text()}
 _SECTIONS: tuple[str, ...] = ("gravity", "pipe", "section", "rod", "sea", "supports", "point_loads", "vessel")
-_SECTIONS += ("controller", "environment", "solver", "output")
+_SECTIONS += ("controller", "pay_out", "environment", "solver", "output")
 
 KEYS: dict[str, tuple[str, ...]] = {
     "": (*_TOP, *_SECTIONS),
@@ -697,8 +762,10 @@ KEYS: dict[str, tuple[str, ...]] = {
     "vessel": (*_VESSEL, "lay"),
     "vessel.lay": (*_LAY, "stinger"),
     "vessel.lay.stinger": tuple(_STINGER),
-    "controller": (*_CONTROLLER, "route"),
+    "controller": (*_CONTROLLER, "route", "tension"),
     "controller.route": tuple(_ROUTE),
+    "controller.tension": tuple(_TENSION),
+    "pay_out": tuple(_PAY_OUT),
     "environment": tuple(_ENVIRONMENT),
     "solver": tuple(_SOLVER),
     "output": tuple(_OUTPUT),
@@ -758,6 +825,7 @@ class _Plan:
     vessel: dict[str, Any] | None
     controller: dict[str, Any] | None
     environment: list[dict[str, Any]]
+    pay_out: dict[str, Any] | None = None
 
 
 @dataclass
@@ -1013,6 +1081,24 @@ def _read_output(top: _Table, t_end: float | None) -> dict[str, Any]:
     return output
 
 
+def _read_pay_out(top: _Table, controller: dict[str, Any] | None) -> dict[str, Any] | None:
+    """`[pay_out]`: the end, and the speed, start time and ramp of the smoothly started pay-out (speed =
+    "route" replaced by the route's speed, and the start time defaulting to the route's)."""
+    if "pay_out" not in top.values:
+        return None
+    table = _Table(top.values["pay_out"], "pay_out", KEYS["pay_out"])
+    pay_out = {"end": "B", "start_time": 0.0, "ramp": _PAY_OUT_RAMP}
+    given = table.read(_PAY_OUT, required=("speed",))
+    if given["speed"] == "route":
+        route = (controller or {}).get("route")
+        if route is None:
+            _fail("pay_out.speed", '"route" needs a [controller.route] to take the speed from; there is none')
+        given["speed"] = route.get("speed", 0.0)
+        given.setdefault("start_time", route.get("start_time", 0.0))
+    pay_out.update(given)
+    return pay_out
+
+
 def _read(data: object) -> tuple[_Plan, dict[str, Any]]:
     """Check every key of a parsed scenario: the plan of API calls, and the solver and output settings."""
     if not isinstance(data, dict):
@@ -1048,6 +1134,10 @@ def _read(data: object) -> tuple[_Plan, dict[str, Any]]:
             controller["route"] = route.read(_ROUTE, required=("start",))
         else:
             controller = table.read(_CONTROLLER, required=("kp", "kd", "reference"))
+        if "tension" in table.values:
+            tension = _Table(table.values["tension"], "controller.tension", KEYS["controller.tension"])
+            controller["tension"] = tension.read(_TENSION, required=("target", "gain"))
+    pay_out = _read_pay_out(top, controller)
     environment = [
         _Table(entry, f"environment[{i}]", KEYS["environment"]).read(_ENVIRONMENT, required=("value",))
         for i, entry in enumerate(_tables(top.values.get("environment", []), "environment"))
@@ -1055,7 +1145,18 @@ def _read(data: object) -> tuple[_Plan, dict[str, Any]]:
     settings = _read_solver(top)
     settings["output"] = _read_output(top, settings["t_end"])
     plan = _Plan(
-        section, rod, sea, current, seabed, model, supports, point_loads, vessel, controller, environment
+        section,
+        rod,
+        sea,
+        current,
+        seabed,
+        model,
+        supports,
+        point_loads,
+        vessel,
+        controller,
+        environment,
+        pay_out,
     )
     return plan, settings
 
@@ -1115,6 +1216,38 @@ def _harmonic_drive(
     return position, velocity
 
 
+@dataclass(frozen=True)
+class SmoothStart:
+    """A speed that rises smoothly from 0 at `start_time` to `speed` over `ramp`: v(t) = speed · (3s² − 2s³),
+    s = (t − start_time)/ramp clipped to [0, 1] (a step at start_time when ramp = 0); the `[pay_out]` speed.
+
+    Attributes:
+        speed: the final speed (m/s).
+        start_time: when it starts rising (s).
+        ramp: how long it takes to reach `speed` (s), ≥ 0.
+    """
+
+    speed: float
+    start_time: float = 0.0
+    ramp: float = _PAY_OUT_RAMP
+
+    def __call__(self, t: float) -> float:
+        """The speed at time t (s), m/s."""
+        if self.ramp <= 0.0:
+            return self.speed if t >= self.start_time else 0.0
+        s = min(max((t - self.start_time) / self.ramp, 0.0), 1.0)
+        return self.speed * s * s * (3.0 - 2.0 * s)
+
+    def distance(self, t: float) -> float:
+        """∫ v dt from start_time to t (m): the length paid out by time t."""
+        if t <= self.start_time:
+            return 0.0
+        if self.ramp <= 0.0 or t >= self.start_time + self.ramp:
+            return self.speed * (t - self.start_time - 0.5 * self.ramp)
+        s = (t - self.start_time) / self.ramp
+        return self.speed * self.ramp * (s**3 - 0.5 * s**4)
+
+
 def _build(plan: _Plan) -> pl.Model:
     """Make the API calls of a checked plan."""
     kind, arguments = plan.section
@@ -1171,6 +1304,11 @@ def _build(plan: _Plan) -> pl.Model:
             model.point_load(**load)
     if plan.vessel is not None:
         _attach(model, plan.vessel, plan)
+    if plan.pay_out is not None:
+        arguments = dict(plan.pay_out)
+        end = arguments.pop("end")
+        with _engine("pay_out", KEYS["pay_out"]):
+            model.pay_out(end, speed=SmoothStart(**arguments))
     return model
 
 
@@ -1184,11 +1322,14 @@ def _attach(model: pl.Model, vessel_arguments: dict[str, Any], plan: _Plan) -> N
         vessel = pl.Vessel.osv() if arguments.pop("model", None) == "osv" else pl.Vessel(**arguments)
     controller = None
     if plan.controller is not None:
+        arguments = dict(plan.controller)
+        if "route" in arguments:
+            with _engine("controller.route", KEYS["controller.route"]):
+                arguments["reference"] = pl.Route(**arguments.pop("route"))
+        if "tension" in arguments:
+            with _engine("controller.tension", KEYS["controller.tension"]):
+                arguments["tension"] = pl.TensionControl(**arguments.pop("tension"))
         with _engine("controller", KEYS["controller"]):
-            arguments = dict(plan.controller)
-            if "route" in arguments:
-                with _engine("controller.route", KEYS["controller.route"]):
-                    arguments["reference"] = pl.Route(**arguments.pop("route"))
             controller = pl.PID(**arguments)
     environment = []
     for i, force in enumerate(plan.environment):
