@@ -5,7 +5,7 @@ direction and e3 pointing down (gravity is +g·e3); the sea surface is the plane
 Rod end "A" is node 0 (seabed end), "B" is node n (top end).
 """
 
-from pipelay import checks, lay
+from pipelay import checks, lay, streaming
 from pipelay._core import (
     PID,
     Bathymetry,
@@ -28,6 +28,7 @@ from pipelay._core import (
     TensionControl,
     Touchdown,
     Vessel,
+    Waves,
 )
 from pipelay.lay import find_lay_position
 from pipelay.results import load, resume
@@ -63,10 +64,12 @@ __all__ = [
     "TensionControl",
     "Touchdown",
     "Vessel",
+    "Waves",
     "checks",
     "find_lay_position",
     "lay",
     "load",
     "resume",
+    "streaming",
 ]
 __version__ = "0.1.0"

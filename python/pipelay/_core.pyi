@@ -34,6 +34,7 @@ __all__ = [
     "TensionControl",
     "Touchdown",
     "Vessel",
+    "Waves",
 ]
 
 class InputError(ValueError):
@@ -159,9 +160,46 @@ class Current:
         """Start time (s)."""
 
 @final
+class Waves:
+    """A sea state: linear (Airy) components; build it with `regular`, `jonswap` or `spectrum`."""
+
+    @staticmethod
+    def regular(height: float, period: float, direction: float = 0.0) -> Waves:
+        """A regular wave: crest-to-trough height (m), period (s), direction of travel (rad from e1 to e2)."""
+    @staticmethod
+    def jonswap(
+        hs: float,
+        tp: float,
+        gamma: float = 3.3,
+        direction: float = 0.0,
+        seed: int = 0,
+        components: int = 200,
+        spreading: float | None = None,
+    ) -> Waves:
+        """A JONSWAP sea: Hs (m), Tp (s), peak enhancement, mean direction (rad), cos^2s spreading s."""
+    @staticmethod
+    def spectrum(
+        frequencies: _ArrayLike,
+        densities: _ArrayLike,
+        direction: float = 0.0,
+        seed: int = 0,
+        components: int = 200,
+        spreading: float | None = None,
+    ) -> Waves:
+        """A sea from S(ω): frequencies (rad/s, increasing), densities (m²·s/rad)."""
+    def elevation(self, t: float | _ArrayLike, x: float = 0.0, y: float = 0.0) -> _FloatArray:
+        """Surface elevation (m, up) at times t (s) and the point (x, y) (deep water unless from a Sea)."""
+    @property
+    def hs(self) -> float:
+        """Significant height 4√m0 of the components (m)."""
+    @property
+    def components(self) -> list[_FloatArray]:
+        """Amplitude (m), frequency (rad/s), direction (rad) and phase (rad), (N,) each."""
+
+@final
 class Sea:
-    """Water: depth (m; the surface is z = −depth), density (kg/m³), an optional current and an optional
-    seabed."""
+    """Water: depth (m; the surface is z = −depth), density (kg/m³), an optional current, an optional seabed
+    and optional waves."""
 
     def __new__(
         cls,
@@ -169,7 +207,11 @@ class Sea:
         density: float = 1025.0,
         current: Current | None = None,
         seabed: Seabed | None = None,
+        waves: Waves | None = None,
     ) -> Sea: ...
+    @property
+    def waves(self) -> Waves | None:
+        """The sea state, resolved for this depth."""
     @property
     def depth(self) -> float:
         """Water depth (m)."""
@@ -483,8 +525,22 @@ class Simulation:
     def __new__(cls, model: Model, state: State | None = None, dt: float = 0.05) -> Simulation: ...
     def step(self) -> None:
         """Advance one time step dt."""
-    def run(self, t_end: float, progress: bool = True, record_every: int = 1) -> Results:
-        """Run to t_end (s); returns the current state and every record_every-th step after it."""
+    def run(
+        self,
+        t_end: float,
+        progress: bool = True,
+        record_every: int = 1,
+        *,
+        output: str | os.PathLike[str] | None = None,
+        record: str | Sequence[str] | None = None,
+    ) -> Results:
+        """Run to t_end (s), recording the current state and every record_every-th step after it.
+
+        Without `output`: returns every record in memory. With `output` (a path): the records are streamed to
+        that netCDF file as the run goes (memory stays flat); it is `<output>.part` until the run ends, fails or
+        is interrupted, then renamed; returns a Results of the last record only (the whole series: pl.load).
+        `record`: None (everything) or groups from "positions", "rotations", "velocities", "section_forces",
+        "reactions", "energy", "vessel", "seabed", "lay"; time always."""
     @property
     def time(self) -> float:
         """Current time (s)."""
