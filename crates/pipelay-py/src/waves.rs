@@ -17,6 +17,24 @@ pub struct Waves {
     pub depth: Option<f64>,
 }
 
+impl Waves {
+    /// A sea state not yet resolved for a depth.
+    fn unresolved(sea_state: pipelay::Result<SeaState>) -> PyResult<Self> {
+        sea_state
+            .map(|sea_state| Waves {
+                sea_state,
+                depth: None,
+            })
+            .map_err(to_py)
+    }
+}
+
+/// The number of components, checked non-negative (the engine checks the range).
+fn component_count(components: i64) -> PyResult<usize> {
+    usize::try_from(components)
+        .map_err(|_| input("components", components, "must be an integer >= 1"))
+}
+
 #[pymethods]
 impl Waves {
     /// A regular (Airy) wave: crest-to-trough `height` (m), `period` (s), travelling along `direction` (rad,
@@ -24,12 +42,7 @@ impl Waves {
     #[staticmethod]
     #[pyo3(signature = (height, period, direction=0.0))]
     fn regular(height: f64, period: f64, direction: f64) -> PyResult<Self> {
-        SeaState::regular(height, period, direction)
-            .map(|sea_state| Waves {
-                sea_state,
-                depth: None,
-            })
-            .map_err(to_py)
+        Self::unresolved(SeaState::regular(height, period, direction))
     }
 
     /// A JONSWAP sea state: significant height `hs` (m), peak period `tp` (s), peak enhancement `gamma`,
@@ -46,14 +59,10 @@ impl Waves {
         components: i64,
         spreading: Option<f64>,
     ) -> PyResult<Self> {
-        let count = usize::try_from(components)
-            .map_err(|_| input("components", components, "must be an integer >= 1"))?;
-        SeaState::jonswap(hs, tp, gamma, direction, spreading, seed, count)
-            .map(|sea_state| Waves {
-                sea_state,
-                depth: None,
-            })
-            .map_err(to_py)
+        let count = component_count(components)?;
+        Self::unresolved(SeaState::jonswap(
+            hs, tp, gamma, direction, spreading, seed, count,
+        ))
     }
 
     /// A sea state from a spectrum: `frequencies` ω (rad/s, increasing) and `densities` S(ω) (m²·s/rad),
@@ -68,21 +77,15 @@ impl Waves {
         components: i64,
         spreading: Option<f64>,
     ) -> PyResult<Self> {
-        let count = usize::try_from(components)
-            .map_err(|_| input("components", components, "must be an integer >= 1"))?;
-        SeaState::from_spectrum(
+        let count = component_count(components)?;
+        Self::unresolved(SeaState::from_spectrum(
             &flat(frequencies, "frequencies")?,
             &flat(densities, "densities")?,
             direction,
             spreading,
             seed,
             count,
-        )
-        .map(|sea_state| Waves {
-            sea_state,
-            depth: None,
-        })
-        .map_err(to_py)
+        ))
     }
 
     /// Surface elevation (m, up) at times `t` (s; a number or an array) and the point (x, y) (m).
