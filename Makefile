@@ -27,8 +27,8 @@ test: $(STAMP)
 lint: $(STAMP)
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets --release -- -D warnings
-	$(BIN)/ruff check python tests examples benches
-	$(BIN)/ruff format --check python tests examples benches
+	$(BIN)/ruff check python tests examples benches scripts
+	$(BIN)/ruff format --check python tests examples benches scripts
 	$(BIN)/python -m mypy.stubtest pipelay._core --ignore-disjoint-bases
 
 bench: $(STAMP)
