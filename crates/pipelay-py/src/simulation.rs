@@ -170,7 +170,11 @@ impl Simulation {
         } else {
             None
         };
-        let chunk = (steps / 100).clamp(1, 1000);
+        // Steps go in chunks of about CHUNK_SECONDS without the GIL: long enough that another thread's Python
+        // (or a second simulation) is not kept waiting for the GIL at every step, short enough that Ctrl-C and
+        // the progress bar respond at once. The first chunk is one step, to measure a step's time.
+        const CHUNK_SECONDS: f64 = 0.1;
+        let mut chunk = 1;
         let mut done = 0;
         let mut counter = 0;
         let mut outcome = Ok(());
@@ -179,9 +183,12 @@ impl Simulation {
             let integrator = &mut self.integrator;
             let history_ref = &mut history;
             let counter_ref = &mut counter;
+            let started = std::time::Instant::now();
             let result = py.detach(|| {
                 integrator.advance(count, record_every as usize, history_ref, counter_ref)
             });
+            let per_step = started.elapsed().as_secs_f64() / count as f64;
+            chunk = ((CHUNK_SECONDS / per_step.max(1e-9)) as usize).clamp(1, 10_000);
             done = counter;
             if let Some(bar) = &bar {
                 bar.call_method1("update", (count,))?;
