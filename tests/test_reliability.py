@@ -134,22 +134,34 @@ def test_two_simulations_in_two_threads_run_at_once_and_agree() -> None:
         model.clamp("B")
         return model.simulation(model.rest(), dt=0.05)
 
-    start = time.perf_counter()
-    alone = [heavy().run(8.0, progress=False) for _ in range(2)]
-    sequential = time.perf_counter() - start
-    results: dict[int, pl.Results] = {}
+    def one_after_the_other() -> list[pl.Results]:
+        return [heavy().run(8.0, progress=False) for _ in range(2)]
 
-    def work(index: int) -> None:
-        results[index] = heavy().run(8.0, progress=False)
+    def at_once() -> list[pl.Results]:
+        results: dict[int, pl.Results] = {}
 
-    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
-    start = time.perf_counter()
-    for thread in threads:
-        thread.start()
-    for thread in threads:
-        thread.join()
-    concurrent = time.perf_counter() - start
+        def work(index: int) -> None:
+            results[index] = heavy().run(8.0, progress=False)
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        return [results[0], results[1]]
+
+    def timed(run: Callable[[], list[pl.Results]]) -> tuple[float, list[pl.Results]]:
+        """The best of two timings (shared machines are noisy), and the results."""
+        best, results = np.inf, []
+        for _ in range(2):
+            start = time.perf_counter()
+            results = run()
+            best = min(best, time.perf_counter() - start)
+        return best, results
+
+    sequential, alone = timed(one_after_the_other)
+    concurrent, together = timed(at_once)
     print(f"two runs one after the other {sequential:.2f} s, at once in two threads {concurrent:.2f} s")
     for index in range(2):
-        assert np.array_equal(results[index].positions, alone[index].positions)
+        assert np.array_equal(together[index].positions, alone[index].positions)
     assert concurrent < 0.8 * sequential
