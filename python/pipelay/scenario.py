@@ -282,6 +282,7 @@ __all__ = ["KEYS", "MAX_ELEMENTS", "Scenario", "SmoothStart", "load_scenario", "
 
 MAX_ELEMENTS = 1_000_000
 """Largest number of elements a scenario's `[rod]` may ask for."""
+_INT64 = 2**63 - 1  # the largest count the engine takes
 
 _End = Literal["A", "B"]
 _ETA = "[x, y, z, φ, θ, ψ]"
@@ -372,7 +373,10 @@ class _Number(_Check):
         """The value as a float."""
         if isinstance(value, bool) or not isinstance(value, int | float):
             _fail(path, f"must be a number{_paren(self.unit)}, got {_show(value)}")
-        number = float(value)
+        try:
+            number = float(value)
+        except OverflowError:  # an integer beyond the largest float
+            number = math.inf
         if not math.isfinite(number):
             _fail(path, f"must be a finite number{_paren(self.unit)}, got {_show(value)}")
         if not all(_COMPARE[op](number, limit) for op, limit in self.bounds):
@@ -400,6 +404,8 @@ class _Integer(_Check):
             _fail(path, f"must be {self.describe()}, got {_show(value)}")
         if value < self.low or (self.high is not None and value > self.high):
             _fail(path, f"must be {self.describe()}, got {value}")
+        if value > _INT64:
+            _fail(path, f"must be {self.describe()} and <= {_INT64} (64 bits), got {value}")
         return value
 
 
@@ -784,7 +790,7 @@ class _Table:
             if key not in keys:
                 tables = isinstance(item, list) and bool(item) and all(isinstance(i, dict) for i in item)
                 what = "section" if isinstance(item, dict) or tables else "key"
-                _fail(_join(path, str(key)), f"unknown {what}{_suggest(str(key), keys)}")
+                _fail(_join(path, str(key) or '""'), f"unknown {what}{_suggest(str(key), keys)}")
         self.values: dict[str, Any] = value
         self.path = path
 

@@ -29,6 +29,11 @@ impl Waves {
     }
 }
 
+/// A seed, checked non-negative.
+fn checked_seed(seed: i64) -> PyResult<u64> {
+    u64::try_from(seed).map_err(|_| input("seed", seed, "must be an integer >= 0"))
+}
+
 /// The number of components, checked non-negative (the engine checks the range).
 fn component_count(components: i64) -> PyResult<usize> {
     usize::try_from(components)
@@ -55,11 +60,12 @@ impl Waves {
         tp: f64,
         gamma: f64,
         direction: f64,
-        seed: u64,
+        seed: i64,
         components: i64,
         spreading: Option<f64>,
     ) -> PyResult<Self> {
         let count = component_count(components)?;
+        let seed = checked_seed(seed)?;
         Self::unresolved(SeaState::jonswap(
             hs, tp, gamma, direction, spreading, seed, count,
         ))
@@ -73,11 +79,12 @@ impl Waves {
         frequencies: &Bound<'_, PyAny>,
         densities: &Bound<'_, PyAny>,
         direction: f64,
-        seed: u64,
+        seed: i64,
         components: i64,
         spreading: Option<f64>,
     ) -> PyResult<Self> {
         let count = component_count(components)?;
+        let seed = checked_seed(seed)?;
         Self::unresolved(SeaState::from_spectrum(
             &flat(frequencies, "frequencies")?,
             &flat(densities, "densities")?,

@@ -44,6 +44,9 @@ pub struct Waves {
     pub components: Vec<WaveComponent>,
 }
 
+/// Largest spreading exponent s of cos^2s.
+pub const MAX_SPREADING: f64 = 1000.0;
+
 /// Most components a sea state may have (each costs every element a cosh, sinh, cos and sin per step).
 pub const MAX_COMPONENTS: usize = 100_000;
 
@@ -185,7 +188,15 @@ impl Waves {
             ));
         }
         if let Some(s) = spreading {
-            positive("spreading", s, "(the exponent s of cos^2s)")?;
+            // Sampling cos^2s by rejection accepts about √(4/(πs)) of the tries; beyond s = 1000 the sea is
+            // long-crested to a tenth of a degree anyway.
+            if !(s.is_finite() && s > 0.0 && s <= MAX_SPREADING) {
+                return Err(Error::input(
+                    "spreading",
+                    s,
+                    format!("must be the exponent s of cos^2s in (0, {MAX_SPREADING}] (None: long-crested)"),
+                ));
+            }
         }
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let width = (band.1 - band.0) / components as f64;
@@ -523,6 +534,8 @@ mod tests {
         assert!(Waves::jonswap(2.0, 9.0, 0.5, 0.0, None, 0, 100).is_err());
         assert!(Waves::jonswap(2.0, 9.0, 3.3, 0.0, None, 0, 0).is_err());
         assert!(Waves::regular(-1.0, 9.0, 0.0).is_err());
+        assert!(Waves::jonswap(2.0, 9.0, 3.3, 0.0, Some(1e300), 0, 10).is_err());
+        assert!(Waves::jonswap(2.0, 9.0, 3.3, 0.0, Some(1000.0), 0, 10).is_ok());
         assert!(Waves::from_spectrum(&[0.5, 0.4], &[1.0, 1.0], 0.0, None, 0, 10).is_err());
         assert!(Waves::from_spectrum(&[0.4, 0.5], &[1.0, f64::NAN], 0.0, None, 0, 10).is_err());
     }
