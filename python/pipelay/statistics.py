@@ -66,6 +66,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+# One way of wording input errors across the package's Python modules.
+from pipelay.checks import _Described, _input_error
+
 __all__ = [
     "METHODS",
     "MostProbableMaximum",
@@ -650,24 +653,6 @@ def _section_stiffness(section: Any) -> tuple[float, float, float, float]:
 
 
 # --- validation ------------------------------------------------------------------------------------------
-
-
-class _Described:
-    """A description shown as is (unquoted) in place of a value in an input error."""
-
-    def __init__(self, text: str) -> None:
-        self.text = text
-
-    def __repr__(self) -> str:
-        return self.text
-
-
-def _input_error(argument: str, value: object, allowed: str, problem: str = "is not allowed") -> Exception:
-    """A `pipelay.InputError` "argument: value problem; allowed: allowed"."""
-    from pipelay._core import InputError
-
-    shown = f'"{value}"' if isinstance(value, str) else repr(value)
-    return InputError(f"{argument}: {shown} {problem}; allowed: {allowed}")
 
 
 def _number(argument: str, value: object, *, positive: bool = False, minimum: float | None = None) -> float:
