@@ -67,7 +67,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 # One way of wording input errors across the package's Python modules.
-from pipelay.checks import _Described, _input_error
+from pipelay.checks import _Described, _input_error, _number
 
 __all__ = [
     "METHODS",
@@ -650,28 +650,6 @@ def _section_stiffness(section: Any) -> tuple[float, float, float, float]:
         ei2 = ei3 = _number("section.EI", raw, positive=True)
     diameter = _number("section.outer_diameter", section.outer_diameter, minimum=0.0)
     return ea, ei2, ei3, diameter
-
-
-# --- validation ------------------------------------------------------------------------------------------
-
-
-def _number(argument: str, value: object, *, positive: bool = False, minimum: float | None = None) -> float:
-    """`value` as a float if it is a finite real number (> 0 if `positive`, ≥ `minimum`), else an input error."""
-    allowed = (
-        "a finite number > 0"
-        if positive
-        else "a finite number" + ("" if minimum is None else f" >= {minimum:g}")
-    )
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise _input_error(argument, value, allowed, "is not a number")
-    number = float(value)
-    if not math.isfinite(number):
-        raise _input_error(argument, value, allowed, "is not finite")
-    if positive and number <= 0.0:
-        raise _input_error(argument, value, allowed, "is not positive")
-    if minimum is not None and number < minimum:
-        raise _input_error(argument, value, allowed, "is too small")
-    return number
 
 
 def _series(argument: str, series: ArrayLike) -> FloatArray:
