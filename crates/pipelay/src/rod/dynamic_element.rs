@@ -236,22 +236,29 @@ mod tests {
         ]) * scale
     }
 
+    /// `step` on the test case, the element's length the same at both time levels.
+    fn fixed_length(
+        u: &ElementVector,
+        rule: StressRule,
+        k: Option<&mut ElementMatrix>,
+    ) -> ElementStep {
+        let (chord, gauss, reference, c_t, c_r) = case();
+        step(
+            &chord,
+            u,
+            &gauss,
+            reference.length,
+            &reference,
+            &c_t,
+            &c_r,
+            rule,
+            k,
+        )
+    }
+
     #[test]
     fn tangent_matches_finite_differences() {
-        let (chord, gauss, reference, c_t, c_r) = case();
-        let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
-            step(
-                &chord,
-                u,
-                &gauss,
-                reference.length,
-                &reference,
-                &c_t,
-                &c_r,
-                rule,
-                k,
-            )
-        };
+        let run = fixed_length;
         for scale in [0.0, 0.5, 2.0] {
             let u = increments(scale);
             let mut k = ElementMatrix::zeros();
@@ -274,20 +281,8 @@ mod tests {
     /// The work of the algorithmic forces over the step equals the change of stored energy.
     #[test]
     fn work_equals_the_change_of_stored_energy() {
-        let (chord, gauss, reference, c_t, c_r) = case();
-        let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
-            step(
-                &chord,
-                u,
-                &gauss,
-                reference.length,
-                &reference,
-                &c_t,
-                &c_r,
-                rule,
-                k,
-            )
-        };
+        let (_, gauss, reference, c_t, c_r) = case();
+        let run = fixed_length;
         for scale in [0.1, 1.0, 3.0] {
             let u = increments(scale);
             let s = run(&u, StressRule::AverageStrain, None);
@@ -401,20 +396,8 @@ mod tests {
     /// and the internal forces carry no net force or moment.
     #[test]
     fn internal_forces_are_balanced() {
-        let (chord, gauss, reference, c_t, c_r) = case();
-        let run = |u: &ElementVector, rule: StressRule, k: Option<&mut ElementMatrix>| {
-            step(
-                &chord,
-                u,
-                &gauss,
-                reference.length,
-                &reference,
-                &c_t,
-                &c_r,
-                rule,
-                k,
-            )
-        };
+        let (chord, ..) = case();
+        let run = fixed_length;
         let u = increments(1.0);
         let s = run(&u, StressRule::AverageStrain, None);
         let f1 = s.forces.fixed_rows::<3>(0).into_owned();
