@@ -3,6 +3,7 @@ pub mod control;
 pub mod coupling;
 pub mod euler;
 pub mod lay;
+pub mod raos;
 pub mod rigid_body;
 
 use control::Pid;
