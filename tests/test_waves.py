@@ -21,7 +21,7 @@ def _wave_number(omega: float, depth: float) -> float:
 @pytest.mark.parametrize(("period", "depth"), [(6.0, 800.0), (10.0, 50.0), (20.0, 15.0)])
 def test_a_regular_wave_travels_with_the_dispersion_relation(period: float, depth: float) -> None:
     """η(t, x) = (H/2) cos(kx − ωt) with ω² = g k tanh(kh), in deep, intermediate and shallow water."""
-    waves = pl.Sea(depth, waves=pl.Waves.regular(2.0, period)).waves
+    waves = pl.Sea(depth, waves=pl.Waves.regular(2.0, period, ramp=0.0)).waves
     omega = 2 * np.pi / period
     k = _wave_number(omega, depth)
     t = np.linspace(0.0, 3 * period, 61)
@@ -55,7 +55,7 @@ def test_inertia_force_on_a_fixed_vertical_cylinder() -> None:
     section = pl.Section(
         1e14, 1e14, 1e14, 1e14, 100.0, outer_diameter=diameter, drag=(0, 0), added_mass=(0, 1)
     )
-    sea = pl.Sea(depth, waves=pl.Waves.regular(height, period))
+    sea = pl.Sea(depth, waves=pl.Waves.regular(height, period, ramp=0.0))
     model = pl.Model(pl.Rod.straight((0, 0, 0), (0, 0, -depth), 50, section), sea=sea)
     model.clamp("A")
     model.clamp("B")
@@ -103,6 +103,7 @@ def test_energy_ledger_closes_with_waves() -> None:
         ("spreading", lambda: pl.Waves.jonswap(2.0, 9.0, spreading=-2.0)),
         ("height", lambda: pl.Waves.regular(0.0, 9.0)),
         ("period", lambda: pl.Waves.regular(1.0, float("inf"))),
+        ("ramp", lambda: pl.Waves.regular(1.0, 9.0, ramp=-1.0)),
         ("frequencies", lambda: pl.Waves.spectrum([0.5, 0.4], [1.0, 1.0])),
         ("densities", lambda: pl.Waves.spectrum([0.4, 0.5], [1.0, float("nan")])),
     ],
@@ -111,3 +112,90 @@ def test_bad_sea_states(argument: str, build) -> None:
     with pytest.raises(pl.InputError) as caught:
         build()
     assert str(caught.value).startswith(f"{argument}:")
+
+
+def test_the_sea_builds_up_over_its_ramp() -> None:
+    """By default a sea builds up over one peak period: η = r(t) η_full with r = 3τ² − 2τ³, τ = t/T."""
+    full = pl.Waves.regular(2.0, 8.0, ramp=0.0)
+    ramped = pl.Waves.regular(2.0, 8.0)
+    assert ramped.ramp == 8.0
+    t = np.linspace(0.0, 16.0, 33)
+    tau = np.clip(t / 8.0, 0.0, 1.0)
+    assert np.abs(ramped.elevation(t) - (3 * tau**2 - 2 * tau**3) * full.elevation(t)).max() < 1e-12
+    assert pl.Waves.jonswap(2.0, 9.0).ramp == pytest.approx(9.0, rel=0.05)
+
+
+def test_osv_raos_have_the_long_wave_limit_and_the_heave_resonance() -> None:
+    """The OSV's Capytaine RAOs: heave → 1 and pitch → k in long head seas; in beam seas the heave RAO peaks
+    near the heave period 2π√((M33 + A33)/G33) of the vessel's own matrices (6.6 s), within 10 %."""
+    raos = pl.Vessel.osv().raos
+    assert raos is not None
+    assert raos.values.shape == (len(raos.periods), len(raos.headings), 6)
+    assert raos.frequencies == pytest.approx(2 * np.pi / raos.periods)
+    long = raos.at(30.0, 180.0)
+    assert abs(long[2]) == pytest.approx(1.0, abs=0.01)
+    assert abs(long[4]) == pytest.approx((2 * np.pi / 30.0) ** 2 / G, rel=0.01)
+    vessel = pl.Vessel.osv()
+    natural = 2 * np.pi * np.sqrt(vessel.M[2, 2] / vessel.G[2, 2])
+    periods = np.linspace(4.0, 10.0, 121)
+    peak = periods[np.argmax([abs(raos.at(t, 90.0)[2]) for t in periods])]
+    print(f"beam-sea heave RAO peak {peak:.2f} s; 2π√(M33/G33) = {natural:.2f} s")
+    assert peak == pytest.approx(natural, rel=0.10)
+
+
+def _rao_file(path, heave: str = "1.0") -> str:
+    header = "period_s,heading_deg," + ",".join(
+        f"{dof}_amp,{dof}_phase" for dof in ("surge", "sway", "heave", "roll", "pitch", "yaw")
+    )
+    rows = [f"{t},{h},0,0,0,0,{heave},3.14159,0,0,0,0,0,0" for t in (4, 40) for h in (0, 180)]
+    path.write_text("\n".join([header, *rows]) + "\n")
+    return str(path)
+
+
+def test_user_raos_from_a_file(tmp_path) -> None:
+    """A user table is read from CSV and interpolated; NaN in it, a missing file, and a sea outside it are
+    InputErrors naming what is wrong."""
+    raos = pl.Raos.read(_rao_file(tmp_path / "raos.csv"))
+    assert list(raos.periods) == [4.0, 40.0] and list(raos.headings) == [0.0, 180.0]
+    assert raos.at(10.0, 90.0)[2] == pytest.approx(-1.0, abs=1e-5)
+    vessel = pl.Vessel(pl.Vessel.osv().M, pl.Vessel.osv().D, pl.Vessel.osv().G, raos=raos)
+    assert vessel.raos is not None and vessel.raos.at(10.0, 0.0)[2] == pytest.approx(-1.0, abs=1e-5)
+    with pytest.raises(pl.InputError, match="heave_amp.*finite"):
+        pl.Raos.read(_rao_file(tmp_path / "nan.csv", heave="nan"))
+    with pytest.raises(pl.InputError, match="^path: "):
+        pl.Raos.read(tmp_path / "missing.csv")
+    with pytest.raises(pl.InputError, match=r"period: must lie in the RAO table's periods \[4, 40\] s"):
+        raos.at(2.0, 0.0)
+
+
+def _vessel_holding_a_short_rod(waves: pl.Waves, depth: float = 200.0) -> pl.Model:
+    """The OSV holding a light 1 m rod at CO, in `waves`."""
+    section = pl.Section(1e3, 1e3, 1.0, 1.0, 1e-6, inertia=(1e-6, 1e-6, 1e-6))
+    rod = pl.Rod.straight((-1.0, 0.0, -depth), (0.0, 0.0, -depth), 1, section)
+    model = pl.Model(rod, sea=pl.Sea(depth, waves=waves))
+    model.attach_vessel("B", pl.Vessel.osv(), eta=(0.0, 0.0, -depth, 0.0, 0.0, 0.0))
+    return model
+
+
+def test_vessel_in_long_waves_heaves_with_the_surface() -> None:
+    """In a long head sea (T = 25 s, heading 180°) the hold point at CO heaves with the surface (z down:
+    z − z0 = −η) to 2 % of the amplitude, while the recorded (low-frequency) η of the vessel stays put."""
+    waves = pl.Waves.regular(2.0, 25.0, direction=np.pi)
+    model = _vessel_holding_a_short_rod(waves)
+    state = model.static()
+    results = model.simulation(state, dt=0.1).run(100.0, progress=False)
+    heave = results.positions[:, -1, 2] - results.positions[0, -1, 2]
+    surface = model.sea.waves.elevation(results.time)
+    late = results.time > 30.0
+    error = np.abs(heave + surface)[late].max()
+    print(f"largest heave {np.abs(heave[late]).max():.4f} m; largest |heave + η| {error:.4f} m")
+    assert np.abs(heave[late]).max() == pytest.approx(1.0, abs=0.03)
+    assert error < 0.02
+    assert np.abs(results.eta[:, 2] - results.eta[0, 2]).max() < 0.01
+
+
+def test_a_sea_outside_the_vessels_rao_table_is_refused() -> None:
+    """A 40 s swell is longer than the OSV's table (3–30 s): the simulation names the waves and the range."""
+    model = _vessel_holding_a_short_rod(pl.Waves.regular(1.0, 40.0))
+    with pytest.raises(pl.InputError, match=r"^waves: .*\[3, 30\] s, got a peak period of 40\.000 s"):
+        model.simulation(model.static(), dt=0.1)

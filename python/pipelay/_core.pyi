@@ -21,6 +21,7 @@ __all__ = [
     "InputError",
     "JLay",
     "Model",
+    "Raos",
     "Results",
     "Rod",
     "Route",
@@ -164,8 +165,9 @@ class Waves:
     """A sea state: linear (Airy) components; build it with `regular`, `jonswap` or `spectrum`."""
 
     @staticmethod
-    def regular(height: float, period: float, direction: float = 0.0) -> Waves:
-        """A regular wave: crest-to-trough height (m), period (s), direction of travel (rad from e1 to e2)."""
+    def regular(height: float, period: float, direction: float = 0.0, ramp: float | None = None) -> Waves:
+        """A regular wave: crest-to-trough height (m), period (s), direction of travel (rad from e1 to e2),
+        building up over `ramp` (s; None: one period)."""
     @staticmethod
     def jonswap(
         hs: float,
@@ -175,8 +177,10 @@ class Waves:
         seed: int = 0,
         components: int = 200,
         spreading: float | None = None,
+        ramp: float | None = None,
     ) -> Waves:
-        """A JONSWAP sea: Hs (m), Tp (s), peak enhancement, mean direction (rad), cos^2s spreading s."""
+        """A JONSWAP sea: Hs (m), Tp (s), peak enhancement, mean direction (rad), cos^2s spreading s, build-up
+        time (s; None: Tp)."""
     @staticmethod
     def spectrum(
         frequencies: _ArrayLike,
@@ -185,10 +189,15 @@ class Waves:
         seed: int = 0,
         components: int = 200,
         spreading: float | None = None,
+        ramp: float | None = None,
     ) -> Waves:
-        """A sea from S(ω): frequencies (rad/s, increasing), densities (m²·s/rad)."""
+        """A sea from S(ω): frequencies (rad/s, increasing), densities (m²·s/rad), build-up time (s; None: the
+        period of the largest component)."""
     def elevation(self, t: float | _ArrayLike, x: float = 0.0, y: float = 0.0) -> _FloatArray:
         """Surface elevation (m, up) at times t (s) and the point (x, y) (deep water unless from a Sea)."""
+    @property
+    def ramp(self) -> float:
+        """Time over which the sea builds up from calm (s)."""
     @property
     def hs(self) -> float:
         """Significant height 4√m0 of the components (m)."""
@@ -432,10 +441,14 @@ class Vessel:
         *,
         M_RB: _ArrayLike | None = None,
         quadratic_damping: _ArrayLike | None = None,
+        raos: Raos | None = None,
     ) -> Vessel: ...
     @staticmethod
-    def osv() -> Vessel:
-        """The 83 m offshore supply vessel of Fossen's MSS toolbox."""
+    def osv(raos: Raos | None = None) -> Vessel:
+        """The 83 m offshore supply vessel of Fossen's MSS toolbox, with its Capytaine RAOs or `raos`."""
+    @property
+    def raos(self) -> Raos | None:
+        """First-order displacement RAOs (its wave-frequency motion in waves), if any."""
     @property
     def M(self) -> _FloatArray:
         """M = M_RB + M_A (6, 6)."""
@@ -453,6 +466,33 @@ class Vessel:
         """Restoring (6, 6)."""
     def coriolis(self, nu: _ArrayLike) -> _FloatArray:
         """C(ν) = C_RB(ν) + C_A(ν) (6, 6)."""
+
+@final
+class Raos:
+    """First-order displacement RAOs: for the elevation a cos(ωt) at CO, DOF j moves |R_j| a cos(ωt + arg R_j)
+    (surge, sway, heave m/m; roll, pitch, yaw rad/m; body frame, z down), per period and relative heading
+    (deg: 0 following seas, 180 head seas)."""
+
+    @staticmethod
+    def osv() -> Raos:
+        """The built-in OSV's table (Capytaine, scripts/osv_raos.py)."""
+    @staticmethod
+    def read(path: str | os.PathLike[str]) -> Raos:
+        """A table from a CSV file: period_s, heading_deg, <dof>_amp, <dof>_phase (rad) on a full grid."""
+    @property
+    def periods(self) -> _FloatArray:
+        """Periods (s, increasing)."""
+    @property
+    def frequencies(self) -> _FloatArray:
+        """2π/period (rad/s), one per period."""
+    @property
+    def headings(self) -> _FloatArray:
+        """Relative headings (deg, increasing in [0, 360))."""
+    @property
+    def values(self) -> npt.NDArray[np.complex128]:
+        """Complex RAOs (periods, headings, 6)."""
+    def at(self, period: float, heading: float) -> npt.NDArray[np.complex128]:
+        """The 6 complex RAOs at a period (s) and relative heading (deg), interpolated bilinearly."""
 
 @final
 class Route:

@@ -4,6 +4,7 @@ mod convert;
 mod errors;
 mod lay;
 mod model;
+mod raos;
 mod seabed;
 mod simulation;
 mod state;
@@ -34,6 +35,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<simulation::Results>()?;
     m.add_class::<vessel::Vessel>()?;
+    m.add_class::<raos::Raos>()?;
     m.add_class::<vessel::PyPid>()?;
     m.add_class::<vessel::PyForce>()?;
     m.add_class::<vessel::PyRoute>()?;

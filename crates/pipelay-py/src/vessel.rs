@@ -1,6 +1,7 @@
 //! Python classes Vessel, PID and Force.
 use crate::convert::{array, float_matrix6, to_numpy};
 use crate::errors::{input, to_py};
+use crate::raos::Raos;
 use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
 use pipelay::vessel::control::{Pid, Reference, TensionControl};
@@ -23,7 +24,7 @@ fn matrix_to_numpy<'py>(py: Python<'py>, m: &Matrix6<f64>) -> Bound<'py, PyArray
 #[pymethods]
 impl Vessel {
     #[new]
-    #[pyo3(signature = (M, D, G, *, M_RB=None, quadratic_damping=None))]
+    #[pyo3(signature = (M, D, G, *, M_RB=None, quadratic_damping=None, raos=None))]
     #[allow(non_snake_case)]
     fn new(
         M: &Bound<'_, PyAny>,
@@ -31,6 +32,7 @@ impl Vessel {
         G: &Bound<'_, PyAny>,
         M_RB: Option<&Bound<'_, PyAny>>,
         quadratic_damping: Option<&Bound<'_, PyAny>>,
+        raos: Option<&Raos>,
     ) -> PyResult<Self> {
         let mass = float_matrix6(M, "M")?;
         let damping = float_matrix6(D, "D")?;
@@ -40,14 +42,26 @@ impl Vessel {
             .map(|m| float_matrix6(m, "quadratic_damping"))
             .transpose()?;
         pipelay::vessel::rigid_body::Vessel::new(mass, damping, restoring, rigid, quadratic)
-            .map(Vessel)
+            .map(|v| Vessel(v.with_raos(raos.map(|r| r.0.clone()))))
             .map_err(to_py)
     }
 
-    /// The 83 m offshore supply vessel of Fossen's MSS toolbox (osv.m; 6-DOF, about CO).
+    /// The 83 m offshore supply vessel of Fossen's MSS toolbox (osv.m; 6-DOF, about CO), with the RAOs of
+    /// its hull computed by Capytaine, or `raos`.
     #[staticmethod]
-    fn osv() -> Self {
-        Vessel(pipelay::vessel::rigid_body::Vessel::osv())
+    #[pyo3(signature = (raos=None))]
+    fn osv(raos: Option<&Raos>) -> Self {
+        let vessel = pipelay::vessel::rigid_body::Vessel::osv();
+        match raos {
+            Some(raos) => Vessel(vessel.with_raos(Some(raos.0.clone()))),
+            None => Vessel(vessel),
+        }
+    }
+
+    /// First-order displacement RAOs, if the vessel has them (its wave-frequency motion in waves).
+    #[getter]
+    fn raos(&self) -> Option<Raos> {
+        self.0.raos.clone().map(Raos)
     }
 
     /// M = M_RB + M_A (6, 6) (kg, kg·m, kg·m²).

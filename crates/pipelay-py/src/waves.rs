@@ -18,9 +18,13 @@ pub struct Waves {
 }
 
 impl Waves {
-    /// A sea state not yet resolved for a depth.
-    fn unresolved(sea_state: pipelay::Result<SeaState>) -> PyResult<Self> {
+    /// A sea state not yet resolved for a depth, building up over `ramp` seconds (None: its peak period).
+    fn unresolved(sea_state: pipelay::Result<SeaState>, ramp: Option<f64>) -> PyResult<Self> {
         sea_state
+            .and_then(|sea_state| {
+                let ramp = ramp.unwrap_or_else(|| sea_state.peak_period());
+                sea_state.with_ramp(ramp)
+            })
             .map(|sea_state| Waves {
                 sea_state,
                 depth: None,
@@ -43,18 +47,19 @@ fn component_count(components: i64) -> PyResult<usize> {
 #[pymethods]
 impl Waves {
     /// A regular (Airy) wave: crest-to-trough `height` (m), `period` (s), travelling along `direction` (rad,
-    /// from e1 toward e2).
+    /// from e1 toward e2), building up smoothly over `ramp` seconds (None: one period).
     #[staticmethod]
-    #[pyo3(signature = (height, period, direction=0.0))]
-    fn regular(height: f64, period: f64, direction: f64) -> PyResult<Self> {
-        Self::unresolved(SeaState::regular(height, period, direction))
+    #[pyo3(signature = (height, period, direction=0.0, ramp=None))]
+    fn regular(height: f64, period: f64, direction: f64, ramp: Option<f64>) -> PyResult<Self> {
+        Self::unresolved(SeaState::regular(height, period, direction), ramp)
     }
 
     /// A JONSWAP sea state: significant height `hs` (m), peak period `tp` (s), peak enhancement `gamma`,
     /// mean direction `direction` (rad), `components` components with random phases (and, with `spreading`
-    /// s, directions from cos^2s) drawn from `seed`.
+    /// s, directions from cos^2s) drawn from `seed`, building up over `ramp` seconds (None: one peak period).
     #[staticmethod]
-    #[pyo3(signature = (hs, tp, gamma=3.3, direction=0.0, seed=0, components=200, spreading=None))]
+    #[pyo3(signature = (hs, tp, gamma=3.3, direction=0.0, seed=0, components=200, spreading=None, ramp=None))]
+    #[allow(clippy::too_many_arguments)]
     fn jonswap(
         hs: f64,
         tp: f64,
@@ -63,18 +68,21 @@ impl Waves {
         seed: i64,
         components: i64,
         spreading: Option<f64>,
+        ramp: Option<f64>,
     ) -> PyResult<Self> {
         let count = component_count(components)?;
         let seed = checked_seed(seed)?;
-        Self::unresolved(SeaState::jonswap(
-            hs, tp, gamma, direction, spreading, seed, count,
-        ))
+        Self::unresolved(
+            SeaState::jonswap(hs, tp, gamma, direction, spreading, seed, count),
+            ramp,
+        )
     }
 
     /// A sea state from a spectrum: `frequencies` ω (rad/s, increasing) and `densities` S(ω) (m²·s/rad),
-    /// interpolated linearly.
+    /// interpolated linearly; building up over `ramp` seconds (None: the period of the largest component).
     #[staticmethod]
-    #[pyo3(signature = (frequencies, densities, direction=0.0, seed=0, components=200, spreading=None))]
+    #[pyo3(signature = (frequencies, densities, direction=0.0, seed=0, components=200, spreading=None, ramp=None))]
+    #[allow(clippy::too_many_arguments)]
     fn spectrum(
         frequencies: &Bound<'_, PyAny>,
         densities: &Bound<'_, PyAny>,
@@ -82,17 +90,21 @@ impl Waves {
         seed: i64,
         components: i64,
         spreading: Option<f64>,
+        ramp: Option<f64>,
     ) -> PyResult<Self> {
         let count = component_count(components)?;
         let seed = checked_seed(seed)?;
-        Self::unresolved(SeaState::from_spectrum(
-            &flat(frequencies, "frequencies")?,
-            &flat(densities, "densities")?,
-            direction,
-            spreading,
-            seed,
-            count,
-        ))
+        Self::unresolved(
+            SeaState::from_spectrum(
+                &flat(frequencies, "frequencies")?,
+                &flat(densities, "densities")?,
+                direction,
+                spreading,
+                seed,
+                count,
+            ),
+            ramp,
+        )
     }
 
     /// Surface elevation (m, up) at times `t` (s; a number or an array) and the point (x, y) (m).
@@ -113,6 +125,12 @@ impl Waves {
             .map(|&time| field.elevation(x, y, time))
             .collect();
         Ok(PyArray1::from_vec(py, values))
+    }
+
+    /// Time over which the sea builds up from calm (s).
+    #[getter]
+    fn ramp(&self) -> f64 {
+        self.sea_state.ramp
     }
 
     /// Significant height 4√m0 of the components (m).

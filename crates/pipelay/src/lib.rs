@@ -21,6 +21,7 @@ pub mod error;
 pub mod memory;
 pub mod model;
 pub mod rod;
+pub mod smooth;
 pub mod so3;
 pub mod solver;
 pub mod vessel;

@@ -208,6 +208,23 @@ pub fn cayley(theta: &Vector3<f64>) -> Matrix3<f64> {
     Matrix3::identity() + (w + w * w * 0.5) / (1.0 + 0.25 * theta.norm_squared())
 }
 
+/// The Cayley parameter θ of a rotation: cay(θ) = R (quaternion (w, v) ↦ 2v/w).
+pub fn cayley_parameter(rotation: &UnitQuaternion<f64>) -> Vector3<f64> {
+    let q = rotation.quaternion();
+    let sign = if q.w < 0.0 { -1.0 } else { 1.0 };
+    2.0 * sign * q.imag() / q.w.abs().max(1e-300)
+}
+
+/// The unit quaternion of cay(θ): (1, θ/2) normalised.
+pub fn cayley_quaternion(theta: &Vector3<f64>) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+        1.0,
+        0.5 * theta.x,
+        0.5 * theta.y,
+        0.5 * theta.z,
+    ))
+}
+
 /// Spatial tangent of the Cayley map: δQ Qᵀ = (T δθ)^ for Q = cay(θ), with
 /// T = (I + ½θ̂)/(1 + |θ|²/4).
 pub fn cayley_tangent(theta: &Vector3<f64>) -> Matrix3<f64> {
@@ -253,6 +270,15 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
     use std::f64::consts::PI;
+
+    #[test]
+    fn cayley_parameter_inverts_the_cayley_map() {
+        let theta = Vector3::new(0.3, -1.2, 2.5);
+        let q = cayley_quaternion(&theta);
+        assert!((cayley_parameter(&q) - theta).norm() < 1e-12);
+        let m = q.to_rotation_matrix().into_inner();
+        assert!((m - cayley(&theta)).abs().max() < 1e-14);
+    }
 
     /// Random rotation vectors: |θ| uniform in [0, 3.1) or log-uniform in [1e-10, 1e-3).
     fn rotvec() -> impl Strategy<Value = Vector3<f64>> {

@@ -9,6 +9,9 @@
 //! - vertical velocity (up) w_i = a_i ω_i sinh(k_i s)/sinh(k_i h) sin θ_i;
 //! - accelerations ∂u/∂t and ∂w/∂t.
 //!
+//! The sea may build up over a ramp time T_r: every amplitude is scaled by r(t) = 3τ² − 2τ³, τ = t/T_r clipped
+//! to [0, 1] (velocity r u, acceleration r u̇ + ṙ u), so that a run starting from rest is not shaken at once.
+//!
 //! Above the mean level the profile is Wheeler-stretched, s′ = h s/(h + η), so that the surface η has the
 //! kinematics the mean level has without it; above the surface the water is gone (zero kinematics).
 //!
@@ -38,10 +41,12 @@ pub struct WaveComponent {
     pub phase: f64,
 }
 
-/// A sea state: the components, whatever spectrum they came from.
+/// A sea state: the components, whatever spectrum they came from, and the time it builds up over.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Waves {
     pub components: Vec<WaveComponent>,
+    /// Ramp time T_r (s): the sea grows smoothly from calm over [0, T_r]; 0: at full height from t = 0.
+    pub ramp: f64,
 }
 
 /// Largest spreading exponent s of cos^2s.
@@ -63,7 +68,23 @@ impl Waves {
                 direction,
                 phase: 0.0,
             }],
+            ramp: 0.0,
         })
+    }
+
+    /// The same sea building up over `ramp` seconds (≥ 0).
+    pub fn with_ramp(mut self, ramp: f64) -> Result<Self> {
+        non_negative("ramp", ramp, "s")?;
+        self.ramp = ramp;
+        Ok(self)
+    }
+
+    /// The period 2π/ω of the largest component (s): a regular wave's period, a random sea's peak.
+    pub fn peak_period(&self) -> f64 {
+        self.components
+            .iter()
+            .max_by(|a, b| a.amplitude.total_cmp(&b.amplitude))
+            .map_or(0.0, |c| std::f64::consts::TAU / c.frequency)
     }
 
     /// A JONSWAP sea state of significant height `hs` (m), peak period `tp` (s) and peak enhancement `gamma`,
@@ -226,7 +247,10 @@ impl Waves {
         }
         let scale = 0.25 * hs / m0.sqrt();
         list.iter_mut().for_each(|c| c.amplitude *= scale);
-        Ok(Waves { components: list })
+        Ok(Waves {
+            components: list,
+            ramp: 0.0,
+        })
     }
 
     /// The significant height 4√m0 of the components (m).
@@ -279,13 +303,36 @@ pub struct Kinematics {
 
 /// A resolved component: its wave number and direction cosines in this depth.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Resolved {
-    amplitude: f64,
-    frequency: f64,
-    number: f64,
-    cos: f64,
-    sin: f64,
-    phase: f64,
+pub struct Resolved {
+    /// Amplitude a (m).
+    pub amplitude: f64,
+    /// Circular frequency ω (rad/s).
+    pub frequency: f64,
+    /// Wave number k (rad/m).
+    pub number: f64,
+    /// Direction of travel β (rad) and its cosine and sine.
+    pub direction: f64,
+    pub cos: f64,
+    pub sin: f64,
+    /// Phase φ (rad).
+    pub phase: f64,
+}
+
+impl Resolved {
+    /// The phase angle θ = k(x cos β + y sin β) − ωt + φ at (x, y) and time t.
+    pub fn angle(&self, x: f64, y: f64, time: f64) -> f64 {
+        self.number * (x * self.cos + y * self.sin) - self.frequency * time + self.phase
+    }
+}
+
+/// The smooth build-up r(t) = 3τ² − 2τ³ (τ = t/T_r clipped to [0, 1]) and its rate ṙ (1/s); 1 and 0
+/// without a ramp.
+pub fn ramp_factor(time: f64, ramp: f64) -> (f64, f64) {
+    if ramp <= 0.0 {
+        return (1.0, 0.0);
+    }
+    let (r, rate) = crate::smooth::smoothstep(time / ramp);
+    (r, rate / ramp)
 }
 
 /// A sea state in water of a given depth: what the pipe and the vessel see.
@@ -293,6 +340,7 @@ struct Resolved {
 pub struct WaveField {
     components: Vec<Resolved>,
     depth: f64,
+    ramp: f64,
 }
 
 /// cosh(k s)/sinh(k h) and sinh(k s)/sinh(k h) without overflow (s ≤ h, k h possibly large).
@@ -322,29 +370,47 @@ impl WaveField {
                 amplitude: c.amplitude,
                 frequency: c.frequency,
                 number: wave_number(c.frequency, depth, gravity),
+                direction: c.direction,
                 cos: c.direction.cos(),
                 sin: c.direction.sin(),
                 phase: c.phase,
             })
             .collect();
-        Ok(WaveField { components, depth })
+        Ok(WaveField {
+            components,
+            depth,
+            ramp: waves.ramp,
+        })
+    }
+
+    /// The components resolved in this depth.
+    pub fn components(&self) -> &[Resolved] {
+        &self.components
+    }
+
+    /// The ramp time T_r (s).
+    pub fn ramp(&self) -> f64 {
+        self.ramp
     }
 
     /// Surface elevation η (m, up) at (x, y) and time t.
     pub fn elevation(&self, x: f64, y: f64, time: f64) -> f64 {
-        self.components
+        let (ramp, _) = ramp_factor(time, self.ramp);
+        ramp * self
+            .components
             .iter()
-            .map(|c| {
-                c.amplitude
-                    * (c.number * (x * c.cos + y * c.sin) - c.frequency * time + c.phase).cos()
-            })
-            .sum()
+            .map(|c| c.amplitude * c.angle(x, y, time).cos())
+            .sum::<f64>()
     }
 
     /// Velocity, acceleration and velocity gradient of the water at `position` (e, e3 down) and time t, with
     /// Wheeler's stretching (the acceleration is the stretched profile of the linear one); zero above the
     /// surface.
     pub fn kinematics(&self, position: &Vector3<f64>, time: f64) -> Kinematics {
+        let (ramp, ramp_rate) = ramp_factor(time, self.ramp);
+        if ramp == 0.0 {
+            return Kinematics::default();
+        }
         let (x, y) = (position.x, position.y);
         let h = self.depth;
         let height = -position.z;
@@ -352,10 +418,10 @@ impl WaveField {
         let mut surface = 0.0;
         let mut surface_gradient = Vector3::zeros();
         for c in &self.components {
-            let theta = c.number * (x * c.cos + y * c.sin) - c.frequency * time + c.phase;
-            let (sin, cos) = theta.sin_cos();
-            surface += c.amplitude * cos;
-            surface_gradient -= Vector3::new(c.cos, c.sin, 0.0) * (c.amplitude * c.number * sin);
+            let (sin, cos) = c.angle(x, y, time).sin_cos();
+            let a = ramp * c.amplitude;
+            surface += a * cos;
+            surface_gradient -= Vector3::new(c.cos, c.sin, 0.0) * (a * c.number * sin);
         }
         if height > h + surface || h + surface <= 0.0 {
             return Kinematics::default();
@@ -366,17 +432,18 @@ impl WaveField {
         let d_s = -surface_gradient * (s / (h + surface)) - Vector3::z() * stretch;
         let mut k = Kinematics::default();
         for c in &self.components {
-            let theta = c.number * (x * c.cos + y * c.sin) - c.frequency * time + c.phase;
-            let (sin, cos) = theta.sin_cos();
+            let (sin, cos) = c.angle(x, y, time).sin_cos();
             let (ch, sh) = profiles(c.number, s, h);
-            let aw = c.amplitude * c.frequency;
+            let aw = ramp * c.amplitude * c.frequency;
             let horizontal = aw * ch * cos;
             let up = aw * sh * sin;
             let direction = Vector3::new(c.cos, c.sin, 0.0);
-            k.velocity += direction * horizontal - Vector3::z() * up;
+            let velocity = direction * horizontal - Vector3::z() * up;
+            k.velocity += velocity;
             let ah = aw * c.frequency * ch * sin;
             let a_up = -aw * c.frequency * sh * cos;
-            k.acceleration += direction * ah - Vector3::z() * a_up;
+            // The build-up's rate adds ṙ u (velocity / r).
+            k.acceleration += direction * ah - Vector3::z() * a_up + velocity * (ramp_rate / ramp);
             let d_theta = direction * c.number;
             let d_horizontal = -d_theta * (aw * ch * sin) + d_s * (aw * c.number * sh * cos);
             let d_up = d_theta * (aw * sh * cos) + d_s * (aw * c.number * ch * sin);

@@ -175,17 +175,6 @@ pub trait TangentSink {
     fn add_node(&mut self, node: usize, block: &Matrix6<f64>);
 }
 
-/// 3s² − 2s³ on [0, 1] (0 below, 1 above) and its derivative.
-fn smoothstep(s: f64) -> (f64, f64) {
-    if s >= 1.0 {
-        (1.0, 0.0)
-    } else if s <= 0.0 {
-        (0.0, 0.0)
-    } else {
-        (s * s * (3.0 - 2.0 * s), 6.0 * s * (1.0 - s))
-    }
-}
-
 /// The state of one node entering a contact evaluation.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct NodeStep {
@@ -460,7 +449,7 @@ impl SeabedContact {
                             / size;
                     // The damping grows smoothly (C¹) to its full value over the first resting
                     // penetration, so that a node entering the seabed does not switch it on at once.
-                    let (share, d_share) = smoothstep(gap_mid / self.damping_ramp);
+                    let (share, d_share) = crate::smooth::smoothstep(gap_mid / self.damping_ramp);
                     let c = self.damping[a] * share;
                     let rate = normal.dot(&dx) / time_step;
                     force -= c * rate * normal;

@@ -21,7 +21,7 @@ use crate::error::{positive, Error, Result};
 use crate::model::Model;
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
 use crate::rod::element::{ElementMatrix, ElementReference, ElementVector};
-use crate::so3::{cayley, cayley_tangent, skew};
+use crate::so3::{cayley, cayley_parameter, cayley_quaternion, cayley_tangent, skew};
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
 use crate::solver::contact::{ContactRule, NodeStep, SeabedContact, Touchdown};
 pub use crate::solver::energy::Energy;
@@ -29,9 +29,10 @@ use crate::solver::history::{History, Snapshot};
 use crate::solver::pay_out::{self, MeshChange};
 use crate::vessel::control::{clamp_integral, shifted};
 use crate::vessel::coupling::{
-    pipe_force_on_vessel, vessel_pose, DynamicVessel, VesselContribution,
+    low_frequency_pose, pipe_force_on_vessel, DynamicVessel, VesselContribution,
 };
-use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector2, Vector3, Vector6};
+use crate::vessel::wave_motion::{station, WaveMotion, WaveOffset};
+use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
 /// How many times a step may be halved when Newton fails in it.
 pub const MAX_HALVINGS: usize = 4;
@@ -260,6 +261,33 @@ impl NodalProperties {
     }
 }
 
+/// The vessel's wave-frequency motion and its offsets at the state's time and at the current step's end.
+#[derive(Debug, Clone)]
+struct VesselWaves {
+    motion: WaveMotion,
+    now: WaveOffset,
+    next: WaveOffset,
+}
+
+impl VesselWaves {
+    /// The motion of the vessel of `model` in its sea, if both exist and the vessel has RAOs, at time t.
+    fn new(model: &Model, time: f64) -> Result<Option<Self>> {
+        let (Some(field), Some(attachment)) = (&model.waves, &model.vessel) else {
+            return Ok(None);
+        };
+        let Some(raos) = &attachment.vessel.raos else {
+            return Ok(None);
+        };
+        let motion = WaveMotion::new(field, raos)?;
+        let now = motion.offset(time, &station(attachment, time)?)?;
+        Ok(Some(VesselWaves {
+            motion,
+            now,
+            next: now,
+        }))
+    }
+}
+
 /// Advances a model in time.
 pub struct Integrator {
     model: Model,
@@ -295,6 +323,8 @@ pub struct Integrator {
     contact: Option<SeabedContact>,
     /// With pay-out: the growing element in the current step.
     growth: Option<Growth>,
+    /// In waves, with a vessel that has RAOs: its wave-frequency motion.
+    vessel_waves: Option<VesselWaves>,
     /// Energy pay-out has brought in since the start (J): the work of the tensioner on the pipe it holds plus
     /// the energy of the pipe it adds, and the energy change of mesh changes.
     pay_out_energy: f64,
@@ -310,23 +340,6 @@ fn round_off(model: &Model) -> f64 {
                 .vessel
                 .as_ref()
                 .map_or(0.0, |v| v.vessel.restoring.abs().max()))
-}
-
-/// The Cayley parameter θ of a rotation: cay(θ) = R (quaternion (w, v) ↦ 2v/w).
-fn cayley_parameter(rotation: &UnitQuaternion<f64>) -> Vector3<f64> {
-    let q = rotation.quaternion();
-    let sign = if q.w < 0.0 { -1.0 } else { 1.0 };
-    2.0 * sign * q.imag() / q.w.abs().max(1e-300)
-}
-
-/// The unit quaternion of cay(θ): (1, θ/2) normalised.
-fn cayley_quaternion(theta: &Vector3<f64>) -> UnitQuaternion<f64> {
-    UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
-        1.0,
-        0.5 * theta.x,
-        0.5 * theta.y,
-        0.5 * theta.z,
-    ))
 }
 
 impl Integrator {
@@ -366,7 +379,9 @@ impl Integrator {
         let nodal = NodalProperties::new(&model);
         let round_off = round_off(&model);
         let contact = assembler.contact.take();
+        let vessel_waves = VesselWaves::new(&model, state.time)?;
         Ok(Integrator {
+            vessel_waves,
             contact,
             round_off,
             increments: vec![0.0; NODE_DOFS * count],
@@ -447,10 +462,11 @@ impl Integrator {
         let state = &self.state;
         let (attachment, motion) = (self.model.vessel.as_ref()?, state.vessel.as_ref()?);
         let node = attachment.node;
-        let (position, body) = vessel_pose(
+        let (position, body) = low_frequency_pose(
             attachment,
             &state.configuration.positions[node],
             &state.configuration.rotations[node],
+            self.vessel_waves.as_ref().map(|w| &w.now),
         );
         let eta = crate::vessel::coupling::eta_of(&position, &body);
         Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
@@ -501,10 +517,11 @@ impl Integrator {
         let (vessel_kinetic, vessel_potential) = match (&self.model.vessel, &state.vessel) {
             (Some(attachment), Some(motion)) => {
                 let node = attachment.node;
-                let (position, body) = vessel_pose(
+                let (position, body) = low_frequency_pose(
                     attachment,
                     &state.configuration.positions[node],
                     &state.configuration.rotations[node],
+                    self.vessel_waves.as_ref().map(|w| &w.now),
                 );
                 (
                     crate::vessel::rigid_body::kinetic_energy(&attachment.vessel, &motion.velocity),
@@ -693,6 +710,11 @@ impl Integrator {
             self.offset_next = offset + rate * dt;
             self.filtered_next = filtered_next;
             self.reference_mid = shifted(reference, offset + 0.5 * rate * dt, rate);
+        }
+        if let (Some(waves), Some(attachment)) = (&mut self.vessel_waves, &self.model.vessel) {
+            waves.next = waves
+                .motion
+                .offset(time_next, &station(attachment, time_next)?)?;
         }
         let grown = self.start_growth(dt)?;
         self.predict(&targets, dt);
@@ -1171,6 +1193,7 @@ impl Integrator {
                 integral: motion.integral,
                 hold_thrust: motion.hold_thrust,
                 reference: self.reference_mid,
+                waves: self.vessel_waves.as_ref().map(|w| (w.now, w.next)),
             };
             let contribution = vessel.contribution(
                 &state.configuration.positions[node],
@@ -1246,24 +1269,14 @@ impl Integrator {
                 attachment,
                 &self.state.configuration.rotations[attachment.node],
                 &self.rod_force_at_vessel,
+                self.vessel_waves.as_ref().map(|w| &w.next),
             );
+        }
+        if let Some(waves) = &mut self.vessel_waves {
+            waves.now = waves.next;
         }
         self.state.time += dt;
         self.supplied_work += self.work.supplied + support_work;
         self.dissipated += self.work.dissipated;
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn cayley_parameter_inverts_the_cayley_map() {
-        let theta = Vector3::new(0.3, -1.2, 2.5);
-        let q = cayley_quaternion(&theta);
-        assert!((cayley_parameter(&q) - theta).norm() < 1e-12);
-        let m = q.to_rotation_matrix().into_inner();
-        assert!((m - cayley(&theta)).abs().max() < 1e-14);
     }
 }

@@ -114,8 +114,12 @@ impl Response {
             let node = attachment.node;
             let (position, body) =
                 vessel_pose(attachment, &config.positions[node], &config.rotations[node]);
-            let pipe_force =
-                pipe_force_on_vessel(attachment, &config.rotations[node], &assembler.vessel_force);
+            let pipe_force = pipe_force_on_vessel(
+                attachment,
+                &config.rotations[node],
+                &assembler.vessel_force,
+                None,
+            );
             VesselResponse {
                 eta: eta_of(&position, &body),
                 thrust: assembler.vessel_thrust,

@@ -5,6 +5,13 @@
 //! as f and m_C − a × f (in a time step, with the step's mean offset ā, so the work pairs exactly with the
 //! Cayley update a_{n+1} = cay(θ)a_n).
 //!
+//! In waves the node follows the vessel's total motion, the low-frequency pose moved rigidly by the RAOs'
+//! wave-frequency offset (u, Q) of [`crate::vessel::wave_motion`]: x_C = x_N − a − u, Λ_B = Qᵀ Λ_N R_b^t with
+//! a = Λ_N R_b^t r. A step's increment of the low-frequency pose is Δx_C = Δx_N − (a_{n+1} − a_n) − Δu and
+//! cay(θ_B) = Q_{n+1}ᵀ cay(θ) Q_n; the vessel's moment acts on the node as Q_{n+1} m_B, and the interface work
+//! this mismatch leaves, r_f·Δu + r_m·(Q_{n+1}ᵀθ − θ_B), is the work of the prescribed wave motion, booked
+//! as supplied.
+//!
 //! Statics: heave, roll and pitch find their equilibrium against the hydrostatic restoring; surge, sway and
 //! yaw are held at η by stiff springs whose force is the holding thrust (or, with a controller active at
 //! t = 0, by the controller's K_p). Dynamics: the vessel's momentum-form step of [`crate::vessel::rigid_body`], with
@@ -14,8 +21,9 @@
 use super::control::{clamp_integral, eta_error, pid_thrust, thrust_only, Pid};
 use super::euler;
 use super::rigid_body::{vessel_step, VesselState};
+use super::wave_motion::WaveOffset;
 use super::VesselAttachment;
-use crate::so3::{cayley, exp, log};
+use crate::so3::{cayley, cayley_parameter, exp, log, quat_from_matrix};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// Stiffness of the holding springs relative to the vessel's heave restoring G33 (translation) and pitch
@@ -49,6 +57,24 @@ pub fn vessel_pose(
     (node_position - body * attachment.hang_off(), body)
 }
 
+/// The vessel's low-frequency pose (CO position, body frame) from the end node's, which the waves displace by
+/// `offset` (`None`: no waves, the pose itself).
+pub fn low_frequency_pose(
+    attachment: &VesselAttachment,
+    node_position: &Vector3<f64>,
+    node_rotation: &UnitQuaternion<f64>,
+    offset: Option<&WaveOffset>,
+) -> (Vector3<f64>, Matrix3<f64>) {
+    let (position, body) = vessel_pose(attachment, node_position, node_rotation);
+    match offset {
+        Some(offset) => (
+            position - offset.translation,
+            offset.rotation.transpose() * body,
+        ),
+        None => (position, body),
+    }
+}
+
 /// The end node's position for a vessel pose (CO position, body frame).
 pub fn node_position(
     attachment: &VesselAttachment,
@@ -58,16 +84,18 @@ pub fn node_position(
     position + body * attachment.hang_off()
 }
 
-/// χ, the pipe's force on the vessel (body frame, moment about CO), from the vessel's force and moment on
-/// the end node (spatial, = the rod's internal force there at equilibrium); the pipe pushes back with its
-/// negative at the node.
+/// χ, the pipe's force on the vessel (low-frequency body frame, moment about CO), from the vessel's force and
+/// moment on the end node (spatial, = the rod's internal force there at equilibrium); the pipe pushes back
+/// with its negative at the node. `offset`: the waves' displacement of the vessel, if any.
 pub fn pipe_force_on_vessel(
     attachment: &VesselAttachment,
     node_rotation: &UnitQuaternion<f64>,
     force_on_rod: &Vector6<f64>,
+    offset: Option<&WaveOffset>,
 ) -> Vector6<f64> {
-    let body = body_rotation(attachment, node_rotation);
-    let arm = body * attachment.hang_off();
+    let total = body_rotation(attachment, node_rotation);
+    let arm = total * attachment.hang_off();
+    let body = offset.map_or(total, |o| o.rotation.transpose() * total);
     let force = force_on_rod.fixed_rows::<3>(0).into_owned();
     let moment = force_on_rod.fixed_rows::<3>(3) + arm.cross(&force);
     let mut chi = Vector6::zeros();
@@ -225,6 +253,8 @@ pub struct DynamicVessel<'a> {
     pub hold_thrust: Vector6<f64>,
     /// The controller's reference pose and rate at the step's midpoint.
     pub reference: (Vector6<f64>, Vector6<f64>),
+    /// In waves: the wave-frequency offsets at the step's start and end.
+    pub waves: Option<(WaveOffset, WaveOffset)>,
 }
 
 /// Outcome of the vessel's contribution at trial increments.
@@ -239,7 +269,7 @@ pub struct VesselContribution {
     pub thrust: Vector6<f64>,
     /// η̃ at the midpoint (for the integral update).
     pub error_mid: Vector6<f64>,
-    /// Work of thrust and environment, Δt ν_{n+½}·(τ + w) (J).
+    /// Work of thrust and environment, Δt ν_{n+½}·(τ + w), and of the wave motion (J).
     pub supplied: f64,
     /// Δt ν_{n+½}·D(ν_{n+½}) (J).
     pub dissipated: f64,
@@ -287,23 +317,37 @@ impl DynamicVessel<'_> {
         time_mid: f64,
     ) -> VesselContribution {
         let attachment = self.attachment;
-        let (position, body) = vessel_pose(attachment, node_position, node_rotation);
-        let arm = body * attachment.hang_off();
+        let waves = self.waves.as_ref();
+        let (position, body) = low_frequency_pose(
+            attachment,
+            node_position,
+            node_rotation,
+            waves.map(|w| &w.0),
+        );
+        let arm = body_rotation(attachment, node_rotation) * attachment.hang_off();
         let state = VesselState {
             position,
-            rotation: crate::so3::quat_from_matrix(&body),
+            rotation: quat_from_matrix(&body),
             velocity: self.velocity,
         };
         let evaluate = |inc: &Vector6<f64>| {
             let theta = inc.fixed_rows::<3>(3).into_owned();
-            // CO moves by Δx_N − (a_{n+1} − a_n), a_{n+1} − a_n = θ × ā.
+            // CO moves by Δx_N − (a_{n+1} − a_n) − Δu, a_{n+1} − a_n = θ × ā.
             let arm_next = cayley(&theta) * arm;
             let arm_mean = 0.5 * (arm + arm_next);
-            let dx = inc.fixed_rows::<3>(0) - (arm_next - arm);
+            let mut dx = inc.fixed_rows::<3>(0) - (arm_next - arm);
+            let mut theta_body = theta;
+            if let Some((now, next)) = waves {
+                dx -= next.translation - now.translation;
+                theta_body = cayley_parameter(&quat_from_matrix(
+                    &(next.rotation.transpose() * cayley(&theta) * now.rotation),
+                ));
+            }
             let mut co_increment = *inc;
             co_increment.fixed_rows_mut::<3>(0).copy_from(&dx);
+            co_increment.fixed_rows_mut::<3>(3).copy_from(&theta_body);
             let position_mid = position + 0.5 * dx;
-            let body_mid = cayley(&(0.5 * theta)) * body;
+            let body_mid = cayley(&(0.5 * theta_body)) * body;
             let mut step = vessel_step(
                 &attachment.vessel,
                 &state,
@@ -313,17 +357,27 @@ impl DynamicVessel<'_> {
                 &|v| self.body_force(&position_mid, &body_mid, v, time_mid, dt).0,
             );
             let force = step.residual.fixed_rows::<3>(0).into_owned();
-            let moment = step.residual.fixed_rows::<3>(3) - arm_mean.cross(&force);
-            step.residual.fixed_rows_mut::<3>(3).copy_from(&moment);
+            let mut moment = step.residual.fixed_rows::<3>(3).into_owned();
+            // The wave motion's work: what the node's residual does on (Δx_N, θ) beyond the vessel's on its
+            // own increment.
+            let mut wave_work = 0.0;
+            if let Some((now, next)) = waves {
+                wave_work = force.dot(&(next.translation - now.translation))
+                    + moment.dot(&(next.rotation.transpose() * theta - theta_body));
+                moment = next.rotation * moment;
+            }
+            step.residual
+                .fixed_rows_mut::<3>(3)
+                .copy_from(&(moment - arm_mean.cross(&force)));
             let force_scale = arm_mean.norm() * step.magnitude.fixed_rows::<3>(0).norm();
             for k in 3..6 {
                 step.magnitude[k] += force_scale;
             }
             let (_, thrust, error) =
                 self.body_force(&position_mid, &body_mid, &step.velocity_mid, time_mid, dt);
-            (step, thrust, error)
+            (step, thrust, error, wave_work)
         };
-        let (step, thrust, error_mid) = evaluate(increment);
+        let (step, thrust, error_mid, wave_work) = evaluate(increment);
         // Tangent by forward differences (6 extra evaluations; O(h) accurate, enough for Newton).
         let mut tangent = Matrix6::zeros();
         for j in 0..6 {
@@ -346,7 +400,7 @@ impl DynamicVessel<'_> {
             magnitude: step.magnitude,
             thrust,
             error_mid,
-            supplied: dt * v.dot(&(thrust + environment)),
+            supplied: dt * v.dot(&(thrust + environment)) - wave_work,
             dissipated: dt * v.dot(&attachment.vessel.damping_force(&v)),
         }
     }

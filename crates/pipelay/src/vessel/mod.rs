@@ -5,6 +5,7 @@ pub mod euler;
 pub mod lay;
 pub mod raos;
 pub mod rigid_body;
+pub mod wave_motion;
 
 use control::Pid;
 

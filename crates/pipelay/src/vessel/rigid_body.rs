@@ -15,6 +15,7 @@
 //! quadratic in q with q linear in (x, Λ), exactly integrated by the midpoint of q.
 // Indexing cannot go out of bounds here: 6×6 matrices and 6-vectors indexed by constants.
 #![allow(clippy::indexing_slicing)]
+use super::raos::Raos;
 use crate::error::{finite, Error, Result};
 use crate::so3::{cayley, skew};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
@@ -32,6 +33,9 @@ pub struct Vessel {
     pub restoring: Matrix6<f64>,
     /// Optional quadratic damping: D_q |ν|ν component-wise (D(ν)ν = Dν + D_q(|ν|∘ν)).
     pub quadratic_damping: Option<Matrix6<f64>>,
+    /// First-order displacement RAOs: the wave-frequency motion in waves; `None`: the vessel moves only at low
+    /// frequency.
+    pub raos: Option<Raos>,
 }
 
 /// Heave, roll and pitch: the DOFs hydrostatics restores.
@@ -119,11 +123,19 @@ impl Vessel {
             damping,
             restoring,
             quadratic_damping,
+            raos: None,
         })
     }
 
+    /// The same vessel with the RAO table `raos` (`None`: none).
+    pub fn with_raos(mut self, raos: Option<Raos>) -> Self {
+        self.raos = raos;
+        self
+    }
+
     /// The 83 m offshore supply vessel of Fossen's MSS toolbox (`osv.m`, Fossen 2021 eqs. 6.111–6.116):
-    /// M_RB, M_A (hard-coded in osv.m), D = diag(M11/T1, M22/T2, 2ζ3ω3M33, 2ζ4ω4M44, 2ζ5ω5M55, M66/T6), G.
+    /// M_RB, M_A (hard-coded in osv.m), D = diag(M11/T1, M22/T2, 2ζ3ω3M33, 2ζ4ω4M44, 2ζ5ω5M55, M66/T6), G;
+    /// with the RAOs computed for its hull by Capytaine (`Raos::osv`).
     pub fn osv() -> Self {
         let m_rb = Matrix6::from_row_slice(&[
             4976887.5,
@@ -253,6 +265,8 @@ impl Vessel {
             damping,
             restoring,
             quadratic_damping: None,
+            // The table is shipped with the crate and read by a unit test.
+            raos: Raos::osv().ok(),
         }
     }
 
