@@ -246,6 +246,13 @@ def test_extremes_of_a_pay_out_run_match_numpy(
     )
     assert found["utilisation_max"] == max(found["load_controlled_max"], found["displacement_controlled_max"])
     assert found["utilisation_max"] >= max(final.max().values())
+    # The utilisation of every element at every record: the last row is the final state's, NaN where the
+    # record had no such element yet, and its largest value is the extremes'.
+    every = st.utilisation(results, model=model, checks={"safety_class": "low"})
+    assert every.shape == results.section_forces.shape[:2]
+    assert np.isnan(every[0, -1]) and np.isfinite(every[-1]).all()
+    np.testing.assert_allclose(every[-1], np.maximum(final.load_controlled, final.displacement_controlled))
+    assert np.nanmax(every) == found["utilisation_max"]
 
 
 def test_extremes_without_a_section_and_with_a_scalar_check(

@@ -3,6 +3,8 @@
 * `extremes(results, ...)`: the largest and smallest top tension, the largest strain, bending moment and
   effective axial force and (optionally) the largest DNV-ST-F101 utilisation of a run, each with its time
   (and element).
+* `utilisation(results, ...)`: the DNV-ST-F101 (or a user check's) utilisation of every element at every
+  record.
 * `response_spectrum(series, dt)`: the one-sided power spectral density of a time series by Welch's method,
   with the spectral moments m0, m2, m4, the mean zero up-crossing period Tz and the bandwidth ε.
 * `most_probable_maximum(series, dt, duration)`: the most probable maximum (MPM) of a response over a storm
@@ -76,6 +78,7 @@ __all__ = [
     "extremes",
     "most_probable_maximum",
     "response_spectrum",
+    "utilisation",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -495,10 +498,7 @@ def extremes(
         nor a callable or is given as a mapping without a section, or a record has no values at all.
     """
     time = np.asarray(results.time, dtype=np.float64)
-    if section is None and model is not None:
-        section = model.rod.section
-    if sea is None and model is not None:
-        sea = model.sea
+    section, sea = _section_and_sea(section, sea, model)
     stiffness = None if section is None else _section_stiffness(section)
 
     found: dict[str, float] = {}
@@ -535,8 +535,42 @@ def _strain(forces: FloatArray, ea: float, ei2: float, ei3: float, diameter: flo
     return result
 
 
-def _utilisation(
-    found: dict[str, float],
+def utilisation(
+    results: Any,
+    *,
+    section: Any = None,
+    sea: Any = None,
+    model: Any = None,
+    checks: Mapping[str, Any] | Callable[[Any], Any],
+) -> FloatArray:
+    """The utilisation of every element at every record, (records, elements) (1; NaN where a record of a
+    pay-out run had no such element): the larger of the load- and displacement-controlled ones of
+    `checks` (see `extremes` for the arguments). A callable returning one number per record puts it in
+    element 0.
+
+    Raises
+    ------
+    pipelay.InputError
+        As `extremes`.
+    """
+    section, sea = _section_and_sea(section, sea, model)
+    time = np.asarray(results.time, dtype=np.float64)
+    forces = np.asarray(results.section_forces, dtype=np.float64)
+    stiffness = None if section is None else _section_stiffness(section)
+    strain = None if stiffness is None else _strain(forces, *stiffness)
+    return _utilisations(results, time, forces, strain, section, sea, checks)[0]
+
+
+def _section_and_sea(section: Any, sea: Any, model: Any) -> tuple[Any, Any]:
+    """`section` and `sea`, or the model's where they are None."""
+    if section is None and model is not None:
+        section = model.rod.section
+    if sea is None and model is not None:
+        sea = model.sea
+    return section, sea
+
+
+def _utilisations(
     results: Any,
     time: FloatArray,
     forces: FloatArray,
@@ -544,8 +578,9 @@ def _utilisation(
     section: Any,
     sea: Any,
     checks: Mapping[str, Any] | Callable[[Any], Any],
-) -> None:
-    """Evaluates `checks` at every record and puts the largest utilisations into `found`."""
+) -> tuple[FloatArray, FloatArray, FloatArray, bool]:
+    """Evaluates `checks` at every record: the utilisation, its load- and displacement-controlled parts
+    (records, elements) and whether the checks gave one number per record."""
     from pipelay.checks import Utilisation, dnv_st_f101
 
     if isinstance(checks, Mapping):
@@ -609,6 +644,21 @@ def _utilisation(
                 f"a Utilisation, a number or ({n},) values, one per element",
                 "is not usable",
             )
+    return worst, load, displacement, scalar
+
+
+def _utilisation(
+    found: dict[str, float],
+    results: Any,
+    time: FloatArray,
+    forces: FloatArray,
+    strain: FloatArray | None,
+    section: Any,
+    sea: Any,
+    checks: Mapping[str, Any] | Callable[[Any], Any],
+) -> None:
+    """Evaluates `checks` at every record and puts the largest utilisations into `found`."""
+    worst, load, displacement, scalar = _utilisations(results, time, forces, strain, section, sea, checks)
     _put(found, "utilisation_max", worst, time, largest=True)
     if scalar:
         found["utilisation_max_element"] = -1
