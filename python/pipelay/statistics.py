@@ -523,7 +523,13 @@ def extremes(
         _put(found, "strain_max", strain, time, largest=True)
 
     if checks is not None:
-        _utilisation(found, results, time, forces, strain, section, sea, checks)
+        worst, load, displacement, scalar = _utilisations(results, time, forces, strain, section, sea, checks)
+        _put(found, "utilisation_max", worst, time, largest=True)
+        if scalar:
+            found["utilisation_max_element"] = -1
+        if np.isfinite(load).any():
+            _put(found, "load_controlled_max", load, time, largest=True)
+            _put(found, "displacement_controlled_max", displacement, time, largest=True)
     return found
 
 
@@ -645,26 +651,6 @@ def _utilisations(
                 "is not usable",
             )
     return worst, load, displacement, scalar
-
-
-def _utilisation(
-    found: dict[str, float],
-    results: Any,
-    time: FloatArray,
-    forces: FloatArray,
-    strain: FloatArray | None,
-    section: Any,
-    sea: Any,
-    checks: Mapping[str, Any] | Callable[[Any], Any],
-) -> None:
-    """Evaluates `checks` at every record and puts the largest utilisations into `found`."""
-    worst, load, displacement, scalar = _utilisations(results, time, forces, strain, section, sea, checks)
-    _put(found, "utilisation_max", worst, time, largest=True)
-    if scalar:
-        found["utilisation_max_element"] = -1
-    if np.isfinite(load).any():
-        _put(found, "load_controlled_max", load, time, largest=True)
-        _put(found, "displacement_controlled_max", displacement, time, largest=True)
 
 
 def _put(found: dict[str, float], key: str, values: FloatArray, time: FloatArray, *, largest: bool) -> None:
