@@ -710,7 +710,10 @@ def _series(argument: str, series: ArrayLike) -> FloatArray:
     bad = np.count_nonzero(~np.isfinite(values))
     if bad:
         raise _input_error(
-            argument, _Described(f"a series with {bad} NaN or infinite samples"), "finite samples only", "is"
+            argument,
+            _Described(f"a series of {values.size} samples"),
+            "finite samples only",
+            f"has {bad} NaN or infinite ones",
         )
     return values
 
