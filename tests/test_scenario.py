@@ -20,7 +20,14 @@ import numpy as np
 import pipelay as pl
 import pipelay.scenario as scenario_module
 import pytest
-from pipelay.scenario import KEYS, Scenario, load_scenario, parse_scenario
+from pipelay.scenario import (
+    KEYS,
+    Scenario,
+    apply_overrides,
+    load_scenario,
+    parse_scenario,
+    validate_overrides,
+)
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -497,3 +504,257 @@ def test_source_is_a_copy() -> None:
     data["pipe"]["outer_diameter"] = 1.0
     assert scenario.source["pipe"]["outer_diameter"] == 0.6
     assert scenario.model.rod.section.outer_diameter == 0.6
+
+
+# [sea.waves]
+
+REGULAR = '\n[sea.waves]\nkind = "regular"\nheight = 2.0\nperiod = 8.0\n'
+JONSWAP = """
+[sea.waves]
+kind = "jonswap"
+hs = 2.5
+tp = 9.0
+gamma = 2.0
+direction = 0.5
+seed = 7
+components = 50
+spreading = 4.0
+ramp = 30.0
+"""
+
+
+def test_regular_waves_are_the_api_call() -> None:
+    """`[sea.waves]` of kind "regular" builds pl.Waves.regular; the ramp defaults to one period."""
+    model = parse_scenario(tomllib.loads(MINIMAL + SEA + REGULAR)).model
+    assert model.sea is not None and model.sea.waves is not None
+    expected = pl.Sea(800.0, waves=pl.Waves.regular(2.0, 8.0)).waves
+    assert expected is not None
+    t = np.linspace(0.0, 20.0, 41)
+    np.testing.assert_array_equal(model.sea.waves.elevation(t), expected.elevation(t))
+    assert model.sea.waves.ramp == expected.ramp == 8.0
+
+
+def test_jonswap_waves_take_every_key() -> None:
+    """`[sea.waves]` of kind "jonswap" passes every key to pl.Waves.jonswap, the ramp included."""
+    model = parse_scenario(tomllib.loads(MINIMAL + SEA + JONSWAP)).model
+    assert model.sea is not None and model.sea.waves is not None
+    waves = pl.Waves.jonswap(
+        2.5, 9.0, gamma=2.0, direction=0.5, seed=7, components=50, spreading=4.0, ramp=30.0
+    )
+    expected = pl.Sea(800.0, waves=waves).waves
+    assert expected is not None
+    for ours, theirs in zip(model.sea.waves.components, expected.components, strict=True):
+        np.testing.assert_array_equal(ours, theirs)
+    assert model.sea.waves.ramp == 30.0 and len(model.sea.waves.components[0]) == 50
+
+
+@pytest.mark.parametrize(
+    ("edit", "key", "fragments"),
+    [
+        (("hs = 2.5", "hs = -1.0"), "sea.waves.hs", ("must be > 0 m, got -1.0",)),
+        (("tp = 9.0", "tp = 0"), "sea.waves.tp", ("must be > 0 s, got 0",)),
+        (("gamma = 2.0", "gamma = 0.5"), "sea.waves.gamma", ("must be >= 1, got 0.5",)),
+        (("spreading = 4.0", "spreading = 2000.0"), "sea.waves.spreading", ("> 0 and <= 1000", "got 2000.0")),
+        (("seed = 7", "seed = -1"), "sea.waves.seed", ("an integer >= 0", "got -1")),
+        (("seed = 7", "seed = 1.5"), "sea.waves.seed", ("an integer >= 0", "got 1.5")),
+        (("components = 50", "components = 0"), "sea.waves.components", ("[1, 100000]", "got 0")),
+        (("ramp = 30.0", "ramp = -1.0"), "sea.waves.ramp", (">= 0 s", "got -1.0")),
+        (("direction = 0.5", "direction = nan"), "sea.waves.direction", ("finite number (rad)", "got nan")),
+        (("direction = 0.5", 'direction = "east"'), "sea.waves.direction", ("a number (rad)", "'east'")),
+        (
+            ('kind = "jonswap"', 'kind = "jonswapp"'),
+            "sea.waves.kind",
+            ('"regular" or "jonswap"', 'mean "jonswap"'),
+        ),
+        (('kind = "jonswap"\n', ""), "sea.waves.kind", ("missing required key", '"regular" or "jonswap"')),
+        (("tp = 9.0\n", ""), "sea.waves.tp", ("missing required key", "a number > 0 (s)")),
+        (
+            ("hs = 2.5", "hs = 2.5\nheight = 2.0"),
+            "sea.waves.height",
+            ('not a key of kind = "jonswap"', "hs, tp"),
+        ),
+        (("hs = 2.5", "hss = 2.5"), "sea.waves.hss", ("unknown key; did you mean 'hs'?",)),
+    ],
+)
+def test_bad_waves_name_the_key(edit: tuple[str, str], key: str, fragments: tuple[str, ...]) -> None:
+    """Each bad `[sea.waves]` value raises InputError starting with `sea.waves.<key>`, saying what is allowed."""
+    text = MINIMAL + SEA + JONSWAP.replace(*edit)
+    with pytest.raises(pl.InputError) as caught:
+        parse_scenario(tomllib.loads(text), "waves.toml")
+    message = str(caught.value)
+    assert message.startswith(f"{key}: ") and message.endswith("(in waves.toml)"), message
+    for fragment in fragments:
+        assert fragment in message, (fragment, message)
+
+
+def test_waves_need_their_kind_keys() -> None:
+    """A regular wave without a period names the key; a jonswap key in a regular wave names the kind."""
+    with pytest.raises(pl.InputError, match=r"^sea\.waves\.period: missing required key"):
+        parse_scenario(tomllib.loads(MINIMAL + SEA + REGULAR.replace("period = 8.0\n", "")))
+    with pytest.raises(pl.InputError, match=r'^sea\.waves\.gamma: not a key of kind = "regular"'):
+        parse_scenario(tomllib.loads(MINIMAL + SEA + REGULAR + "gamma = 3.3\n"))
+
+
+# [vessel] raos
+
+DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+
+
+def write_raos(path: Path, raos: pl.Raos) -> None:
+    """`raos` as a CSV table in pipelay's format: one row per period and heading, amplitude and phase per DOF."""
+    header = ",".join(
+        ["period_s", "heading_deg", *(f"{dof}_{part}" for dof in DOFS for part in ("amp", "phase"))]
+    )
+    lines = [header]
+    for i, period in enumerate(raos.periods):
+        for j, heading in enumerate(raos.headings):
+            values = raos.values[i, j]
+            cells = [repr(float(v)) for value in values for v in (abs(value), np.angle(value))]
+            lines.append(",".join([repr(float(period)), repr(float(heading)), *cells]))
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+
+def spy_on_vessels(monkeypatch: pytest.MonkeyPatch) -> list[pl.Raos | None]:
+    """The `raos` each pl.Vessel.osv or pl.Vessel call of the scenario reader gets (the calls still made)."""
+    seen: list[pl.Raos | None] = []
+    real = pl.Vessel
+
+    class Spy:
+        @staticmethod
+        def osv(raos: pl.Raos | None = None) -> pl.Vessel:
+            seen.append(raos)
+            return real.osv(raos=raos)
+
+        def __new__(cls, *args: Any, raos: pl.Raos | None = None, **kwargs: Any) -> pl.Vessel:  # type: ignore[misc]
+            seen.append(raos)
+            return real(*args, raos=raos, **kwargs)
+
+    monkeypatch.setattr(pl, "Vessel", Spy)
+    return seen
+
+
+def test_raos_are_read_relative_to_the_scenario(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """`vessel.raos` names a CSV table next to the scenario file: pl.Vessel.osv gets the table read from it;
+    without the key it gets none (the built-in table)."""
+    osv = pl.Raos.osv()
+    (tmp_path / "tables").mkdir()
+    write_raos(tmp_path / "tables" / "osv.csv", osv)
+    seen = spy_on_vessels(monkeypatch)
+    load_scenario(
+        write(
+            tmp_path,
+            MINIMAL.replace("[supports.A]", "[supports.B]") + SEA + VESSEL.replace('end = "B"', 'end = "A"'),
+        )
+    )
+    load_scenario(write(tmp_path, MINIMAL + SEA + VESSEL + 'raos = "tables/osv.csv"\n'))
+    assert seen[0] is None and seen[1] is not None
+    np.testing.assert_allclose(seen[1].values, osv.values, rtol=1e-12, atol=1e-15)
+    np.testing.assert_array_equal(seen[1].periods, osv.periods)
+
+
+def test_raos_of_a_vessel_given_by_matrices(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A vessel given by its matrices takes `raos` too."""
+    write_raos(tmp_path / "osv.csv", pl.Raos.osv())
+    osv = pl.Vessel.osv()
+    seen = spy_on_vessels(monkeypatch)
+    matrices = f"M = {rows(osv.M)}\nD = {rows(osv.D)}\nG = {rows(osv.G)}\nraos = 'osv.csv'"
+    load_scenario(write(tmp_path, MINIMAL + SEA + VESSEL.replace('model = "osv"', matrices)))
+    assert len(seen) == 1 and seen[0] is not None
+
+
+def test_bad_raos_name_the_key_and_the_file(tmp_path: Path) -> None:
+    """A missing RAO file names vessel.raos and the path it was looked for at; a bad table names the key."""
+    with pytest.raises(pl.InputError) as caught:
+        load_scenario(write(tmp_path, MINIMAL + SEA + VESSEL + 'raos = "missing.csv"\n'))
+    message = str(caught.value)
+    assert message.startswith("vessel.raos: ") and str(tmp_path / "missing.csv") in message, message
+    (tmp_path / "bad.csv").write_text("a,b\n1,2\n", encoding="utf-8")
+    with pytest.raises(pl.InputError, match=r"^vessel\.raos: .*period_s"):
+        load_scenario(write(tmp_path, MINIMAL + SEA + VESSEL + 'raos = "bad.csv"\n'))
+    with pytest.raises(pl.InputError, match=r"^vessel\.raos: must be text \(a quoted string\), got 1"):
+        load_scenario(write(tmp_path, MINIMAL + SEA + VESSEL + "raos = 1\n"))
+
+
+# Sweeps: dotted keys.
+
+WAVY = tomllib.loads(MINIMAL + SEA + JONSWAP + "[[point_loads]]\nnode = 1\n")
+
+
+def test_apply_overrides_copies_and_creates_tables() -> None:
+    """apply_overrides sets dotted keys (entries of arrays too) in a deep copy, creating missing tables."""
+    case = {"sea.waves.hs": 3.0, "point_loads[0].force": [0, 0, 1e3], "solver.t_end": 10.0, "gravity": 9.8}
+    data = apply_overrides(WAVY, case)
+    assert data["sea"]["waves"]["hs"] == 3.0 and WAVY["sea"]["waves"]["hs"] == 2.5
+    assert (
+        data["point_loads"][0] == {"node": 1, "force": [0, 0, 1e3]} and "force" not in WAVY["point_loads"][0]
+    )
+    assert data["solver"] == {"t_end": 10.0} and "solver" not in WAVY
+    assert data["gravity"] == 9.8
+    parse_scenario(data)
+    with pytest.raises(pl.InputError, match=r"^point_loads\[3\]\.force: "):
+        apply_overrides(WAVY, {"point_loads[3].force": [0, 0, 1]})
+    with pytest.raises(pl.InputError, match=r"^pipe\.outer_diameter\.x: "):
+        apply_overrides(WAVY, {"pipe.outer_diameter.x": 1.0})
+
+
+def test_validate_overrides_accepts_a_good_sweep() -> None:
+    """Every key names a key of the format and every value is allowed: nothing is raised."""
+    overrides = {
+        "sea.waves.hs": [1.0, 2, 3.5],
+        "sea.waves.kind": ["jonswap"],
+        "pipe.outer_diameter": [0.5, 0.6],
+        "point_loads[0].force": [[0, 0, 1.0]],
+        "solver.t_end": [10.0],
+    }
+    validate_overrides(WAVY, overrides)
+
+
+@pytest.mark.parametrize(
+    ("overrides", "start", "fragments"),
+    [
+        ({"sea.waves.hs": [1.0, -2.0]}, "sea.waves.hs: ", ("must be > 0 m, got -2.0",)),
+        ({"sea.waves.seed": [1, 2.5]}, "sea.waves.seed: ", ("an integer >= 0", "got 2.5")),
+        ({"controller.kp": [[1.0, 2.0]]}, "controller.kp: ", ("6 numbers (the diagonal) or a 6×6 matrix",)),
+        ({"sea.waves.hss": [1.0]}, "sea.waves.hss: ", ("sea.waves.hss is not a key", "did you mean 'hs'?")),
+        ({"seas.depth": [1.0]}, "seas.depth: ", ("did you mean 'sea'?",)),
+        ({"pipe.outer_diameter.x": [1.0]}, "pipe.outer_diameter.x: ", ("pipe.outer_diameter is a value",)),
+        ({"sea.waves.hs": 2.0}, "sea.waves.hs: ", ("must be a non-empty list of values", "got 2.0")),
+        ({"sea.waves.hs": []}, "sea.waves.hs: ", ("must be a non-empty list of values",)),
+        ({"sea waves": [1]}, "sea waves: ", ("not a dotted key",)),
+        ({"point_loads[0].node": [4, 5]}, "point_loads[0].node: ", ("[-5, 4]", "got 5")),
+        (
+            {"sea.waves.kind": ["regular"]},
+            "sea.waves.kind = 'regular': sea.waves.hs: ",
+            ('not a key of kind = "regular"',),
+        ),
+    ],
+)
+def test_validate_overrides_names_the_key_and_value(
+    overrides: dict[str, list[Any]], start: str, fragments: tuple[str, ...]
+) -> None:
+    """A bad key or value raises InputError naming the dotted key, the value and what is allowed."""
+    with pytest.raises(pl.InputError) as caught:
+        validate_overrides(WAVY, overrides, "sweep.toml")
+    message = str(caught.value)
+    assert message.startswith(start) and message.endswith("(in sweep.toml)"), message
+    for fragment in fragments:
+        assert fragment in message, (fragment, message)
+
+
+def test_validate_overrides_checks_the_base_document() -> None:
+    """A document that is not valid itself is refused before any override is tried."""
+    data = copy.deepcopy(WAVY)
+    data["pipe"]["outer_diameter"] = -1.0
+    with pytest.raises(
+        pl.InputError, match=r"^pipe\.outer_diameter: must be > 0 m, got -1\.0 \(in <sweep>\)$"
+    ):
+        validate_overrides(data, {"sea.waves.hs": [1.0]})
+
+
+def test_python_tuples_are_lists() -> None:
+    """A dict built in Python may give vectors, matrices and gains as tuples (numpy floats in them too)."""
+    data = tomllib.loads(MINIMAL + SEA + VESSEL + CONTROLLER)
+    data["rod"]["end"] = (np.float64(10.0), 0.0, 0.0)
+    data["vessel"]["eta"] = tuple(data["vessel"]["eta"])
+    data["controller"]["kp"] = tuple(tuple(1e5 * (i == j) for j in range(6)) for i in range(6))
+    parse_scenario(data)
