@@ -33,6 +33,7 @@ from pipelay._core import (
 )
 from pipelay.lay import find_lay_position
 from pipelay.results import load, resume
+from pipelay.sweep import sweep
 
 
 def _simulation(self: Model, state: State | None = None, dt: float = 0.05) -> Simulation:
@@ -73,5 +74,6 @@ __all__ = [
     "load",
     "resume",
     "streaming",
+    "sweep",
 ]
 __version__ = "0.1.0"

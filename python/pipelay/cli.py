@@ -4,21 +4,31 @@
     pipelay static SCENARIO [--plots DIR] [--target QUANTITY=VALUE [--bracket LOW,HIGH]]
     pipelay check SCENARIO
     pipelay plot RESULTS.nc --plots DIR
+    pipelay sweep SCENARIO --over KEY=V1,V2,... [--over ...] -o DIR [--scheduler ADDRESS | --workers N]
+    pipelay plot DIR/summary.nc --variable NAME [--limit VALUE] [--select KEY=VALUE] [-o FILE]
+    pipelay schema [-o FILE]
 
 `pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
 flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
+`pipelay sweep` runs the scenario for every combination of the --over values on Dask (pipelay.sweep): a
+local cluster of --workers processes (default: one a core) or the scheduler at --scheduler; the cases' results
+and the summary go to DIR (DIR/summary.nc), and finished cases found there are not run again. `pipelay plot`
+on a summary draws the operability map of a statistic over two swept keys. `pipelay schema` prints the
+scenario files' JSON Schema.
 
 Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
-still written), 2 bad input (the message names the scenario key; no traceback), 130 interrupted by Ctrl-C
-(the results computed so far are written, and a checkpoint if asked for).
+still written; for a sweep: a case failed, the others are written), 2 bad input (the message names the
+scenario key; no traceback), 130 interrupted by Ctrl-C (the results computed so far are written, and a
+checkpoint if asked for; for a sweep: the finished cases and the summary).
 """
 
 from __future__ import annotations
 
 import argparse
 import copy
+import json
 import sys
-import warnings
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -27,8 +37,11 @@ import numpy as np
 import pipelay as pl
 from pipelay import plots
 from pipelay.lay import TARGETS, find_lay_position
-from pipelay.results import checkpoint, load, resume
+from pipelay.results import checkpoint, load
 from pipelay.scenario import Scenario, load_scenario, parse_scenario
+from pipelay.sweep import SUMMARY_TITLE, _label, sweep
+from pipelay.sweep import run as run_simulation
+from pipelay.sweep import start as start_simulation
 
 INTERRUPTED = 130
 
@@ -68,9 +81,50 @@ def _parser() -> argparse.ArgumentParser:
     )
     check = commands.add_parser("check", help="validate a scenario file without solving")
     check.add_argument("scenario", type=Path, help="scenario file (TOML)")
-    plot = commands.add_parser("plot", help="figures from a results file")
-    plot.add_argument("results", type=Path, help="results file (netCDF) written by `pipelay run`")
-    plot.add_argument("--plots", type=Path, required=True, help="directory for figures")
+    plot = commands.add_parser("plot", help="figures from a results file, or a sweep's operability map")
+    plot.add_argument(
+        "results", type=Path, help="results file (netCDF) written by `pipelay run`, or a sweep's summary.nc"
+    )
+    plot.add_argument("--plots", type=Path, help="directory for figures (results file)")
+    plot.add_argument("--variable", help="summary.nc: the statistic to map, e.g. top_tension_max")
+    plot.add_argument(
+        "--limit", type=float, help="summary.nc: draw the contour where the statistic equals this"
+    )
+    plot.add_argument("--x", help="summary.nc: the swept key along x (default: the first)")
+    plot.add_argument("--y", help="summary.nc: the swept key along y (default: the second, if any)")
+    plot.add_argument(
+        "--select",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="summary.nc: one value of another swept key (default: one panel per value)",
+    )
+    plot.add_argument("-o", "--output", type=Path, help="summary.nc: the figure (default: DIR/VARIABLE.png)")
+    sweeping = commands.add_parser(
+        "sweep", help="run a scenario over a grid of values of some of its keys, on Dask"
+    )
+    sweeping.add_argument("scenario", type=Path, help="scenario file (TOML)")
+    sweeping.add_argument(
+        "--over",
+        action="append",
+        required=True,
+        metavar="KEY=V1,V2,...",
+        help='a dotted scenario key and its values (TOML values: 0.5, [0, -0.8, 0], "osv"); repeat it for '
+        "more keys",
+    )
+    sweeping.add_argument(
+        "-o",
+        "--output",
+        type=Path,
+        required=True,
+        help="folder for cases/ and summary.nc (finished cases reused)",
+    )
+    where = sweeping.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786")
+    where.add_argument("--workers", type=int, help="local worker processes (default: one a core)")
+    sweeping.add_argument("--no-progress", action="store_true", help="no progress bar")
+    schema = commands.add_parser("schema", help="the JSON Schema of scenario files")
+    schema.add_argument("-o", "--output", type=Path, help="write it to this file instead of printing it")
     return parser
 
 
@@ -195,35 +249,19 @@ def _write(args: argparse.Namespace, scenario: Scenario) -> None:
 
 def _run(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
-    if scenario.t_end is None:
-        raise pl.InputError(
-            "solver.t_end: needed by `pipelay run` (s); use `pipelay static` for statics only"
-        )
-    model = scenario.model
-    if args.resume:
-        simulation = resume(model, args.resume)
-    else:
-        state = model.static(steps=scenario.static_steps, start=scenario.static_start)
-        simulation = model.simulation(state=state, dt=scenario.dt)
+    simulation = start_simulation(scenario, args.resume)
     status = 0
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        try:
-            # Streamed to the file as the run goes: memory stays flat; the file is complete on failure or Ctrl-C.
-            simulation.run(
-                scenario.t_end,
-                progress=not args.no_progress,
-                record_every=scenario.record_every,
-                output=args.output,
+    try:
+        # Streamed to the file as the run goes: memory stays flat; the file is complete on failure or Ctrl-C.
+        if run_simulation(simulation, scenario, args.output, progress=not args.no_progress):
+            print(
+                f"pipelay: interrupted at t = {simulation.time:g} s; keeping the results so far",
+                file=sys.stderr,
             )
-        except pl.ConvergenceError as failure:
-            print(f"pipelay: solve failed: {failure}", file=sys.stderr)
-            status = 1
-    if any("interrupted" in str(w.message) for w in caught):
-        print(
-            f"pipelay: interrupted at t = {simulation.time:g} s; keeping the results so far", file=sys.stderr
-        )
-        status = INTERRUPTED
+            status = INTERRUPTED
+    except pl.ConvergenceError as failure:
+        print(f"pipelay: solve failed: {failure}", file=sys.stderr)
+        status = 1
     _write(args, scenario)
     if args.checkpoint:
         print(f"checkpoint: {checkpoint(simulation, args.checkpoint)} (t = {simulation.time:g} s)")
@@ -305,16 +343,121 @@ def _check(args: argparse.Namespace) -> int:
 
 
 def _plot(args: argparse.Namespace) -> int:
+    if args.variable is not None:
+        return _operability(args)
+    if args.plots is None:
+        raise pl.InputError(
+            "--plots: the directory for a results file's figures (or --variable for a summary.nc)"
+        )
     results = load(args.results)
     for figure in plots.all_figures(results, args.plots):
         print(f"figure: {figure}")
     return 0
 
 
+def _values(text: str) -> list[Any]:
+    """`V1,V2,...` as TOML values (numbers, arrays, quoted strings), or as words if they are not TOML."""
+    try:
+        return list(tomllib.loads(f"values = [{text}]")["values"])
+    except tomllib.TOMLDecodeError:
+        return text.split(",")
+
+
+def _pairs(option: str, texts: list[str]) -> dict[str, list[Any]]:
+    """`KEY=V1,V2,...` options as {key: values}."""
+    pairs: dict[str, list[Any]] = {}
+    for text in texts:
+        key, equals, values = text.partition("=")
+        key = key.strip()
+        if not equals or not key or not values.strip():
+            raise pl.InputError(f"{option}: {text!r} must be KEY=V1,V2,..., e.g. controller.start=0,10")
+        if key in pairs:
+            raise pl.InputError(f"{option}: {key} given twice")
+        pairs[key] = _values(values)
+    return pairs
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    done = sweep(
+        args.scenario,
+        _pairs("--over", args.over),
+        client=args.scheduler,
+        output=args.output,
+        workers=args.workers,
+        progress=not args.no_progress,
+    )
+    cases = int(done.summary.attrs["cases"])
+    print(f"sweep: {cases} cases, {len(done.cases)} finished, {len(done.failures)} failed")
+    for case, message in done.failures.items():
+        print(f"pipelay: case {case} failed: {message}", file=sys.stderr)
+    print(f"summary: {done.output / 'summary.nc'}")
+    return 1 if done.failures else 0
+
+
+def _operability(args: argparse.Namespace) -> int:
+    """`pipelay plot summary.nc --variable NAME`: the operability map."""
+    import xarray as xr
+
+    with xr.open_dataset(args.results, engine="h5netcdf") as opened:
+        summary = opened.load()
+    if summary.attrs.get("title") != SUMMARY_TITLE:
+        raise pl.InputError(
+            f"--variable: {args.results} is not a sweep's summary.nc (a results file: --plots)"
+        )
+    keys = list(json.loads(summary.attrs["swept_keys"]))
+    statistics = [str(name) for name in summary.data_vars if name not in ("failed", "error", "case")]
+    if args.variable not in statistics:
+        raise pl.InputError(
+            f"--variable: {args.variable!r} is not in the summary; one of {', '.join(statistics)}"
+        )
+    selection = {}
+    for key, values in _pairs("--select", args.select).items():
+        if key not in keys or len(values) != 1:
+            raise pl.InputError(f"--select: KEY=VALUE with KEY one of {', '.join(keys)}, got {key}")
+        coordinate = summary[key].values
+        value = values[0] if coordinate.dtype.kind in "iuf" else _label(values[0])
+        if value not in coordinate.tolist():
+            raise pl.InputError(
+                f"--select: {key} = {values[0]!r} is not swept; the values are {coordinate.tolist()}"
+            )
+        selection[key] = value
+    free = [key for key in keys if key not in selection]
+    x = args.x or free[0]
+    y = args.y or next((key for key in free if key != x), None)
+    for given in (x, y):
+        if given is not None and given not in free:
+            raise pl.InputError(f"--x, --y: {given!r} is not a swept key left free; one of {', '.join(free)}")
+    path = args.output or Path(args.results).parent / f"{args.variable}.png"
+    plots.operability(summary.sel(selection), args.variable, x, y, limit=args.limit, path=path)
+    print(f"figure: {path}")
+    return 0
+
+
+def _schema(args: argparse.Namespace) -> int:
+    try:
+        from pipelay.scenario import json_schema
+    except ImportError:
+        raise pl.InputError("schema: this pipelay has no pipelay.scenario.json_schema yet") from None
+    text = json.dumps(json_schema(), indent=2)
+    if args.output is None:
+        print(text)
+    else:
+        Path(args.output).write_text(text + "\n")
+        print(f"schema: {args.output}")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``pipelay`` command; returns the exit code."""
     args = _parser().parse_args(argv)
-    command = {"run": _run, "static": _static, "check": _check, "plot": _plot}[args.command]
+    command = {
+        "run": _run,
+        "static": _static,
+        "check": _check,
+        "plot": _plot,
+        "sweep": _sweep,
+        "schema": _schema,
+    }[args.command]
     try:
         return command(args)
     except pl.InputError as error:
