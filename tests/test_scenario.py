@@ -741,6 +741,16 @@ def test_validate_overrides_names_the_key_and_value(
         assert fragment in message, (fragment, message)
 
 
+def test_validate_overrides_judges_dependent_keys_together() -> None:
+    """A shorter run with plot times inside it is a valid case; the shorter run alone is not."""
+    data = copy.deepcopy(WAVY)
+    data["solver"] = {"t_end": 100.0}
+    data["output"] = {"plot_times": [0.0, 50.0, 100.0]}
+    validate_overrides(data, {"solver.t_end": [40.0], "output.plot_times": [[0.0], [0.0, 40.0]]})
+    with pytest.raises(pl.InputError, match=r"^solver\.t_end = 40\.0: output\.plot_times\[1\]: must be <= "):
+        validate_overrides(data, {"solver.t_end": [40.0]})
+
+
 def test_validate_overrides_checks_the_base_document() -> None:
     """A document that is not valid itself is refused before any override is tried."""
     data = copy.deepcopy(WAVY)

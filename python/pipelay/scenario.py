@@ -297,6 +297,7 @@ earlier (`start_time` = the route's − ramp/2) keeps the length paid out equal 
 from __future__ import annotations
 
 import copy
+import itertools
 import math
 import os
 import re
@@ -771,15 +772,17 @@ def apply_overrides(data: dict[str, Any], case: dict[str, Any]) -> dict[str, Any
     return result
 
 
-def _check_case(data: dict[str, Any], key: str, value: object, folder: Path) -> None:
-    """`data` with `key` = `value` is a valid document: an error about the key first, an error elsewhere
-    said to come from that value."""
-    messages = _errors(apply_overrides(data, {key: value}), folder)
-    about = [message for message in messages if message.startswith((f"{key}:", f"{key}.", f"{key}["))]
+def _check_case(data: dict[str, Any], case: dict[str, Any], folder: Path) -> None:
+    """`data` with the case's keys set is a valid document: an error about one of its keys first, an error
+    elsewhere said to come from the case's values."""
+    messages = _errors(apply_overrides(data, case), folder)
+    prefixes = tuple(f"{key}{end}" for key in case for end in (":", ".", "["))
+    about = [message for message in messages if message.startswith(prefixes)]
     if about:
         raise pl.InputError(about[0])
     if messages:
-        raise pl.InputError(f"{key} = {show(value)}: {messages[0]}")
+        values = ", ".join(f"{key} = {show(value)}" for key, value in case.items())
+        raise pl.InputError(f"{values}: {messages[0]}")
 
 
 def validate_overrides(
@@ -789,8 +792,9 @@ def validate_overrides(
     folder: str | os.PathLike[str] | None = None,
 ) -> None:
     """Check a parameter sweep before any case runs: each dotted key of `overrides` (`"sea.waves.hs"`,
-    `"controller.kp"`, `"point_loads[0].force"`) names a key of the format, and each of its values, put in the
-    parsed document `data` (itself valid) in place of the key's, makes a valid document.
+    `"controller.kp"`, `"point_loads[0].force"`) names a key of the format, and every case (one value of each
+    key), put in the parsed document `data` (itself valid), makes a valid document: keys that depend on each
+    other (`solver.t_end` and `output.plot_times`) are judged together.
 
     Only the keys are checked, nothing is built (the engine's own checks, e.g. a matrix's symmetry, come when
     a case runs). `folder` is as for `parse_scenario`. Raises pl.InputError naming the dotted key, the bad
@@ -803,9 +807,8 @@ def validate_overrides(
             if not isinstance(values, list) or not values:
                 raise pl.InputError(f"{key}: must be a non-empty list of values, got {show(values)}")
         _check(data, where)
-        for key, values in overrides.items():
-            for value in values:
-                _check_case(data, key, value, where)
+        for values in itertools.product(*overrides.values()):
+            _check_case(data, dict(zip(overrides, values, strict=True)), where)
     except pl.InputError as error:
         raise pl.InputError(f"{error} (in {origin})") from None
 
