@@ -7,6 +7,9 @@ from __future__ import annotations
 
 import functools
 import json
+import signal
+import subprocess
+import sys
 import time
 import tomllib
 from pathlib import Path
@@ -247,6 +250,33 @@ def test_cli_sweep_on_a_scheduler_then_plot(
     assert (out / "offset_max.png").stat().st_size > 10_000
     assert cli.main(["plot", summary_file, "--variable", "no_such_thing"]) == 2
     assert "top_tension_max" in capsys.readouterr().err
+
+
+def test_ctrl_c_keeps_the_finished_cases(folder: Path, tmp_path: Path) -> None:
+    """SIGINT to `pipelay sweep` while a long case runs: exit 130, the short case's files and a summary with
+    it (the long one NaN) stay, no temporary file is left; a second call reuses the short case."""
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "pipelay", "sweep", str(folder / "scenario.toml"), "--over",
+               "solver.t_end=1.0,1e6", "-o", str(out), "--workers", "1", "--no-progress"]  # fmt: skip
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120.0
+    while not list((out / "cases").glob("*.json")) and time.monotonic() < deadline:
+        time.sleep(0.2)
+    time.sleep(1.0)  # the long case is running
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=60.0)
+    assert process.returncode == 130, err
+    finished = list((out / "cases").glob("*.json"))
+    assert len(finished) == 1 and "t_end=1.0" in finished[0].name
+    assert len(list((out / "cases").glob("*.nc"))) == 1
+    assert not list(out.rglob("*.part"))
+    with xr.open_dataset(out / "summary.nc", engine="h5netcdf") as summary:
+        tension = summary["top_tension_max"].values
+    assert np.isfinite(tension[0]) and np.isnan(tension[1])
+    begun = time.perf_counter()
+    again = pl.sweep(folder / "scenario.toml", {"solver.t_end": [1.0]}, output=out, progress=False)
+    assert time.perf_counter() - begun < 5.0 and not again.failures
+    assert float(again.summary["top_tension_max"].values[0]) == tension[0]
 
 
 def test_a_bad_key_or_value_is_rejected_before_anything_runs(
