@@ -310,6 +310,8 @@ pub struct Resolved {
     pub frequency: f64,
     /// Wave number k (rad/m).
     pub number: f64,
+    /// 1/(1 − e^{−2kh}) in the field's depth h.
+    profile_scale: f64,
     /// Direction of travel β (rad) and its cosine and sine.
     pub direction: f64,
     pub cos: f64,
@@ -343,13 +345,17 @@ pub struct WaveField {
     ramp: f64,
 }
 
-/// cosh(k s)/sinh(k h) and sinh(k s)/sinh(k h) without overflow (s ≤ h, k h possibly large).
-fn profiles(k: f64, s: f64, h: f64) -> (f64, f64) {
-    let e_h = (-2.0 * k * h).exp();
+/// cosh(k s)/sinh(k h) and sinh(k s)/sinh(k h) without overflow (s ≤ h, k h possibly large), with
+/// `scale` = 1/(1 − e^{−2kh}), a constant of the component.
+fn profiles_scaled(k: f64, s: f64, h: f64, scale: f64) -> (f64, f64) {
     let e_s = (-2.0 * k * s.max(0.0)).exp();
-    let ratio = (k * (s.max(0.0) - h)).exp() / (1.0 - e_h);
+    let ratio = (k * (s.max(0.0) - h)).exp() * scale;
     (ratio * (1.0 + e_s), ratio * (1.0 - e_s))
 }
+
+/// Beyond k·(depth below the surface) = 40 a component's kinematics are below e^{−40} ≈ 4e-18 of its
+/// surface values: the sum stops there.
+const DECAYED: f64 = 40.0;
 
 impl WaveField {
     /// The waves resolved in water of `depth` (m) under gravity `gravity` (m/s²).
@@ -363,19 +369,25 @@ impl WaveField {
                 "must be > 0 for waves (they are gravity waves)",
             ));
         }
-        let components = waves
+        let mut components: Vec<Resolved> = waves
             .components
             .iter()
-            .map(|c| Resolved {
-                amplitude: c.amplitude,
-                frequency: c.frequency,
-                number: wave_number(c.frequency, depth, gravity),
-                direction: c.direction,
-                cos: c.direction.cos(),
-                sin: c.direction.sin(),
-                phase: c.phase,
+            .map(|c| {
+                let number = wave_number(c.frequency, depth, gravity);
+                Resolved {
+                    amplitude: c.amplitude,
+                    frequency: c.frequency,
+                    number,
+                    profile_scale: 1.0 / (1.0 - (-2.0 * number * depth).exp()),
+                    direction: c.direction,
+                    cos: c.direction.cos(),
+                    sin: c.direction.sin(),
+                    phase: c.phase,
+                }
             })
             .collect();
+        // Sorted by wave number, so that a deep point's sum stops at the first component decayed there.
+        components.sort_by(|a, b| a.number.total_cmp(&b.number));
         Ok(WaveField {
             components,
             depth,
@@ -431,9 +443,13 @@ impl WaveField {
         let s = height * stretch;
         let d_s = -surface_gradient * (s / (h + surface)) - Vector3::z() * stretch;
         let mut k = Kinematics::default();
+        let below = h - s.max(0.0);
         for c in &self.components {
+            if c.number * below > DECAYED {
+                break;
+            }
             let (sin, cos) = c.angle(x, y, time).sin_cos();
-            let (ch, sh) = profiles(c.number, s, h);
+            let (ch, sh) = profiles_scaled(c.number, s, h, c.profile_scale);
             let aw = ramp * c.amplitude * c.frequency;
             let horizontal = aw * ch * cos;
             let up = aw * sh * sin;
@@ -459,6 +475,11 @@ mod tests {
     use super::*;
 
     const G: f64 = 9.81;
+
+    /// cosh(k s)/sinh(k h) and sinh(k s)/sinh(k h).
+    fn profiles(k: f64, s: f64, h: f64) -> (f64, f64) {
+        profiles_scaled(k, s, h, 1.0 / (1.0 - (-2.0 * k * h).exp()))
+    }
 
     #[test]
     fn dispersion_relation_and_its_limits() {
@@ -509,6 +530,32 @@ mod tests {
                 .velocity
                 .x;
             assert!((u - expected).abs() < 2e-3 * expected, "{u} vs {expected}");
+        }
+    }
+
+    /// Deep down the sum stops at the first component decayed below e^{−40}: the velocity there equals the
+    /// full sum over every component (long-crested, so the stretching is the same) to round-off.
+    #[test]
+    fn deep_sums_stop_where_components_have_decayed() {
+        let waves = Waves::jonswap(4.0, 9.0, 3.3, 0.3, None, 5, 300).unwrap();
+        let h = 800.0;
+        let field = WaveField::new(&waves, h, G).unwrap();
+        for below in [50.0, 200.0, 600.0] {
+            let point = Vector3::new(20.0, 3.0, -(h - below));
+            let t = 31.0;
+            let surface = field.elevation(point.x, point.y, t);
+            let s = (h - below) * h / (h + surface);
+            let mut full = 0.0;
+            for c in field.components() {
+                let (ch, _) = profiles(c.number, s, h);
+                full += c.amplitude * c.frequency * ch * c.angle(point.x, point.y, t).cos();
+            }
+            let cut = field.kinematics(&point, t).velocity;
+            let along = cut.x * 0.3f64.cos() + cut.y * 0.3f64.sin();
+            assert!(
+                (along - full).abs() < 1e-15 * (1.0 + full.abs()),
+                "{below}: {along} vs {full}"
+            );
         }
     }
 
