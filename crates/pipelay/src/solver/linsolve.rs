@@ -1,7 +1,9 @@
-//! LU of the global tangent with faer. The pattern and its symbolic factorisation are computed once; each
-//! Newton iteration refactorises numerically and solves, without allocating. Small systems (a few
-//! elements, e.g. the paper's 10-element pipe) use faer's dense partial-pivoting LU instead, whose cost
-//! there is a fraction of the sparse factorisation's bookkeeping.
+//! LU of the global tangent. The pattern is analysed once; each Newton iteration refactorises numerically
+//! and solves, without allocating. A rod's tangent is a band matrix (each node couples to its neighbours):
+//! with a narrow band ([`BAND_LIMIT`]) the band LU of [`crate::solver::band_lu`] factorises it in
+//! n·kl·(kl + ku) operations. Otherwise faer's sparse LU (symbolic factorisation computed once), or for
+//! small systems faer's dense partial-pivoting LU, whose cost there is a fraction of the sparse
+//! factorisation's bookkeeping.
 //!
 //! **Border.** A vessel's rollers couple its node to every node within their reach. A sparse LU analysed
 //! on AᵀA (as faer's is) sees those few dense rows as a dense block and fills hundreds of columns. Given the
@@ -10,6 +12,7 @@
 //! the Schur complement D − C X (at most 6×6) densely, then x = A⁻¹r − X z. Cost stays linear in the unknowns.
 // Indexing cannot go out of bounds here: Row and column indices of the pattern the solver built.
 #![allow(clippy::indexing_slicing)]
+use crate::solver::band_lu::BandLu;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{
     lu_in_place, lu_in_place_scratch, PartialPivLuParams,
@@ -20,11 +23,15 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Spec};
 
-/// Systems with at most this many unknowns are factorised densely.
+/// Systems with at most this many unknowns are factorised densely (unless banded).
 const DENSE_LIMIT: usize = 150;
+
+/// Systems whose bandwidths kl + ku are at most this are factorised as band matrices.
+const BAND_LIMIT: usize = 48;
 
 /// The factorisation behind [`SparseLu`].
 enum Factors {
+    Band(BandLu),
     Sparse {
         symbolic: Box<SymbolicLu<usize>>,
         numeric: Box<NumericLu<usize, f64>>,
@@ -79,7 +86,14 @@ impl SparseLu {
     /// pattern, which is built by the assembler, never by users.
     pub fn new(size: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Self {
         let params = Spec::<PartialPivLuParams, f64>::default();
-        let (factors, factor_scratch, solve_scratch) = if size <= DENSE_LIMIT {
+        let (lower, upper) = BandLu::bandwidths(&col_ptr, &row_idx);
+        let (factors, factor_scratch, solve_scratch) = if lower + upper <= BAND_LIMIT {
+            (
+                Factors::Band(BandLu::new(size, lower, upper)),
+                MemBuffer::new(faer::dyn_stack::StackReq::empty()),
+                MemBuffer::new(faer::dyn_stack::StackReq::empty()),
+            )
+        } else if size <= DENSE_LIMIT {
             (
                 Factors::Dense {
                     matrix: Mat::zeros(size, size),
@@ -148,6 +162,7 @@ impl SparseLu {
         let params = Spec::<PartialPivLuParams, f64>::default();
         let stack = MemStack::new(&mut self.factor_scratch);
         let ok = match &mut self.factors {
+            Factors::Band(band) => band.factorise(&self.col_ptr, &self.row_idx, values).is_ok(),
             Factors::Sparse { symbolic, numeric } => {
                 let pattern = SymbolicSparseColMatRef::new_checked(
                     self.size,
@@ -196,12 +211,12 @@ impl SparseLu {
             return border.solve_in_place(rhs);
         }
         let stack = MemStack::new(&mut self.solve_scratch);
-        let rhs = MatMut::from_column_major_slice_mut(rhs, self.size, 1);
         match &self.factors {
+            Factors::Band(band) => band.solve_in_place(rhs),
             Factors::Sparse { symbolic, numeric } => {
                 LuRef::new_unchecked(symbolic, numeric).solve_in_place_with_conj(
                     Conj::No,
-                    rhs,
+                    MatMut::from_column_major_slice_mut(rhs, self.size, 1),
                     Par::Seq,
                     stack,
                 );
@@ -217,7 +232,7 @@ impl SparseLu {
                     matrix.as_ref(),
                     row_perm,
                     Conj::No,
-                    rhs,
+                    MatMut::from_column_major_slice_mut(rhs, self.size, 1),
                     Par::Seq,
                     stack,
                 );

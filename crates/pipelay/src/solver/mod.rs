@@ -1,6 +1,7 @@
 //! Solving the model: global assembly and linear solves, statics (with the catenary start), the
 //! energy–momentum time step, what users read off a state, and the record of a run.
 pub mod assembly;
+pub mod band_lu;
 pub mod catenary;
 pub mod contact;
 pub mod dynamics;
