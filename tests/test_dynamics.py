@@ -189,7 +189,7 @@ def test_the_engine_releases_the_gil_while_stepping() -> None:
     worker = threading.Thread(target=count)
     worker.start()
     began = time.perf_counter()
-    sim.run(3.0, progress=False)
+    sim.run(15.0, progress=False)
     elapsed = time.perf_counter() - began
     stop.set()
     worker.join()

@@ -9,10 +9,7 @@
 //! linear and angular momentum.
 // Indexing cannot go out of bounds here: Fixed-size 12-vectors and 3-vectors indexed by constants.
 #![allow(clippy::indexing_slicing)]
-use super::element::{
-    midpoint_frame_and_strains, nodal_difference, Block3x12, ElementMatrix, ElementReference,
-    ElementVector,
-};
+use super::element::{midpoint_frame_and_strains, ElementMatrix, ElementReference, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
@@ -144,16 +141,12 @@ pub fn step(
     forces.fixed_rows_mut::<3>(9).copy_from(&(m + lever));
 
     if let Some(k) = tangent {
-        // Linearisation (exact for the average-strain rule; the midpoint rule reuses it).
-        let d_tangent = nodal_difference(0, 1.0 / l0);
-        let d_theta_prime = nodal_difference(3, 1.0 / l0);
-        // w = T_c dθ_g with dΛ_{n+1} = ŵΛ_{n+1}.
+        // Linearisation (exact for the average-strain rule; the midpoint rule reuses it), in 3×3 blocks by
+        // [Δφ1, θ1, Δφ2, θ2]: dφ′ = (dΔφ2 − dΔφ1)/L0, dθ′ = (dθ2 − dθ1)/L0, and the Gauss point's spin
+        // w = T_c(dθ1 + dθ2)/2 with dΛ_{n+1} = ŵΛ_{n+1}, so both nodal rotations enter through t_c = ½T_c.
+        let inverse_length = 1.0 / l0;
         let t_c = 0.5 * cayley_tangent(&theta_g);
-        let mut d_w = Block3x12::zeros();
-        d_w.fixed_view_mut::<3, 3>(0, 3).copy_from(&t_c);
-        d_w.fixed_view_mut::<3, 3>(0, 9).copy_from(&t_c);
-        // dΓ_{n+1} = Λ_{n+1}ᵀ(dφ′ + φ̂′_{n+1} w).
-        let d_strain = rotation_next.transpose() * (d_tangent + skew(&tangent_next) * d_w);
+        let rotation_next_t = rotation_next.transpose();
         // d(trace Λ̄⁻¹dΛ̄) = ½ c(Λ_{n+1}Λ̄⁻¹)·w with c(B) = (B23−B32, B31−B13, B12−B21).
         let b = rotation_next * mean_inverse;
         let trace_row = 0.5
@@ -163,27 +156,50 @@ pub fn step(
                 b[(0, 1)] - b[(1, 0)],
             );
         // d(cof(Λ̄)ᵀu) = det[(Λ̄⁻¹u)(½c)ᵀ + ½Λ̄⁻¹(Λ_{n+1}Λ̄⁻¹u)^] w.
-        let cofactor_t_derivative = |u: &Vector3<f64>| -> Matrix3<f64> {
-            let a_inv_u = mean_inverse * u;
-            det * (a_inv_u * trace_row.transpose()
-                + 0.5 * mean_inverse * skew(&(rotation_next * a_inv_u)))
-        };
+        let a_inv_u = mean_inverse * theta_prime;
+        let cofactor_t_derivative = det
+            * (a_inv_u * trace_row.transpose()
+                + 0.5 * mean_inverse * skew(&(rotation_next * a_inv_u)));
         // d(cof(Λ̄)v) = det[(Λ̄⁻ᵀv)(½c)ᵀ − ½Λ̄⁻ᵀΛ_{n+1}ᵀ(Λ̄⁻ᵀv)^] w.
-        let cofactor_derivative = |v: &Vector3<f64>| -> Matrix3<f64> {
-            let a_inv_t_v = mean_inverse.transpose() * v;
-            det * (a_inv_t_v * trace_row.transpose()
-                - 0.5 * mean_inverse.transpose() * rotation_next.transpose() * skew(&a_inv_t_v))
-        };
-        let d_curvature_next =
-            cofactor.transpose() * d_theta_prime + cofactor_t_derivative(&theta_prime) * d_w;
-        let (d_strain_alg, d_curvature_alg) = (0.5 * d_strain, 0.5 * d_curvature_next);
-        let d_n = -skew(&(0.5 * rotation_next * material_force)) * d_w + mean * c_t * d_strain_alg;
-        let d_m = cofactor_derivative(&material_moment) * d_w + cofactor * c_r * d_curvature_alg;
-        let d_lever = 0.5 * l0 * (-skew(&tangent_mid) * d_n + 0.5 * skew(&n) * d_tangent);
-        k.fixed_rows_mut::<3>(0).copy_from(&(-d_n));
-        k.fixed_rows_mut::<3>(3).copy_from(&(-d_m + d_lever));
-        k.fixed_rows_mut::<3>(6).copy_from(&d_n);
-        k.fixed_rows_mut::<3>(9).copy_from(&(d_m + d_lever));
+        let a_inv_t_v = mean_inverse.transpose() * material_moment;
+        let cofactor_derivative = det
+            * (a_inv_t_v * trace_row.transpose()
+                - 0.5 * mean_inverse.transpose() * rotation_next_t * skew(&a_inv_t_v));
+        // dΓ_{n+1} = Λ_{n+1}ᵀ(dφ′ + φ̂′_{n+1} w); dK_{n+1} = cof(Λ̄)ᵀdθ′ + d(cof(Λ̄)ᵀ)θ′.
+        let strain_by_rotation = rotation_next_t * skew(&tangent_next) * t_c;
+        let curvature_by_spin = cofactor_t_derivative * t_c;
+        let curvature_by_theta2 = curvature_by_spin + cofactor.transpose() * inverse_length;
+        let curvature_by_theta1 = curvature_by_spin - cofactor.transpose() * inverse_length;
+        // dn = −(½Λ_{n+1}N)^ w + Λ̄ C_T ½dΓ (by Δφ1: the negative of by Δφ2; by θ1 and θ2 alike).
+        let force_by_strain = 0.5 * mean * c_t;
+        let n_by_phi2 = force_by_strain * rotation_next_t * inverse_length;
+        let n_by_theta = -skew(&(0.5 * rotation_next * material_force)) * t_c
+            + force_by_strain * strain_by_rotation;
+        // dm = d(cof(Λ̄))M + cof(Λ̄) C_R ½dK.
+        let moment_by_curvature = 0.5 * cofactor * c_r;
+        let m_by_spin = cofactor_derivative * t_c;
+        let m_by_theta1 = m_by_spin + moment_by_curvature * curvature_by_theta1;
+        let m_by_theta2 = m_by_spin + moment_by_curvature * curvature_by_theta2;
+        // d lever = ½L0(−t̂_mid dn + ½n̂ dφ′).
+        let tangent_mid_hat = skew(&tangent_mid);
+        let lever_by_phi2 = -0.5 * l0 * tangent_mid_hat * n_by_phi2 + 0.25 * skew(&n);
+        let lever_by_theta = -0.5 * l0 * tangent_mid_hat * n_by_theta;
+        let zero = Matrix3::zeros();
+        let d_n = [-n_by_phi2, n_by_theta, n_by_phi2, n_by_theta];
+        let d_m = [zero, m_by_theta1, zero, m_by_theta2];
+        let d_lever = [
+            -lever_by_phi2,
+            lever_by_theta,
+            lever_by_phi2,
+            lever_by_theta,
+        ];
+        for column in 0..4 {
+            let (dn, dm, dl) = (d_n[column], d_m[column], d_lever[column]);
+            for (row, block) in [-dn, dl - dm, dn, dm + dl].iter().enumerate() {
+                k.fixed_view_mut::<3, 3>(3 * row, 3 * column)
+                    .copy_from(block);
+            }
+        }
     }
 
     ElementStep {

@@ -89,14 +89,14 @@ pub struct Assembler {
     /// K_fc Δu_c: the tangent's prescribed columns times the prescribed increments (all DOFs).
     pub support_coupling: Vec<f64>,
     external: Vec<f64>,
-    /// For each element, the value position of each of its 12×12 entries (FIXED when not free).
-    scatter: Vec<[u32; 144]>,
+    /// Where each element's 12×12 tangent block goes in `values`.
+    scatter: ScatterMap,
     /// Value positions of the diagonal entries of free rotational DOFs.
     rotation_diagonal: Vec<usize>,
     /// Factor of each point load (its scale function at the time of the solve; 1 by default).
     pub point_load_scales: Vec<f64>,
-    /// For each node, the value position of each entry of its 6×6 diagonal block (FIXED when not free).
-    node_scatter: Vec<[u32; 36]>,
+    /// Where each node's 6×6 diagonal block goes in `values`.
+    node_scatter: ScatterMap,
     /// How far a vessel's static target has moved from the end node's reference pose (0 to 1).
     pub vessel_motion: f64,
     /// The holding thrust of the last static assembly (body frame).
@@ -134,27 +134,64 @@ impl EntrySink for Entries<'_> {
     }
 }
 
-/// The tangent's values seen through the element and node scatter maps.
-struct Scatter<'a> {
-    values: &'a mut [f64],
-    elements: &'a [[u32; 144]],
-    nodes: &'a [[u32; 36]],
+/// Where dense blocks (column-major) go in the tangent's values, as runs of consecutive entries that land on
+/// consecutive positions: with the unknowns in node order, a column of an element's block is one run.
+struct ScatterMap {
+    /// (first entry in the block, first value position, length), block after block.
+    runs: Vec<(u32, u32, u32)>,
+    /// Block b's runs are `runs[first[b]..first[b + 1]]`.
+    first: Vec<usize>,
 }
 
-fn scatter_add(values: &mut [f64], map: &[u32], block: &[f64]) {
-    for (slot, value) in map.iter().zip(block) {
-        if *slot != FIXED {
-            values[*slot as usize] += value;
+impl ScatterMap {
+    /// From each block's value position of every entry (FIXED where the entry's row or column is prescribed).
+    fn new<const N: usize>(positions: impl Iterator<Item = [u32; N]>) -> Self {
+        let mut runs: Vec<(u32, u32, u32)> = Vec::new();
+        let mut first = vec![0];
+        for map in positions {
+            let block_start = runs.len();
+            for (entry, &position) in map.iter().enumerate().filter(|(_, &p)| p != FIXED) {
+                let extends = runs.len() > block_start
+                    && runs.last().is_some_and(|run| {
+                        (run.0 + run.2) as usize == entry && run.1 + run.2 == position
+                    });
+                match runs.last_mut() {
+                    Some(run) if extends => run.2 += 1,
+                    _ => runs.push((entry as u32, position, 1)),
+                }
+            }
+            first.push(runs.len());
+        }
+        ScatterMap { runs, first }
+    }
+
+    /// Adds block `index` (column-major entries) to `values`.
+    fn add(&self, values: &mut [f64], index: usize, block: &[f64]) {
+        for &(entry, position, length) in &self.runs[self.first[index]..self.first[index + 1]] {
+            let (entry, position, length) = (entry as usize, position as usize, length as usize);
+            for (value, term) in values[position..position + length]
+                .iter_mut()
+                .zip(&block[entry..entry + length])
+            {
+                *value += term;
+            }
         }
     }
 }
 
+/// The tangent's values seen through the element and node scatter maps.
+struct Scatter<'a> {
+    values: &'a mut [f64],
+    elements: &'a ScatterMap,
+    nodes: &'a ScatterMap,
+}
+
 impl TangentSink for Scatter<'_> {
     fn add_element(&mut self, element: usize, block: &ElementMatrix) {
-        scatter_add(self.values, &self.elements[element], block.as_slice());
+        self.elements.add(self.values, element, block.as_slice());
     }
     fn add_node(&mut self, node: usize, block: &Matrix6<f64>) {
-        scatter_add(self.values, &self.nodes[node], block.as_slice());
+        self.nodes.add(self.values, node, block.as_slice());
     }
 }
 
@@ -222,25 +259,26 @@ impl Assembler {
                 .collect(),
             _ => Vec::new(),
         };
-        let lu = SparseLu::with_border(dofs.free, col_ptr, row_idx, &border);
-        let scatter = (0..elements)
-            .map(|e| {
-                let mut map = [FIXED; 144];
-                for j in 0..12 {
-                    for i in 0..12 {
-                        if let (Some(row), Some(col)) =
-                            (dofs.equation[global(e, i)], dofs.equation[global(e, j)])
-                        {
-                            // The pattern was built from these very element blocks.
-                            #[allow(clippy::expect_used)]
-                            let position = lu.position(row, col).expect("entry in the pattern");
-                            map[12 * j + i] = position as u32;
-                        }
+        let slots: Vec<usize> = (0..dofs.equation.len())
+            .filter(|&dof| dofs.equation[dof].is_some())
+            .collect();
+        let lu = SparseLu::for_rod(&slots, col_ptr, row_idx, &border);
+        let scatter = ScatterMap::new((0..elements).map(|e| {
+            let mut map = [FIXED; 144];
+            for j in 0..12 {
+                for i in 0..12 {
+                    if let (Some(row), Some(col)) =
+                        (dofs.equation[global(e, i)], dofs.equation[global(e, j)])
+                    {
+                        // The pattern was built from these very element blocks.
+                        #[allow(clippy::expect_used)]
+                        let position = lu.position(row, col).expect("entry in the pattern");
+                        map[12 * j + i] = position as u32;
                     }
                 }
-                map
-            })
-            .collect();
+            }
+            map
+        }));
         let total = NODE_DOFS * model.rod.node_count();
         let rotation_diagonal = dofs
             .equation
@@ -249,26 +287,24 @@ impl Assembler {
             .filter(|(dof, _)| dof % NODE_DOFS >= 3)
             .filter_map(|(_, eq)| eq.and_then(|i| lu.position(i, i)))
             .collect();
-        let node_scatter = (0..model.rod.node_count())
-            .map(|node| {
-                let mut map = [FIXED; 36];
-                for j in 0..NODE_DOFS {
-                    for i in 0..NODE_DOFS {
-                        let (row, col) = (
-                            dofs.equation[NODE_DOFS * node + i],
-                            dofs.equation[NODE_DOFS * node + j],
-                        );
-                        if let (Some(row), Some(col)) = (row, col) {
-                            // The pattern was built from these very node blocks.
-                            #[allow(clippy::expect_used)]
-                            let position = lu.position(row, col).expect("entry in the pattern");
-                            map[NODE_DOFS * j + i] = position as u32;
-                        }
+        let node_scatter = ScatterMap::new((0..model.rod.node_count()).map(|node| {
+            let mut map = [FIXED; 36];
+            for j in 0..NODE_DOFS {
+                for i in 0..NODE_DOFS {
+                    let (row, col) = (
+                        dofs.equation[NODE_DOFS * node + i],
+                        dofs.equation[NODE_DOFS * node + j],
+                    );
+                    if let (Some(row), Some(col)) = (row, col) {
+                        // The pattern was built from these very node blocks.
+                        #[allow(clippy::expect_used)]
+                        let position = lu.position(row, col).expect("entry in the pattern");
+                        map[NODE_DOFS * j + i] = position as u32;
                     }
                 }
-                map
-            })
-            .collect();
+            }
+            map
+        }));
         let contact = model.seabed().map(|seabed| {
             let lengths: Vec<f64> = model.rod.elements.iter().map(|e| e.length).collect();
             SeabedContact::new(
@@ -481,12 +517,12 @@ impl Assembler {
 
     /// Adds an element's 12×12 tangent block (free entries only).
     pub fn add_element_matrix(&mut self, element: usize, k: &ElementMatrix) {
-        scatter_add(&mut self.values, &self.scatter[element], k.as_slice());
+        self.scatter.add(&mut self.values, element, k.as_slice());
     }
 
     /// Adds a node's 6×6 tangent block (free entries only).
     pub fn add_node_matrix(&mut self, node: usize, k: &Matrix6<f64>) {
-        scatter_add(&mut self.values, &self.node_scatter[node], k.as_slice());
+        self.node_scatter.add(&mut self.values, node, k.as_slice());
     }
 
     /// Evaluates `contact` at the nodes set in it, from elastic slips `slips`, and adds its residual and (with

@@ -34,6 +34,10 @@ use crate::vessel::coupling::{
 use crate::vessel::wave_motion::{station, WaveMotion, WaveOffset};
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
+/// Largest residual ratio at which a Newton iteration keeps an earlier iterate's factorisation (simplified
+/// Newton); a slower fall refreshes the tangent. A simplified iteration costs about a third of a full one.
+const SIMPLIFIED_RATE: f64 = 0.1;
+
 /// How many times a step may be halved when Newton fails in it.
 pub const MAX_HALVINGS: usize = 4;
 
@@ -204,6 +208,31 @@ struct NodalProperties {
     damping: Vec<Vector3<f64>>,
 }
 
+/// What a node's inertia and damping terms need from the step's start, computed once per step: the spatial
+/// inertia I_n = Λ_n J Λ_nᵀ, the spatial angular momentum π_n = Λ_n J W_n and the damping c = Λ_n D Λ_nᵀ.
+#[derive(Debug, Clone, Copy, Default)]
+struct NodeStart {
+    inertia: Matrix3<f64>,
+    momentum: Vector3<f64>,
+    damping: Matrix3<f64>,
+}
+
+impl NodeStart {
+    fn of(nodal: &NodalProperties, state: &DynamicState, node: usize) -> Self {
+        let rotation = state.configuration.rotations[node]
+            .to_rotation_matrix()
+            .into_inner();
+        let spatial =
+            |d: &Vector3<f64>| rotation * Matrix3::from_diagonal(d) * rotation.transpose();
+        NodeStart {
+            inertia: spatial(&nodal.inertia[node]),
+            momentum: rotation
+                * nodal.inertia[node].component_mul(&state.body_angular_velocities[node]),
+            damping: spatial(&nodal.damping[node]),
+        }
+    }
+}
+
 /// The element that grows with pay-out in the current step.
 #[derive(Debug, Clone, Copy)]
 struct Growth {
@@ -295,6 +324,8 @@ pub struct Integrator {
     assembler: Assembler,
     state: DynamicState,
     nodal: NodalProperties,
+    /// Each node's inertia and damping at the current step's start.
+    node_start: Vec<NodeStart>,
     /// Unknowns of the current step on all DOFs: [Δφ_I, θ_I].
     increments: Vec<f64>,
     /// Newton correction on the free DOFs.
@@ -390,6 +421,7 @@ impl Integrator {
             next_gauss: state.gauss.clone(),
             assembler,
             nodal,
+            node_start: vec![NodeStart::default(); count],
             model,
             options,
             state,
@@ -717,6 +749,11 @@ impl Integrator {
                 .offset(time_next, &station(attachment, time_next)?)?;
         }
         let grown = self.start_growth(dt)?;
+        self.node_start.clear();
+        self.node_start.extend(
+            (0..self.model.rod.node_count())
+                .map(|node| NodeStart::of(&self.nodal, &self.state, node)),
+        );
         self.predict(&targets, dt);
         let outcome = self.newton(&scales, time_mid, dt);
         if outcome.is_err() {
@@ -855,45 +892,80 @@ impl Integrator {
         self.book_pay_out(after - before);
     }
 
-    /// Newton's method on the step's increments.
+    /// Norms of the residual and of the per-DOF force magnitudes over the free DOFs.
+    fn residual_norms(&self) -> (f64, f64) {
+        let mut free2 = 0.0;
+        let mut scale2 = 0.0;
+        for ((r, m), eq) in self
+            .assembler
+            .residual
+            .iter()
+            .zip(&self.magnitude)
+            .zip(&self.assembler.dofs.equation)
+        {
+            if eq.is_some() {
+                free2 += r * r;
+                scale2 += m * m;
+            }
+        }
+        (free2.sqrt(), scale2.sqrt())
+    }
+
+    /// Newton's method on the step's increments, to the residual tolerance. The tangent is assembled and
+    /// factorised at the predictor; later iterates reuse its factors (a simplified Newton step costs a
+    /// residual and a solve) while the residual falls by [`SIMPLIFIED_RATE`] or faster per iteration, and
+    /// the tangent is refreshed at the iterate where it does not. Everything depends on the step's start
+    /// alone, so a resumed run repeats the same iterations.
     fn newton(&mut self, scales: &[f64], time_mid: f64, dt: f64) -> Result<StepReport> {
         let mut residual = f64::INFINITY;
         let mut converged = false;
         let mut iterations = 0;
+        // Whether this iterate's tangent is to be assembled and factorised; the residual of the last correction;
+        // whether that correction reused an earlier iterate's factors; whether a polishing one was made.
+        let mut fresh = true;
+        let mut last = f64::INFINITY;
+        let mut reused = false;
+        let mut polished = false;
         for iteration in 0..=self.options.max_iterations {
             iterations = iteration;
-            self.assemble(scales, time_mid, dt)?;
-            let mut free2 = 0.0;
-            let mut scale2 = 0.0;
-            for ((r, m), eq) in self
-                .assembler
-                .residual
-                .iter()
-                .zip(&self.magnitude)
-                .zip(&self.assembler.dofs.equation)
-            {
-                if eq.is_some() {
-                    free2 += r * r;
-                    scale2 += m * m;
-                }
-            }
-            residual = free2.sqrt();
+            self.assemble(scales, time_mid, dt, fresh)?;
+            let (norm, scale) = self.residual_norms();
+            residual = norm;
             if !residual.is_finite() {
                 break;
             }
-            if residual <= self.options.tolerance * scale2.sqrt() + self.round_off
-                || (iteration > 0 && free2 == 0.0)
+            if residual <= self.options.tolerance * scale + self.round_off
+                || (iteration > 0 && residual == 0.0)
             {
-                converged = true;
-                break;
+                // Full Newton converges quadratically and stops far below the tolerance; the simplified
+                // iteration, linear, just below it. One more correction takes it as far (energy and
+                // momentum balance to round-off as before, at the cost of a residual and a solve).
+                if !reused
+                    || polished
+                    || residual == 0.0
+                    || iteration == self.options.max_iterations
+                {
+                    converged = true;
+                    break;
+                }
+                polished = true;
             }
             if iteration == self.options.max_iterations {
                 break;
             }
-            self.assembler.shift_rotations();
-            if self.assembler.lu.factorise(&self.assembler.values).is_err() {
-                break;
+            if !fresh && residual > SIMPLIFIED_RATE * last {
+                self.assemble(scales, time_mid, dt, true)?;
+                fresh = true;
             }
+            if fresh {
+                self.assembler.shift_rotations();
+                if self.assembler.lu.factorise(&self.assembler.values).is_err() {
+                    break;
+                }
+            }
+            last = residual;
+            reused = !fresh;
+            fresh = false;
             for (r, eq) in self
                 .assembler
                 .residual
@@ -922,10 +994,8 @@ impl Integrator {
                 }
             }
             // A correction at round-off of the increments: the residual cannot fall further.
-            if correction2 <= 1e-30 * size2
-                && residual <= 1e3 * self.options.tolerance * scale2.sqrt()
-            {
-                self.assemble(scales, time_mid, dt)?;
+            if correction2 <= 1e-30 * size2 && residual <= 1e3 * self.options.tolerance * scale {
+                self.assemble(scales, time_mid, dt, false)?;
                 converged = true;
                 iterations += 1;
                 break;
@@ -973,10 +1043,16 @@ impl Integrator {
         }
     }
 
-    /// Residual (all DOFs), tangent (free DOFs), per-DOF magnitude and the step's work, at the current
-    /// increments.
-    fn assemble(&mut self, scales: &[f64], time_mid: f64, dt: f64) -> Result<()> {
-        self.assembler.clear(true);
+    /// Residual (all DOFs), per-DOF magnitude, the step's work and, with `with_tangent`, the tangent (free
+    /// DOFs), at the current increments.
+    fn assemble(
+        &mut self,
+        scales: &[f64],
+        time_mid: f64,
+        dt: f64,
+        with_tangent: bool,
+    ) -> Result<()> {
+        self.assembler.clear(with_tangent);
         self.magnitude.iter_mut().for_each(|m| *m = 0.0);
         let mut work = StepWork::default();
         let model = &self.model;
@@ -1002,7 +1078,7 @@ impl Integrator {
                 &c_t,
                 &c_r,
                 self.options.stress_rule,
-                Some(&mut k),
+                with_tangent.then_some(&mut k),
             );
             self.next_gauss[e] = step.next;
             if let Some(growth) = self.growth.as_mut().filter(|g| g.element == e) {
@@ -1067,21 +1143,27 @@ impl Integrator {
                 let force = length * drag.force;
                 work.supplied += dt * force.dot(&flow);
                 work.dissipated += dt * length * drag.force.dot(&relative);
-                // dF/dΔφ_b for b = 1, 2 (s_b = ∓1): through ℓ and t (via φ′_{n+½}) and the relative flow.
-                let projector = Matrix3::identity() - t * t.transpose();
-                let d_chord = 0.5 * (drag.force * t.transpose() + drag.d_tangent * projector);
-                let d_flow = length * drag.d_flow;
-                let d_depth = 0.25 * d_flow * flow_gradient;
-                let d_velocity = -0.5 / dt * d_flow;
-                let d1 = -d_chord + d_depth + d_velocity;
-                let d2 = d_chord + d_depth + d_velocity;
                 for a in 0..2 {
                     for i in 0..3 {
                         forces[NODE_DOFS * a + i] -= 0.5 * force[i];
                         self.magnitude[base + NODE_DOFS * a + i] += 0.5 * force[i].abs();
-                        for j in 0..3 {
-                            k[(NODE_DOFS * a + i, j)] -= 0.5 * d1[(i, j)];
-                            k[(NODE_DOFS * a + i, NODE_DOFS + j)] -= 0.5 * d2[(i, j)];
+                    }
+                }
+                // dF/dΔφ_b for b = 1, 2 (s_b = ∓1): through ℓ and t (via φ′_{n+½}) and the relative flow.
+                if with_tangent {
+                    let projector = Matrix3::identity() - t * t.transpose();
+                    let d_chord = 0.5 * (drag.force * t.transpose() + drag.d_tangent * projector);
+                    let d_flow = length * drag.d_flow;
+                    let d_depth = 0.25 * d_flow * flow_gradient;
+                    let d_velocity = -0.5 / dt * d_flow;
+                    let d1 = -d_chord + d_depth + d_velocity;
+                    let d2 = d_chord + d_depth + d_velocity;
+                    for a in 0..2 {
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                k[(NODE_DOFS * a + i, j)] -= 0.5 * d1[(i, j)];
+                                k[(NODE_DOFS * a + i, NODE_DOFS + j)] -= 0.5 * d2[(i, j)];
+                            }
                         }
                     }
                 }
@@ -1092,49 +1174,49 @@ impl Integrator {
             {
                 *r += f;
             }
-            self.assembler.add_element_matrix(e, &k);
+            if with_tangent {
+                self.assembler.add_element_matrix(e, &k);
+            }
         }
         for node in 0..model.rod.node_count() {
             let base = NODE_DOFS * node;
             let dphi = Vector3::from_column_slice(&self.increments[base..base + 3]);
             let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
             let mut forces = Vector6::zeros();
-            let mut block = Matrix6::zeros();
             // Translational inertia: M(v_{n+1} − v_n)/Δt with v_{n+1} = 2Δφ/Δt − v_n.
             let mass = self.nodal.mass[node];
             let inertia_force = mass * (2.0 * dphi / dt - 2.0 * state.velocities[node]) / dt;
-            block
-                .fixed_view_mut::<3, 3>(0, 0)
-                .copy_from(&(Matrix3::identity() * (2.0 * mass / (dt * dt))));
             // Rotational inertia in spatial momentum: (π_{n+1} − π_n)/Δt, π_{n+1} = cay(θ)[(2/Δt)I_nθ − π_n].
-            let rotation = state.configuration.rotations[node]
-                .to_rotation_matrix()
-                .into_inner();
-            let inertia_n =
-                rotation * Matrix3::from_diagonal(&self.nodal.inertia[node]) * rotation.transpose();
-            let momentum_n = rotation
-                * self.nodal.inertia[node].component_mul(&state.body_angular_velocities[node]);
+            let NodeStart {
+                inertia: inertia_n,
+                momentum: momentum_n,
+                damping,
+            } = self.node_start[node];
             let q = cayley(&theta);
             let momentum_next = q * (2.0 / dt * inertia_n * theta - momentum_n);
             let mut moment = (momentum_next - momentum_n) / dt;
-            let mut rotation_block =
-                (2.0 / dt * q * inertia_n - skew(&momentum_next) * cayley_tangent(&theta)) / dt;
             // Rotational damping D_R: m = −cθ/Δt, c = Λ_n D Λ_nᵀ.
-            let damping =
-                rotation * Matrix3::from_diagonal(&self.nodal.damping[node]) * rotation.transpose();
             moment += damping * theta / dt;
-            rotation_block += damping / dt;
             work.dissipated += theta.dot(&(damping * theta)) / dt;
-            block
-                .fixed_view_mut::<3, 3>(3, 3)
-                .copy_from(&rotation_block);
             forces.fixed_rows_mut::<3>(0).copy_from(&inertia_force);
             forces.fixed_rows_mut::<3>(3).copy_from(&moment);
             for (i, f) in forces.iter().enumerate() {
                 self.assembler.residual[base + i] += f;
                 self.magnitude[base + i] += f.abs();
             }
-            self.assembler.add_node_matrix(node, &block);
+            if with_tangent {
+                let rotation_block =
+                    (2.0 / dt * q * inertia_n - skew(&momentum_next) * cayley_tangent(&theta)) / dt
+                        + damping / dt;
+                let mut block = Matrix6::zeros();
+                block
+                    .fixed_view_mut::<3, 3>(0, 0)
+                    .copy_from(&(Matrix3::identity() * (2.0 * mass / (dt * dt))));
+                block
+                    .fixed_view_mut::<3, 3>(3, 3)
+                    .copy_from(&rotation_block);
+                self.assembler.add_node_matrix(node, &block);
+            }
         }
         if let Some(mut contact) = self.contact.take() {
             for (node, step) in contact.nodes.iter_mut().enumerate() {
@@ -1152,7 +1234,7 @@ impl Integrator {
             }
             let rule = ContactRule::EnergyMomentum { time_step: dt };
             self.assembler
-                .add_contact(&mut contact, rule, &state.slips, true);
+                .add_contact(&mut contact, rule, &state.slips, with_tangent);
             for (node, force) in contact.forces.iter().enumerate() {
                 for k in 0..3 {
                     self.magnitude[NODE_DOFS * node + k] += force[k].abs();
@@ -1166,7 +1248,7 @@ impl Integrator {
             &state.configuration,
             Some(&self.increments),
             Some(&mut self.magnitude),
-            true,
+            with_tangent,
         );
         for (load, scale) in model.point_loads.iter().zip(scales) {
             let base = NODE_DOFS * load.node;
@@ -1201,6 +1283,7 @@ impl Integrator {
                 &increment,
                 dt,
                 time_mid,
+                with_tangent,
             );
             self.rod_force_at_vessel =
                 Vector6::from_column_slice(&self.assembler.residual[base..base + 6]);
@@ -1208,7 +1291,9 @@ impl Integrator {
                 self.assembler.residual[base + i] += contribution.residual[i];
                 self.magnitude[base + i] += contribution.magnitude[i];
             }
-            self.assembler.add_node_matrix(node, &contribution.tangent);
+            if with_tangent {
+                self.assembler.add_node_matrix(node, &contribution.tangent);
+            }
             work.supplied += contribution.supplied;
             work.dissipated += contribution.dissipated;
             self.vessel_step = Some(contribution);
@@ -1278,5 +1363,112 @@ impl Integrator {
         self.state.time += dt;
         self.supplied_work += self.work.supplied + support_work;
         self.dissipated += self.work.dissipated;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::environment::current::{Current, CurrentProfile};
+    use crate::environment::sea::Sea;
+    use crate::rod::section::Section;
+    use crate::rod::Rod;
+    use std::sync::Arc;
+
+    /// A steel pipe hanging in a sheared current with drag, rotational damping and a top driven in surge and
+    /// heave, after `steps` steps of 0.05 s.
+    fn moving_pipe(steps: usize) -> Integrator {
+        let section = Section::pipe(
+            0.3,
+            0.02,
+            7850.0,
+            207e9,
+            0.3,
+            1025.0,
+            [0.1, 1.2],
+            [0.0, 1.0],
+        )
+        .expect("pipe");
+        let section = Section {
+            rotational_damping: Vector3::new(50.0, 50.0, 50.0),
+            ..section
+        };
+        let rod = Rod::straight(Vector3::zeros(), Vector3::new(0.0, 0.0, -100.0), 8, section)
+            .expect("rod");
+        let current = Current::new(
+            CurrentProfile::Linear {
+                surface: Vector3::new(0.5, -0.8, 0.0),
+            },
+            0.0,
+        )
+        .expect("current");
+        let sea = Sea::new(120.0, 1025.0, Some(current), None).expect("sea");
+        let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
+        model.pin("A", None).expect("pin");
+        model
+            .drive(
+                "B",
+                Arc::new(|t: f64| Ok(Vector3::new(3.0 * (0.8 * t).sin(), 0.0, -100.0))),
+                None,
+                None,
+            )
+            .expect("drive");
+        let state =
+            DynamicState::at_rest(&model, Configuration::reference(&model), 0.0).expect("state");
+        let mut sim = Integrator::new(model, state, DynamicOptions::default()).expect("integrator");
+        for _ in 0..steps {
+            sim.step().expect("step");
+        }
+        sim
+    }
+
+    /// The assembled tangent of a step (elements, inertia, damping, drag in a sheared current) equals central
+    /// differences of the assembled residual, column by column, at an iterate away from the predictor.
+    #[test]
+    fn step_tangent_matches_differences_of_the_residual() {
+        let mut sim = moving_pipe(20);
+        let dt = sim.options.time_step;
+        let time_mid = sim.state.time + 0.5 * dt;
+        let targets = sim
+            .model
+            .support_targets(sim.state.time + dt)
+            .expect("targets");
+        sim.node_start = (0..sim.model.rod.node_count())
+            .map(|node| NodeStart::of(&sim.nodal, &sim.state, node))
+            .collect();
+        sim.predict(&targets, dt);
+        for (dof, increment) in sim.increments.iter_mut().enumerate() {
+            if sim.assembler.dofs.equation[dof].is_some() {
+                *increment += 1e-3 * (dof as f64).sin();
+            }
+        }
+        sim.assemble(&[], time_mid, dt, true).expect("assembly");
+        let tangent = sim.assembler.values.clone();
+        let mut worst: f64 = 0.0;
+        for column in 0..sim.increments.len() {
+            let Some(col) = sim.assembler.dofs.equation[column] else {
+                continue;
+            };
+            let h = 1e-5;
+            let mut residual_at = |step: f64| {
+                sim.increments[column] += step;
+                sim.assemble(&[], time_mid, dt, false).expect("assembly");
+                sim.increments[column] -= step;
+                sim.assembler.residual.clone()
+            };
+            let (plus, minus) = (residual_at(h), residual_at(-h));
+            for (row, eq) in sim.assembler.dofs.equation.iter().enumerate() {
+                let Some(r) = *eq else { continue };
+                let difference = (plus[row] - minus[row]) / (2.0 * h);
+                let entry = sim
+                    .assembler
+                    .lu
+                    .position(r, col)
+                    .map_or(0.0, |p| tangent[p]);
+                // Central differences err by O(h²) relatively and by round-off of the residual (≈ 1e5 N) over h.
+                worst = worst.max((difference - entry).abs() / (entry.abs() + 1e3));
+            }
+        }
+        assert!(worst < 1e-4, "worst relative error {worst:e}");
     }
 }

@@ -1,7 +1,8 @@
 //! LU of the global tangent. The pattern is analysed once; each Newton iteration refactorises numerically
-//! and solves, without allocating. A rod's tangent is a band matrix (each node couples to its neighbours):
-//! with a narrow band ([`BAND_LIMIT`]) the band LU of [`crate::solver::band_lu`] factorises it in
-//! n·kl·(kl + ku) operations. Otherwise faer's sparse LU (symbolic factorisation computed once), or for
+//! and solves, without allocating. A rod's tangent, its unknowns in node order, is block tridiagonal (each
+//! node couples to its neighbours): [`crate::solver::block_lu`] factorises it in fixed-size 6×6 blocks, and
+//! where a diagonal block would need pivoting across blocks, the band LU of [`crate::solver::band_lu`] (in
+//! n·kl·(kl + ku) operations) takes over. Other narrow bands ([`BAND_LIMIT`]) go to the band LU directly. Otherwise faer's sparse LU (symbolic factorisation computed once), or for
 //! small systems faer's dense partial-pivoting LU, whose cost there is a fraction of the sparse
 //! factorisation's bookkeeping.
 //!
@@ -13,6 +14,7 @@
 // Indexing cannot go out of bounds here: Row and column indices of the pattern the solver built.
 #![allow(clippy::indexing_slicing)]
 use crate::solver::band_lu::BandLu;
+use crate::solver::block_lu::BlockTridiagonalLu;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{
     lu_in_place, lu_in_place_scratch, PartialPivLuParams,
@@ -31,6 +33,12 @@ const BAND_LIMIT: usize = 48;
 
 /// The factorisation behind [`SparseLu`].
 enum Factors {
+    /// Block tridiagonal, with the band LU (allocated at its first use) for blocks that need pivoting.
+    Block {
+        blocks: Box<BlockTridiagonalLu>,
+        band: Option<BandLu>,
+        banded: bool,
+    },
     Band(BandLu),
     Sparse {
         symbolic: Box<SymbolicLu<usize>>,
@@ -61,16 +69,30 @@ pub struct SparseLu {
 pub struct Singular;
 
 impl SparseLu {
-    /// A system whose unknowns `border` (sorted, at most six) couple densely to the rest: factorised by block
-    /// elimination around the sparse LU of the others (module docs). The values stay in the whole pattern's
-    /// order.
-    pub fn with_border(
-        size: usize,
+    /// The tangent of a rod whose unknown i sits at node-major position `slots[i]` (6·node + k, increasing):
+    /// block tridiagonal where the pattern is. Unknowns `border` (sorted, at most six) that couple densely to
+    /// the rest are factorised by block elimination around the LU of the others (module docs). The values
+    /// stay in the whole pattern's order.
+    pub fn for_rod(
+        slots: &[usize],
         col_ptr: Vec<usize>,
         row_idx: Vec<usize>,
         border: &[usize],
     ) -> Self {
+        let size = slots.len();
         if border.is_empty() || border.len() > BORDER_MAX || border.len() >= size {
+            if let Some(blocks) = BlockTridiagonalLu::new(slots, &col_ptr, &row_idx) {
+                let mut lu = Self::new(0, vec![0], Vec::new());
+                lu.factors = Factors::Block {
+                    blocks: Box::new(blocks),
+                    band: None,
+                    banded: false,
+                };
+                lu.size = size;
+                lu.col_ptr = col_ptr;
+                lu.row_idx = row_idx;
+                return lu;
+            }
             return Self::new(size, col_ptr, row_idx);
         }
         // The whole pattern is only kept for positions; the factorisation is the border's.
@@ -162,6 +184,20 @@ impl SparseLu {
         let params = Spec::<PartialPivLuParams, f64>::default();
         let stack = MemStack::new(&mut self.factor_scratch);
         let ok = match &mut self.factors {
+            Factors::Block {
+                blocks,
+                band,
+                banded,
+            } => {
+                *banded = blocks.factorise(values).is_err();
+                !*banded || {
+                    let band = band.get_or_insert_with(|| {
+                        let (lower, upper) = BandLu::bandwidths(&self.col_ptr, &self.row_idx);
+                        BandLu::new(self.size, lower, upper)
+                    });
+                    band.factorise(&self.col_ptr, &self.row_idx, values).is_ok()
+                }
+            }
             Factors::Band(band) => band.factorise(&self.col_ptr, &self.row_idx, values).is_ok(),
             Factors::Sparse { symbolic, numeric } => {
                 let pattern = SymbolicSparseColMatRef::new_checked(
@@ -211,7 +247,13 @@ impl SparseLu {
             return border.solve_in_place(rhs);
         }
         let stack = MemStack::new(&mut self.solve_scratch);
-        match &self.factors {
+        match &mut self.factors {
+            Factors::Block {
+                band: Some(band),
+                banded: true,
+                ..
+            } => band.solve_in_place(rhs),
+            Factors::Block { blocks, .. } => blocks.solve_in_place(rhs),
             Factors::Band(band) => band.solve_in_place(rhs),
             Factors::Sparse { symbolic, numeric } => {
                 LuRef::new_unchecked(symbolic, numeric).solve_in_place_with_conj(
@@ -437,7 +479,12 @@ mod tests {
             }
         }
         for mut lu in [
-            SparseLu::with_border(size, col_ptr.clone(), row_idx.clone(), &border),
+            SparseLu::for_rod(
+                &(0..size).collect::<Vec<_>>(),
+                col_ptr.clone(),
+                row_idx.clone(),
+                &border,
+            ),
             SparseLu::new(size, col_ptr.clone(), row_idx.clone()),
         ] {
             let mut x = rhs.clone();

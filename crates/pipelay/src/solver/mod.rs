@@ -2,6 +2,7 @@
 //! energy–momentum time step, what users read off a state, and the record of a run.
 pub mod assembly;
 pub mod band_lu;
+pub mod block_lu;
 pub mod catenary;
 pub mod contact;
 pub mod dynamics;

@@ -307,7 +307,8 @@ impl DynamicVessel<'_> {
         (force, thrust, error)
     }
 
-    /// Residual, tangent and work at increments (Δx, θ) of the end node, whose state at n is given.
+    /// Residual, work and (with `with_tangent`, else zero) tangent at increments (Δx, θ) of the end node,
+    /// whose state at n is given.
     pub fn contribution(
         &self,
         node_position: &Vector3<f64>,
@@ -315,6 +316,7 @@ impl DynamicVessel<'_> {
         increment: &Vector6<f64>,
         dt: f64,
         time_mid: f64,
+        with_tangent: bool,
     ) -> VesselContribution {
         let attachment = self.attachment;
         let waves = self.waves.as_ref();
@@ -380,7 +382,7 @@ impl DynamicVessel<'_> {
         let (step, thrust, error_mid, wave_work) = evaluate(increment);
         // Tangent by forward differences (6 extra evaluations; O(h) accurate, enough for Newton).
         let mut tangent = Matrix6::zeros();
-        for j in 0..6 {
+        for j in (0..6).filter(|_| with_tangent) {
             let h = if j < 3 {
                 1e-7 * (1.0 + increment.fixed_rows::<3>(0).norm())
             } else {
