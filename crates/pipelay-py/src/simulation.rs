@@ -229,7 +229,8 @@ impl Simulation {
     }
 
     /// The integrator's complete state as arrays (time, Δt, positions, quaternions, velocities, body angular
-    /// velocities, Gauss-point rotations and strains, vessel motion): what `checkpoint` writes.
+    /// velocities, the predictor's accelerations, Gauss-point rotations and strains, vessel motion): what
+    /// `checkpoint` writes.
     fn _checkpoint<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let state = self.integrator.state();
         let dict = PyDict::new(py);
@@ -311,6 +312,15 @@ impl Simulation {
             "body_angular_velocities",
             state
                 .body_angular_velocities
+                .iter()
+                .flat_map(|v| v.iter().copied())
+                .collect(),
+            3,
+        )?;
+        rows(
+            "accelerations",
+            state
+                .accelerations
                 .iter()
                 .flat_map(|v| v.iter().copied())
                 .collect(),
@@ -499,6 +509,11 @@ impl Simulation {
             },
             velocities: vectors("velocities", nodes)?,
             body_angular_velocities: vectors("body_angular_velocities", nodes)?,
+            // The predictor's accelerations (checkpoints written before they existed have none).
+            accelerations: match arrays.get_item("accelerations")? {
+                Some(_) => vectors("accelerations", nodes)?,
+                None => vec![Vector3::zeros(); nodes],
+            },
             gauss,
             vessel,
             slips,

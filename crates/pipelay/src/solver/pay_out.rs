@@ -125,6 +125,8 @@ fn split(
     state.configuration.positions.insert(b, position);
     state.configuration.rotations.insert(b, rotation);
     state.velocities.insert(b, velocity);
+    let acceleration = mix3(&state.accelerations[a], &state.accelerations[b]);
+    state.accelerations.insert(b, acceleration);
     state
         .body_angular_velocities
         .insert(b, rotation.inverse() * spin);
@@ -144,6 +146,7 @@ fn join(model: &mut Model, state: &mut DynamicState, first: usize) {
     config.positions.remove(removed);
     config.rotations.remove(removed);
     state.velocities.remove(removed);
+    state.accelerations.remove(removed);
     state.body_angular_velocities.remove(removed);
     state.slips.remove(removed);
     state.gauss.remove(removed);
