@@ -204,8 +204,12 @@ pub fn tangent_right_inv(theta: &Vector3<f64>) -> Matrix3<f64> {
 
 /// Cayley map cay(θ) = (I − ½θ̂)⁻¹(I + ½θ̂) = I + (θ̂ + ½θ̂²)/(1 + |θ|²/4).
 pub fn cayley(theta: &Vector3<f64>) -> Matrix3<f64> {
-    let w = skew(theta);
-    Matrix3::identity() + (w + w * w * 0.5) / (1.0 + 0.25 * theta.norm_squared())
+    // θ̂² = θθᵀ − |θ|²I, written out rather than multiplied.
+    let norm2 = theta.norm_squared();
+    let factor = 1.0 / (1.0 + 0.25 * norm2);
+    let w = skew(theta) * factor;
+    let half = 0.5 * factor;
+    Matrix3::identity() * (1.0 - half * norm2) + w + theta * theta.transpose() * half
 }
 
 /// The Cayley parameter θ of a rotation: cay(θ) = R (quaternion (w, v) ↦ 2v/w).

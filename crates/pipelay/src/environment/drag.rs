@@ -32,10 +32,22 @@ pub fn morison_drag(u: &Vector3<f64>, t: &Vector3<f64>, k_axial: f64, k_normal: 
     let g_n = quadratic_jacobian(&u_n) * k_normal;
     let tt = t * t.transpose();
     Drag {
-        force: u_t * (k_axial * u_t.norm()) + u_n * (k_normal * u_n.norm()),
+        force: morison_force(u, t, k_axial, k_normal),
         d_flow: g_t * tt + g_n * (Matrix3::identity() - tt),
         d_tangent: (g_t - g_n) * (t * u.transpose() + Matrix3::identity() * t.dot(u)),
     }
+}
+
+/// The force of [`morison_drag`] alone, f = k_a|u_t|u_t + k_n|u_n|u_n (N/m).
+pub fn morison_force(
+    u: &Vector3<f64>,
+    t: &Vector3<f64>,
+    k_axial: f64,
+    k_normal: f64,
+) -> Vector3<f64> {
+    let u_t = t * t.dot(u);
+    let u_n = u - u_t;
+    u_t * (k_axial * u_t.norm()) + u_n * (k_normal * u_n.norm())
 }
 
 /// Nodal drag forces of one element held still in a steady current (statics), and their derivatives:

@@ -16,7 +16,7 @@
 //! axial added mass of a pipe).
 // Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
 #![allow(clippy::indexing_slicing)]
-use crate::environment::drag::morison_drag;
+use crate::environment::drag::{morison_drag, morison_force};
 use crate::error::{positive, Error, Result};
 use crate::model::Model;
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
@@ -1166,10 +1166,10 @@ impl Integrator {
                 }
                 let velocity = 0.5 * (dphi1 + dphi2) / dt;
                 let relative = flow - velocity;
-                let drag = morison_drag(&relative, &t, k_axial, k_normal);
-                let force = length * drag.force;
+                let drag_force = morison_force(&relative, &t, k_axial, k_normal);
+                let force = length * drag_force;
                 work.supplied += dt * force.dot(&flow);
-                work.dissipated += dt * length * drag.force.dot(&relative);
+                work.dissipated += dt * length * drag_force.dot(&relative);
                 for a in 0..2 {
                     for i in 0..3 {
                         forces[NODE_DOFS * a + i] -= 0.5 * force[i];
@@ -1178,6 +1178,7 @@ impl Integrator {
                 }
                 // dF/dΔφ_b for b = 1, 2 (s_b = ∓1): through ℓ and t (via φ′_{n+½}) and the relative flow.
                 if with_tangent {
+                    let drag = morison_drag(&relative, &t, k_axial, k_normal);
                     let projector = Matrix3::identity() - t * t.transpose();
                     let d_chord = 0.5 * (drag.force * t.transpose() + drag.d_tangent * projector);
                     let d_flow = length * drag.d_flow;
