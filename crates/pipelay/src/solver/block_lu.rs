@@ -48,7 +48,7 @@ pub struct BlockTridiagonalLu {
     /// Block entries no value lands on (block, entry, value): the identity of prescribed DOFs, zeros.
     constants: Vec<(u32, u8, f64)>,
     /// Blocks ordered [D | L | U], each by node: D_i, then the LU factors of S_i in place (unit lower
-    /// triangle below the diagonal); L_i = A_i,i−1; U_i = A_i,i+1, then X_i = S_i⁻¹U_i.
+    /// triangle below the diagonal); L_i = A_i,i−1; U_i = A_i,i+1, then X_i = S_i⁻¹U_i (row-major).
     blocks: Vec<Block>,
     /// Row interchanged with row k at step k of block i's LU.
     pivots: Vec<[u8; 6]>,
@@ -140,7 +140,8 @@ impl BlockTridiagonalLu {
             }
             factorise_block(&mut diagonal[i], &mut self.pivots[i])?;
             if i + 1 < n {
-                solve_block_columns(&diagonal[i], &self.pivots[i], &mut upper[i]);
+                transpose(&mut upper[i]);
+                solve_block_rows(&diagonal[i], &self.pivots[i], &mut upper[i]);
             }
         }
         Ok(())
@@ -164,7 +165,7 @@ impl BlockTridiagonalLu {
         }
         for i in (0..n.saturating_sub(1)).rev() {
             let next = self.work[i + 1];
-            subtract_product_vector(&mut self.work[i], &solved[i], &next);
+            subtract_row_major_product_vector(&mut self.work[i], &solved[i], &next);
         }
         for (&slot, value) in self.slots.iter().zip(rhs.iter_mut()) {
             *value = self.work[slot / 6][slot % 6];
@@ -229,44 +230,67 @@ fn solve_block(factors: &Block, pivots: &[u8; 6], x: &mut [f64; 6]) {
     }
 }
 
-/// B ← S⁻¹B with the factors of [`factorise_block`], the six columns side by side.
-fn solve_block_columns(factors: &Block, pivots: &[u8; 6], b: &mut Block) {
-    for (k, &pivot) in pivots.iter().enumerate().filter(|(k, &p)| p as usize != *k) {
-        for j in 0..6 {
-            b.swap(6 * j + k, 6 * j + pivot as usize);
+/// Transposes a block in place (column-major ↔ row-major).
+fn transpose(b: &mut Block) {
+    for j in 0..6 {
+        for i in j + 1..6 {
+            b.swap(6 * j + i, 6 * i + j);
         }
     }
+}
+
+/// B ← S⁻¹B for B row-major (row r at 6r), with the factors of [`factorise_block`]: the row operations of
+/// the substitutions act on whole rows of six.
+fn solve_block_rows(factors: &Block, pivots: &[u8; 6], b: &mut Block) {
+    let mut rows = [[0.0; 6]; 6];
+    for (r, row) in rows.iter_mut().enumerate() {
+        row.copy_from_slice(&b[6 * r..6 * r + 6]);
+    }
+    for (k, &pivot) in pivots.iter().enumerate() {
+        rows.swap(k, pivot as usize);
+    }
     for k in 0..6 {
+        let pivot_row = rows[k];
         for i in k + 1..6 {
             let multiplier = factors[6 * k + i];
-            for j in 0..6 {
-                b[6 * j + i] -= multiplier * b[6 * j + k];
+            for (entry, top) in rows[i].iter_mut().zip(&pivot_row) {
+                *entry -= multiplier * top;
             }
         }
     }
     for k in (0..6).rev() {
         let reciprocal = factors[6 * k + k];
-        for j in 0..6 {
-            b[6 * j + k] *= reciprocal;
-        }
+        rows[k].iter_mut().for_each(|entry| *entry *= reciprocal);
+        let pivot_row = rows[k];
         for i in 0..k {
             let multiplier = factors[6 * k + i];
-            for j in 0..6 {
-                b[6 * j + i] -= multiplier * b[6 * j + k];
+            for (entry, top) in rows[i].iter_mut().zip(&pivot_row) {
+                *entry -= multiplier * top;
+            }
+        }
+    }
+    for (r, row) in rows.iter().enumerate() {
+        b[6 * r..6 * r + 6].copy_from_slice(row);
+    }
+}
+
+/// S ← S − L X with X row-major.
+fn subtract_product(s: &mut Block, l: &Block, x: &Block) {
+    for j in 0..6 {
+        for k in 0..6 {
+            let factor = x[6 * k + j];
+            for i in 0..6 {
+                s[6 * j + i] -= l[6 * k + i] * factor;
             }
         }
     }
 }
 
-/// S ← S − L X.
-fn subtract_product(s: &mut Block, l: &Block, x: &Block) {
-    for j in 0..6 {
-        for k in 0..6 {
-            let factor = x[6 * j + k];
-            for i in 0..6 {
-                s[6 * j + i] -= l[6 * k + i] * factor;
-            }
-        }
+/// y ← y − X v with X row-major.
+fn subtract_row_major_product_vector(y: &mut [f64; 6], x: &Block, v: &[f64; 6]) {
+    for (i, entry) in y.iter_mut().enumerate() {
+        let row = &x[6 * i..6 * i + 6];
+        *entry -= row.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
     }
 }
 
