@@ -696,11 +696,13 @@ class Model:
     def drive(
         self,
         end: _End,
-        position: Callable[[float], _ArrayLike],
-        velocity: Callable[[float], _ArrayLike] | None = None,
+        position: Callable[[float], _ArrayLike] | _ArrayLike,
+        velocity: Callable[[float], _ArrayLike] | _ArrayLike | None = None,
         rotation: Callable[[float], _ArrayLike] | None = None,
     ) -> None:
-        """Drive an end: position(t) (m), initial velocity(t) (m/s), rotation(t) (3, 3); free rotation without it."""
+        """Drive an end: position(t) (m), initial velocity(t) (m/s), rotation(t) (3, 3); free rotation without it.
+        position and velocity may be tables of rows [t, x, y, z] (interpolated in the engine, no Python per
+        step); a position table's slope is then the default velocity."""
     def attach_vessel(
         self,
         end: _End,
@@ -716,8 +718,11 @@ class Model:
         held by lay equipment (`lay`)."""
     def simulation(self, state: State | None = None, dt: float = 0.05) -> Simulation:
         """A time simulation from `state` (default: self.static()) with time step `dt` (s)."""
-    def pay_out(self, end: _End = "B", speed: float | Callable[[float], float] | None = None) -> None:
-        """Pay pipe out (speed > 0, m/s) or in (< 0) at the vessel's or a driven end during a simulation."""
+    def pay_out(
+        self, end: _End = "B", speed: float | Callable[[float], float] | _ArrayLike | None = None
+    ) -> None:
+        """Pay pipe out (speed > 0, m/s) or in (< 0) at the vessel's or a driven end during a simulation; speed:
+        a number, a callable of t or a table of rows [t, speed]."""
     def point_load(
         self,
         node: int | _End,

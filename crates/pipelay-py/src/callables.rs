@@ -110,6 +110,32 @@ pub fn scalar_function(
     Ok(wrap(callable.clone().unbind(), argument, scalar))
 }
 
+/// A table of rows [t, `width` values] (shape (k, 1 + width)) given where a function of time may be, or `None`
+/// if `value` is callable.
+pub fn table(
+    value: &Bound<'_, PyAny>,
+    argument: &str,
+    width: usize,
+) -> PyResult<Option<pipelay::table::Table>> {
+    if value.is_callable() {
+        return Ok(None);
+    }
+    let wrong = || {
+        crate::errors::input(
+            argument,
+            value.repr().map_or("?".into(), |r| r.to_string()),
+            &format!("must be a callable of time t (s) or a table of rows [t, {width} values]"),
+        )
+    };
+    let (rows, shape) = crate::convert::float_array(value, argument).map_err(|_| wrong())?;
+    if shape.len() != 2 || shape[1] != width + 1 {
+        return Err(wrong());
+    }
+    pipelay::table::Table::new(argument, &rows, width)
+        .map(Some)
+        .map_err(crate::errors::to_py)
+}
+
 fn check_callable(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<()> {
     if value.is_callable() {
         Ok(())

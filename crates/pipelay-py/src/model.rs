@@ -1,5 +1,5 @@
 //! Python classes Model and State: supports, loads, the static solve and its results.
-use crate::callables::{matrix_function, scalar_function, vector_function};
+use crate::callables::{matrix_function, scalar_function, table, vector_function};
 use crate::convert::{array, matrix3, vector3};
 use crate::errors::{input, to_py};
 use crate::state::State;
@@ -56,6 +56,8 @@ impl Model {
 
     /// Drives end "A" or "B": `position(t)` (3,) (m), optional `velocity(t)` (3,) (m/s, the initial velocity
     /// of the node; default zero) and `rotation(t)` (3, 3); without `rotation` the end turns freely.
+    /// `position` and `velocity` may also be tables of rows [t, x, y, z], interpolated linearly in the engine
+    /// (no Python call per step); a position table's slope is the default velocity.
     #[pyo3(signature = (end, position, velocity=None, rotation=None))]
     fn drive(
         &mut self,
@@ -64,10 +66,20 @@ impl Model {
         velocity: Option<&Bound<'_, PyAny>>,
         rotation: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let position = vector_function(position, "position")?;
-        let velocity = velocity
-            .map(|v| vector_function(v, "velocity"))
-            .transpose()?;
+        let (position, slope) = match table(position, "position", 3)? {
+            Some(table) => {
+                let (position, slope) = table.vector();
+                (position, Some(slope))
+            }
+            None => (vector_function(position, "position")?, None),
+        };
+        let velocity = match velocity {
+            Some(v) => Some(match table(v, "velocity", 3)? {
+                Some(table) => table.vector().0,
+                None => vector_function(v, "velocity")?,
+            }),
+            None => slope,
+        };
         let rotation = rotation
             .map(|r| matrix_function(r, "rotation"))
             .transpose()?;
@@ -76,8 +88,8 @@ impl Model {
             .map_err(to_py)
     }
 
-    /// Pays pipe out at `end` ("A" or "B") during a simulation at `speed` (m/s of unstretched pipe; a number or
-    /// a callable of t; negative pays in). The end must be held by the vessel (through its tensioner or tower)
+    /// Pays pipe out at `end` ("A" or "B") during a simulation at `speed` (m/s of unstretched pipe; a number, a
+    /// callable of t or a table of rows [t, speed] interpolated in the engine; negative pays in). The end must be held by the vessel (through its tensioner or tower)
     /// or driven; new elements have the end element's present length.
     #[pyo3(signature = (end="B", speed=None))]
     fn pay_out(&mut self, end: &str, speed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
@@ -85,21 +97,15 @@ impl Model {
             return Err(input(
                 "speed",
                 "missing",
-                "must be given: a number (m/s) or a callable of t",
+                "must be given: a number (m/s), a callable of t or a table of rows [t, speed]",
             ));
         };
         let speed = match speed.extract::<f64>() {
             Ok(v) => PayOutSpeed::Constant(v),
-            Err(_) if speed.is_callable() => {
-                PayOutSpeed::Function(scalar_function(speed, "speed")?)
-            }
-            Err(_) => {
-                return Err(input(
-                    "speed",
-                    speed.repr().map_or("?".into(), |r| r.to_string()),
-                    "must be a number (m/s) or a callable of t",
-                ))
-            }
+            Err(_) => PayOutSpeed::Function(match table(speed, "speed", 1)? {
+                Some(table) => table.scalar(),
+                None => scalar_function(speed, "speed")?,
+            }),
         };
         self.0.pay_out(end, speed).map_err(to_py)
     }

@@ -1,7 +1,8 @@
 //! pipelay engine: geometrically exact (Simo–Reissner) rods for offshore pipelay analysis.
 //!
 //! The folders show the architecture, bottom up:
-//! - [`so3`] (rotations), [`error`] and [`memory`]: what every layer uses;
+//! - [`so3`] (rotations), [`error`], [`memory`], [`smooth`] and [`table`] (functions of time as tables): what
+//!   every layer uses;
 //! - [`rod`]: the cross-section, the stress-free reference and the element (statics and dynamics);
 //! - [`environment`]: the sea, its current and Morison drag;
 //! - [`vessel`]: the DP vessel as a rigid body, its Euler angles, its coupling to the pipe and its control;
@@ -24,6 +25,7 @@ pub mod rod;
 pub mod smooth;
 pub mod so3;
 pub mod solver;
+pub mod table;
 pub mod vessel;
 
 pub use error::{Error, Result};
