@@ -41,6 +41,8 @@ pub struct DofMap {
     pub equation: Vec<Option<usize>>,
     /// Number of free DOFs.
     pub free: usize,
+    /// The global DOF of each equation (increasing: equations are numbered in node order).
+    pub free_dofs: Vec<usize>,
 }
 
 impl DofMap {
@@ -62,7 +64,12 @@ impl DofMap {
                 })
             })
             .collect();
-        DofMap { equation, free }
+        let free_dofs = (0..fixed.len()).filter(|&dof| !fixed[dof]).collect();
+        DofMap {
+            equation,
+            free,
+            free_dofs,
+        }
     }
 }
 
@@ -259,10 +266,7 @@ impl Assembler {
                 .collect(),
             _ => Vec::new(),
         };
-        let slots: Vec<usize> = (0..dofs.equation.len())
-            .filter(|&dof| dofs.equation[dof].is_some())
-            .collect();
-        let lu = SparseLu::for_rod(&slots, col_ptr, row_idx, &border);
+        let lu = SparseLu::for_rod(&dofs.free_dofs, col_ptr, row_idx, &border);
         let scatter = ScatterMap::new((0..elements).map(|e| {
             let mut map = [FIXED; 144];
             for j in 0..12 {

@@ -917,17 +917,9 @@ impl Integrator {
     fn residual_norms(&self) -> (f64, f64) {
         let mut free2 = 0.0;
         let mut scale2 = 0.0;
-        for ((r, m), eq) in self
-            .assembler
-            .residual
-            .iter()
-            .zip(&self.magnitude)
-            .zip(&self.assembler.dofs.equation)
-        {
-            if eq.is_some() {
-                free2 += r * r;
-                scale2 += m * m;
-            }
+        for &dof in &self.assembler.dofs.free_dofs {
+            free2 += self.assembler.residual[dof].powi(2);
+            scale2 += self.magnitude[dof].powi(2);
         }
         (free2.sqrt(), scale2.sqrt())
     }
@@ -990,15 +982,12 @@ impl Integrator {
             // The forces, hence the tangent, change over this correction by about the relative residual at
             // the factorised iterate: the contraction a simplified iteration would achieve.
             fresh = factorised_at > REUSE_BELOW;
-            for (r, eq) in self
-                .assembler
-                .residual
-                .iter()
-                .zip(&self.assembler.dofs.equation)
+            for (correction, &dof) in self
+                .correction
+                .iter_mut()
+                .zip(&self.assembler.dofs.free_dofs)
             {
-                if let Some(i) = eq {
-                    self.correction[*i] = -r;
-                }
+                *correction = -self.assembler.residual[dof];
             }
             if self
                 .assembler
@@ -1010,12 +999,10 @@ impl Integrator {
             }
             let mut correction2 = 0.0;
             let mut size2 = 0.0;
-            for (dof, eq) in self.assembler.dofs.equation.iter().enumerate() {
-                if let Some(i) = eq {
-                    self.increments[dof] += self.correction[*i];
-                    correction2 += self.correction[*i].powi(2);
-                    size2 += self.increments[dof].powi(2);
-                }
+            for (correction, &dof) in self.correction.iter().zip(&self.assembler.dofs.free_dofs) {
+                self.increments[dof] += correction;
+                correction2 += correction.powi(2);
+                size2 += self.increments[dof].powi(2);
             }
             // A correction at round-off of the increments: the residual cannot fall further.
             if correction2 <= 1e-30 * size2 && residual <= 1e3 * self.options.tolerance * scale {
