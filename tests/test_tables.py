@@ -56,7 +56,7 @@ def test_a_pay_out_speed_table_equals_the_callable_speed() -> None:
     [
         (
             [[0.0, 1.0, 2.0]],
-            r"position: .*must be a callable of time t \(s\) or a table of rows \[t, 3 values\]",
+            r"position: must be a callable of time t \(s\) or a table of rows \[t, x, y, z\]",
         ),
         ([[0.0, 10, 0, 0]], r"position: .*at least two rows"),
         (
@@ -81,3 +81,13 @@ def test_a_run_past_the_end_of_a_table_stops_with_an_input_error_and_keeps_its_r
     with pytest.raises(pl.InputError, match=message) as failure:
         sim.run(2.0, progress=False)
     assert len(failure.value.results) == 5  # t = 0 … 1.0
+
+
+def test_bad_pay_out_speed_tables_are_input_errors() -> None:
+    model = _hanging()
+    with pytest.raises(
+        pl.InputError, match=r"speed: must increase strictly from row to row, got times 1 then 1 s"
+    ):
+        model.pay_out("B", speed=[[0.0, 0.1], [1.0, 0.2], [1.0, 0.3]])
+    with pytest.raises(pl.InputError, match=r"speed: must be a number \(m/s\), a callable of t or a table"):
+        model.pay_out("B", speed=[[0.0, 0.1, 0.2], [1.0, 0.2, 0.3]])

@@ -111,11 +111,12 @@ pub fn scalar_function(
 }
 
 /// A table of rows [t, `width` values] (shape (k, 1 + width)) given where a function of time may be, or `None`
-/// if `value` is callable.
+/// if `value` is callable; `allowed` says what the argument may be, for the error.
 pub fn table(
     value: &Bound<'_, PyAny>,
     argument: &str,
     width: usize,
+    allowed: &str,
 ) -> PyResult<Option<pipelay::table::Table>> {
     if value.is_callable() {
         return Ok(None);
@@ -124,7 +125,7 @@ pub fn table(
         crate::errors::input(
             argument,
             value.repr().map_or("?".into(), |r| r.to_string()),
-            &format!("must be a callable of time t (s) or a table of rows [t, {width} values]"),
+            allowed,
         )
     };
     let (rows, shape) = crate::convert::float_array(value, argument).map_err(|_| wrong())?;

@@ -66,7 +66,8 @@ impl Model {
         velocity: Option<&Bound<'_, PyAny>>,
         rotation: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let (position, slope) = match table(position, "position", 3)? {
+        const ALLOWED: &str = "must be a callable of time t (s) or a table of rows [t, x, y, z]";
+        let (position, slope) = match table(position, "position", 3, ALLOWED)? {
             Some(table) => {
                 let (position, slope) = table.vector();
                 (position, Some(slope))
@@ -74,7 +75,7 @@ impl Model {
             None => (vector_function(position, "position")?, None),
         };
         let velocity = match velocity {
-            Some(v) => Some(match table(v, "velocity", 3)? {
+            Some(v) => Some(match table(v, "velocity", 3, ALLOWED)? {
                 Some(table) => table.vector().0,
                 None => vector_function(v, "velocity")?,
             }),
@@ -93,19 +94,22 @@ impl Model {
     /// or driven; new elements have the end element's present length.
     #[pyo3(signature = (end="B", speed=None))]
     fn pay_out(&mut self, end: &str, speed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+        const ALLOWED: &str = "a number (m/s), a callable of t or a table of rows [t, speed]";
         let Some(speed) = speed else {
             return Err(input(
                 "speed",
                 "missing",
-                "must be given: a number (m/s), a callable of t or a table of rows [t, speed]",
+                &format!("must be given: {ALLOWED}"),
             ));
         };
         let speed = match speed.extract::<f64>() {
             Ok(v) => PayOutSpeed::Constant(v),
-            Err(_) => PayOutSpeed::Function(match table(speed, "speed", 1)? {
-                Some(table) => table.scalar(),
-                None => scalar_function(speed, "speed")?,
-            }),
+            Err(_) => PayOutSpeed::Function(
+                match table(speed, "speed", 1, &format!("must be {ALLOWED}"))? {
+                    Some(table) => table.scalar(),
+                    None => scalar_function(speed, "speed")?,
+                },
+            ),
         };
         self.0.pay_out(end, speed).map_err(to_py)
     }
