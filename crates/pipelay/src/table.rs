@@ -56,11 +56,14 @@ impl Table {
     /// of the error (its caller names the argument and the time).
     fn segment(&self, time: f64) -> std::result::Result<(usize, f64), String> {
         let (first, last) = (self.times[0], self.times[self.times.len() - 1]);
-        if !(first..=last).contains(&time) {
+        // A run's time is a sum of steps: it may pass the last sample by round-off.
+        let slack = 1e-9 * (last - first);
+        if !(first - slack..=last + slack).contains(&time) {
             return Err(format!(
                 "must lie within the table's times [{first}, {last}] s"
             ));
         }
+        let time = time.clamp(first, last);
         // The last k with t_k ≤ time, kept below the last row so that the segment exists.
         let k = self
             .times
@@ -145,6 +148,8 @@ mod tests {
             .expect("table")
             .scalar();
         assert_eq!(speed(5.0), Ok(1.5));
+        // Round-off of a summed time past the end is the end.
+        assert_eq!(speed(10.0 + 1e-12), Ok(2.0));
         let outside = speed(10.5).expect_err("outside");
         assert_eq!(outside, "must lie within the table's times [0, 10] s");
     }

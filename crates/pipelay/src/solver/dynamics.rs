@@ -17,6 +17,7 @@
 // Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
 #![allow(clippy::indexing_slicing)]
 use crate::environment::drag::{morison_drag, morison_force};
+use crate::environment::waves::Kinematics;
 use crate::error::{positive, Error, Result};
 use crate::model::Model;
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
@@ -38,11 +39,13 @@ use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 /// Newton); a slower fall refreshes the tangent.
 const SIMPLIFIED_RATE: f64 = 0.1;
 
-/// Largest relative residual (residual over the force scale) at an iterate whose factorisation later
-/// iterations may reuse. Over a correction the forces, hence the tangent, change by about that relative
-/// amount, which is the contraction a simplified iteration then achieves: on the driven hanging line at
-/// n = 1000 the predictor's relative residual is 0.1–0.4 and the simplified correction after it cut the
-/// residual by only 0.3–0.4. Tuned on that line and the paper's scenario (0.001–0.03 within 3 %).
+/// Largest relative residual (residual over the force scale) at an iterate whose block-tridiagonal
+/// factorisation later iterations may reuse. Over a correction the forces, hence the tangent, change by about
+/// that relative amount, which is the contraction a simplified iteration then achieves: on the driven hanging
+/// line at n = 1000 the predictor's relative residual is 0.1–0.4 and the simplified correction after it cut
+/// the residual by only 0.3–0.4 (0.01: 2.9 ms per step; 1: 4.0 ms). Where the factorisation is the bordered
+/// or sparse one (rollers), several times an assembly's cost, a simplified correction is always tried first:
+/// the S-lay example at n = 1000 takes 7.5 ms per step so, 11.1 ms with 0.01.
 const REUSE_BELOW: f64 = 0.01;
 
 /// Fraction of the tolerance below which a converged iterate needs no polishing correction.
@@ -340,6 +343,9 @@ pub struct Integrator {
     nodal: NodalProperties,
     /// Each node's inertia and damping at the current step's start.
     node_start: Vec<NodeStart>,
+    /// The waves' kinematics at each element's midpoint in the current step (at the predictor), as far as
+    /// computed.
+    wave_kinematics: Vec<Kinematics>,
     /// Unknowns of the current step on all DOFs: [Δφ_I, θ_I].
     increments: Vec<f64>,
     /// Newton correction on the free DOFs.
@@ -443,6 +449,7 @@ impl Integrator {
             assembler,
             nodal,
             node_start: vec![NodeStart::default(); count],
+            wave_kinematics: Vec::new(),
             model,
             options,
             state,
@@ -776,6 +783,7 @@ impl Integrator {
                 .map(|node| NodeStart::of(&self.nodal, &self.state, node)),
         );
         self.predict(&targets, dt);
+        self.wave_kinematics.clear();
         let outcome = self.newton(&scales, time_mid, dt);
         if outcome.is_err() {
             self.undo_growth();
@@ -981,7 +989,7 @@ impl Integrator {
             last = residual;
             // The forces, hence the tangent, change over this correction by about the relative residual at
             // the factorised iterate: the contraction a simplified iteration would achieve.
-            fresh = factorised_at > REUSE_BELOW;
+            fresh = self.assembler.lu.is_block_tridiagonal() && factorised_at > REUSE_BELOW;
             for (correction, &dof) in self
                 .correction
                 .iter_mut()
@@ -1116,10 +1124,17 @@ impl Integrator {
             let positions = &state.configuration.positions;
             // The waves at the element's midpoint, and their Froude–Krylov and added-mass load
             // (1 + C_a) ρ A u̇ (isotropic, as the added mass), whose work is supplied.
+            // They are taken at the predictor's midpoint, once per step: the sum over the sea's components
+            // costs more than the rest of the element, and the position error is the predictor's, O(Δt³).
             let waves = match (&model.waves, &model.sea) {
                 (Some(waves), Some(sea)) => {
-                    let midpoint = 0.5 * (positions[e] + positions[e + 1]) + 0.25 * (dphi1 + dphi2);
-                    let kinematics = waves.kinematics(&midpoint, time_mid);
+                    if self.wave_kinematics.len() <= e {
+                        let midpoint =
+                            0.5 * (positions[e] + positions[e + 1]) + 0.25 * (dphi1 + dphi2);
+                        self.wave_kinematics
+                            .push(waves.kinematics(&midpoint, time_mid));
+                    }
+                    let kinematics = self.wave_kinematics[e];
                     let inertia = (1.0 + section.added_mass[1])
                         * sea.density
                         * section.displaced_area
@@ -1144,12 +1159,11 @@ impl Integrator {
                 let z_mid =
                     0.5 * (positions[e].z + positions[e + 1].z) + 0.25 * (dphi1.z + dphi2.z);
                 let (current, current_shear) = sea.current_at(z_mid, time_mid);
-                // ∂U/∂x at the midpoint: the current's shear with depth and the waves' gradient.
-                let mut flow_gradient = current_shear * Vector3::z().transpose();
+                // ∂U/∂x at the midpoint: the current's shear with depth (the waves are held over the step).
+                let flow_gradient = current_shear * Vector3::z().transpose();
                 let mut flow = current;
                 if let Some(kinematics) = &waves {
                     flow += kinematics.velocity;
-                    flow_gradient += kinematics.velocity_gradient;
                 }
                 let velocity = 0.5 * (dphi1 + dphi2) / dt;
                 let relative = flow - velocity;

@@ -162,6 +162,11 @@ impl SparseLu {
         }
     }
 
+    /// Whether the factorisation is the block-tridiagonal one, whose cost is about an assembly's.
+    pub fn is_block_tridiagonal(&self) -> bool {
+        self.border.is_none() && matches!(self.factors, Factors::Block { .. })
+    }
+
     /// Number of stored entries.
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
