@@ -39,5 +39,6 @@ bench: $(STAMP)
 	$(BIN)/python benches/seabed_cost.py
 	$(BIN)/python benches/seabed_statics.py
 	$(BIN)/python benches/lay_cost.py
+	$(BIN)/python benches/full_cost.py
 	$(BIN)/python benches/pay_out_rollers.py
 	$(BIN)/python benches/memory.py
