@@ -350,13 +350,20 @@ impl DynamicVessel<'_> {
             co_increment.fixed_rows_mut::<3>(3).copy_from(&theta_body);
             let position_mid = position + 0.5 * dx;
             let body_mid = cayley(&(0.5 * theta_body)) * body;
+            // The thrust and the controller's error of the body force vessel_step evaluates (once).
+            let control = std::cell::Cell::new((Vector6::zeros(), Vector6::zeros()));
             let mut step = vessel_step(
                 &attachment.vessel,
                 &state,
                 &co_increment,
                 dt,
                 attachment.surface,
-                &|v| self.body_force(&position_mid, &body_mid, v, time_mid, dt).0,
+                &|v| {
+                    let (force, thrust, error) =
+                        self.body_force(&position_mid, &body_mid, v, time_mid, dt);
+                    control.set((thrust, error));
+                    force
+                },
             );
             let force = step.residual.fixed_rows::<3>(0).into_owned();
             let mut moment = step.residual.fixed_rows::<3>(3).into_owned();
@@ -375,8 +382,7 @@ impl DynamicVessel<'_> {
             for k in 3..6 {
                 step.magnitude[k] += force_scale;
             }
-            let (_, thrust, error) =
-                self.body_force(&position_mid, &body_mid, &step.velocity_mid, time_mid, dt);
+            let (thrust, error) = control.get();
             (step, thrust, error, wave_work)
         };
         let (step, thrust, error_mid, wave_work) = evaluate(increment);
