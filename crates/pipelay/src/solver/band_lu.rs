@@ -164,6 +164,7 @@ impl BandLu {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solver::test_support::solve_error;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -202,16 +203,7 @@ mod tests {
             assert_eq!(BandLu::bandwidths(&col_ptr, &row_idx), (lower, upper));
             let mut lu = BandLu::new(n, lower, upper);
             lu.factorise(&col_ptr, &row_idx, &values).unwrap();
-            let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin() + 0.5).collect();
-            let mut b: Vec<f64> = (0..n)
-                .map(|i| (0..n).map(|j| dense[i * n + j] * x[j]).sum())
-                .collect();
-            lu.solve_in_place(&mut b);
-            let error = b
-                .iter()
-                .zip(&x)
-                .map(|(a, e)| (a - e).abs())
-                .fold(0.0, f64::max);
+            let error = solve_error(&dense, n, |b| lu.solve_in_place(b));
             assert!(error < 1e-9, "n = {n}: error {error:e}");
         }
     }

@@ -306,6 +306,7 @@ fn subtract_product_vector(y: &mut [f64; 6], l: &Block, v: &[f64; 6]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solver::test_support::solve_error;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -353,16 +354,7 @@ mod tests {
             let n = slots.len();
             let mut lu = BlockTridiagonalLu::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
             lu.factorise(&values).expect("regular");
-            let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin() + 0.5).collect();
-            let mut b: Vec<f64> = (0..n)
-                .map(|i| (0..n).map(|j| dense[i * n + j] * x[j]).sum())
-                .collect();
-            lu.solve_in_place(&mut b);
-            let error = b
-                .iter()
-                .zip(&x)
-                .map(|(a, e)| (a - e).abs())
-                .fold(0.0, f64::max);
+            let error = solve_error(&dense, n, |b| lu.solve_in_place(b));
             assert!(error < 1e-10, "{nodes} nodes: error {error:e}");
         }
     }

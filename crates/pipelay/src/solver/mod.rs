@@ -15,3 +15,5 @@ pub mod pay_out;
 pub mod response;
 pub mod rollers;
 pub mod statics;
+#[cfg(test)]
+mod test_support;
