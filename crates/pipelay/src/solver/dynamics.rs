@@ -933,9 +933,11 @@ impl Integrator {
     }
 
     /// Newton's method on the step's increments, to the residual tolerance. The tangent is assembled and
-    /// factorised at the predictor; later iterates reuse its factors (a simplified Newton step costs a
+    /// factorised at the predictor; later iterates reuse the last factors (a simplified Newton step costs a
     /// residual and a solve) while the residual falls by [`SIMPLIFIED_RATE`] or faster per iteration, and
-    /// the tangent is refreshed at the iterate where it does not. Everything depends on the step's start
+    /// the tangent is refreshed at the iterate where it does not, or, for a block-tridiagonal factorisation,
+    /// where the residual at the factorised iterate exceeded [`REUSE_BELOW`]. A converged iterate above
+    /// [`POLISHED_BELOW`] of the tolerance gets one more correction. Everything depends on the step's start
     /// alone, so a resumed run repeats the same iterations.
     fn newton(&mut self, scales: &[f64], time_mid: f64, dt: f64) -> Result<StepReport> {
         let mut residual = f64::INFINITY;
