@@ -236,6 +236,13 @@ class Choice(Value):
         return f"must be {self.allowed()}, got {show(value)}{hint}"
 
 
+def _indexed(container: Value, item: Value, loc: tuple[Any, ...]) -> list[tuple[str, Value]]:
+    """`Value.locate` of a list of `item`s: the list, then what `item` passes at index `loc[0]` (`[i]...`)."""
+    if not loc:
+        return [("", container)]
+    return [("", container), *((f"[{loc[0]}]{suffix}", value) for suffix, value in item.locate(loc[1:]))]
+
+
 def _sized(items: core_schema.CoreSchema, least: int, most: int | None) -> core_schema.CoreSchema:
     """A strict list of `items`, from `least` to `most` of them: its length checked before its items (a
     tuple, from Python, taken as a list)."""
@@ -279,9 +286,7 @@ class Vector(Value):
 
     def locate(self, loc: tuple[Any, ...]) -> list[tuple[str, Value]]:
         """This vector, then the number at `loc[0]`."""
-        if not loc:
-            return [("", self)]
-        return [("", self), *((f"[{loc[0]}]{suffix}", value) for suffix, value in self.item.locate(loc[1:]))]
+        return _indexed(self, self.item, loc)
 
 
 @dataclass(frozen=True)
@@ -309,9 +314,7 @@ class Matrix(Value):
 
     def locate(self, loc: tuple[Any, ...]) -> list[tuple[str, Value]]:
         """This matrix, then the row at `loc[0]` and its number."""
-        if not loc:
-            return [("", self)]
-        return [("", self), *((f"[{loc[0]}]{suffix}", value) for suffix, value in self.row.locate(loc[1:]))]
+        return _indexed(self, self.row, loc)
 
 
 @dataclass(frozen=True)
