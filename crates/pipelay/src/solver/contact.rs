@@ -22,13 +22,14 @@
 //! μN at the mobilisation distance δ_m, and its stored energy ½eᵀKe belongs to the seabed's energy. In
 //! statics the force is −Ke at the current state. In the energy–momentum step it is −Kē (ē the step's mean)
 //! plus −½(KΔe·Δp)Δx/|Δx|², which makes the work exactly −Δψ − D with the dissipation D = (Ke_{n+1})·Δp ≥ 0
-//! (Δp the slip of the return map). Its tangent is taken by central differences of this nodal kernel.
+//! (Δp the slip of the return map). The kernel and its exact tangent are [`crate::solver::friction`]'s.
 // Indexing cannot go out of bounds here: Node and element indices of the mesh the contact was built for.
 #![allow(clippy::indexing_slicing)]
 use crate::environment::bathymetry::{Bathymetry, Penetration};
 use crate::environment::seabed::Seabed;
 use crate::rod::element::ElementMatrix;
 use crate::so3::skew;
+use crate::solver::friction::FrictionNode;
 use nalgebra::{Matrix2, Matrix3, Matrix6, UnitQuaternion, Vector2, Vector3};
 
 /// How a contact evaluation treats the step from the start state to the trial state.
@@ -69,6 +70,12 @@ fn contact_integral(d1: f64, d2: f64) -> (f64, Vector2<f64>, Matrix2<f64>) {
     }
 }
 
+/// Whether I(δ1, δ2) vanishes with its derivatives: neither node penetrates and one stands clear (at
+/// δ1 = δ2 = 0 the Hessian is not zero).
+fn clear(penetrations: &Vector2<f64>) -> bool {
+    penetrations.max() <= 0.0 && penetrations.min() < 0.0
+}
+
 /// Gonzalez's discrete gradient of f between a and a + u, given f, ∇f at both ends and ∇f, ∇²f at the
 /// midpoint; returns it and its derivative with respect to u.
 fn gonzalez<const D: usize>(
@@ -89,83 +96,6 @@ fn gonzalez<const D: usize>(
         gradient_mid + u * c,
         0.5 * hessian_mid + u * dc.transpose() + nalgebra::SMatrix::<f64, D, D>::identity() * c,
     )
-}
-
-/// One node's friction in a step: the force on the node, the elastic slip at the end and the dissipation.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct FrictionStep {
-    force: Vector3<f64>,
-    slip: Vector2<f64>,
-    dissipated: f64,
-    /// Whether the return map slid (the trial left the elastic range).
-    sliding: bool,
-}
-
-/// The nodal friction kernel (module docs): start position and elastic slip, displacement Δx, section axis
-/// t1 at the evaluation point, normal force N (N) at the step's end. `branch` forces sticking (false) or
-/// sliding (true), for derivatives of one smooth branch; `None` lets the return map decide.
-#[allow(clippy::too_many_arguments)]
-fn friction_step(
-    bathymetry: &Bathymetry,
-    rule: ContactRule,
-    start: &Vector3<f64>,
-    displacement: &Vector3<f64>,
-    axis: &Vector3<f64>,
-    normal_force: f64,
-    slip_start: &Vector2<f64>,
-    stiffness: &Vector2<f64>,
-    yield_per_force: f64,
-    branch: Option<bool>,
-) -> FrictionStep {
-    let at = match rule {
-        ContactRule::Static => start + displacement,
-        ContactRule::EnergyMomentum { .. } => start + 0.5 * displacement,
-    };
-    let normal = bathymetry.outward_normal(&at);
-    let mut along = axis - normal * normal.dot(axis);
-    if along.norm() < 1e-9 {
-        // The pipe stands on the seabed end-on: any direction of the plane serves as "axial".
-        along = normal.cross(&Vector3::y());
-        if along.norm() < 1e-9 {
-            along = normal.cross(&Vector3::x());
-        }
-    }
-    let axial = along.normalize();
-    let lateral = normal.cross(&axial);
-    let du = Vector2::new(axial.dot(displacement), lateral.dot(displacement));
-    let trial = slip_start + du;
-    let radius = yield_per_force * normal_force.max(0.0);
-    let sliding = branch.unwrap_or(trial.norm() > radius);
-    let slip = if sliding && trial.norm() > 0.0 {
-        trial * (radius / trial.norm())
-    } else {
-        trial
-    };
-    let plastic = trial - slip;
-    let spatial = |f: Vector2<f64>| axial * f.x + lateral * f.y;
-    match rule {
-        ContactRule::Static => FrictionStep {
-            force: -spatial(stiffness.component_mul(&slip)),
-            slip,
-            dissipated: 0.0,
-            sliding,
-        },
-        ContactRule::EnergyMomentum { .. } => {
-            let mean = 0.5 * (slip_start + slip);
-            let mut force = -spatial(stiffness.component_mul(&mean));
-            let d2 = displacement.norm_squared();
-            if d2 > 1e-40 {
-                let change = slip - slip_start;
-                force -= displacement * (0.5 * stiffness.component_mul(&change).dot(&plastic) / d2);
-            }
-            FrictionStep {
-                force,
-                slip,
-                dissipated: stiffness.component_mul(&slip).dot(&plastic),
-                sliding,
-            }
-        }
-    }
 }
 
 /// Where a contact evaluation puts its tangent: element 12×12 blocks and node 6×6 blocks (ordering
@@ -389,11 +319,17 @@ impl SeabedContact {
         let mut energy_end = 0.0;
         for (e, scale) in self.element_scale.iter().enumerate() {
             let end = Vector2::new(self.gap_end[e].value, self.gap_end[e + 1].value);
+            let start = Vector2::new(self.gap_start[e], self.gap_start[e + 1]);
+            // Clear of the seabed at the end (and, in a step, at the start): no force, no tangent.
+            if clear(&end) && (!energy_momentum || clear(&start)) {
+                self.element_hessian_end[e] = Matrix2::zeros();
+                self.element_jacobian[e] = Matrix2::zeros();
+                continue;
+            }
             let (value_end, gradient_end, hessian_end) = contact_integral(end.x, end.y);
             energy_end += scale * value_end;
             self.element_hessian_end[e] = hessian_end * *scale;
             let (gradient, jacobian) = if energy_momentum {
-                let start = Vector2::new(self.gap_start[e], self.gap_start[e + 1]);
                 let regime = |d: &Vector2<f64>| {
                     if d.x >= 0.0 && d.y >= 0.0 {
                         1
@@ -432,6 +368,18 @@ impl SeabedContact {
         let mut work = 0.0;
         self.dissipated = 0.0;
         for a in 0..self.nodes.len() {
+            self.slip_end[a] = slips_start[a];
+            self.friction_by_normal[a] = Vector3::zeros();
+            self.forces[a] = Vector3::zeros();
+            let damped = energy_momentum
+                && self.damping[a] > 0.0
+                && self.gap_start[a] + self.gap_end[a].value > 0.0;
+            let rubbing = self.has_friction
+                && self.friction_scale > 0.0
+                && (self.normal_force[a] > 0.0 || slips_start[a] != Vector2::zeros());
+            if self.resultant[a] == 0.0 && !damped && !rubbing {
+                continue;
+            }
             let node = self.nodes[a];
             let dx = node.displacement;
             let q = self.gap_gradient[a];
@@ -463,63 +411,28 @@ impl SeabedContact {
                     self.dissipated += c * normal.dot(&dx).powi(2) / time_step;
                 }
             }
-            self.slip_end[a] = slips_start[a];
-            self.friction_by_normal[a] = Vector3::zeros();
-            let active = self.normal_force[a] > 0.0 || slips_start[a] != Vector2::zeros();
-            if self.has_friction && self.friction_scale > 0.0 && active {
-                let spring = self.friction_stiffness[a] * self.friction_scale;
-                let kernel = |dx: &Vector3<f64>,
-                              axis: &Vector3<f64>,
-                              normal_force: f64,
-                              branch: Option<bool>| {
-                    friction_step(
-                        &self.bathymetry,
-                        rule,
-                        &node.start,
-                        dx,
-                        axis,
-                        normal_force,
-                        &slips_start[a],
-                        &spring,
-                        self.yield_per_force[a],
-                        branch,
-                    )
+            if rubbing {
+                let friction = FrictionNode {
+                    bathymetry: &self.bathymetry,
+                    start: node.start,
+                    slip_start: slips_start[a],
+                    stiffness: self.friction_stiffness[a] * self.friction_scale,
+                    yield_per_force: self.yield_per_force[a],
                 };
-                let n = self.normal_force[a];
-                let step = kernel(&dx, &node.axis, n, None);
-                // Derivatives of the branch the return map took (central differences across the kink
-                // between sticking and sliding would mix the two).
-                let branch = Some(step.sliding);
+                let step = friction.step(
+                    rule,
+                    &dx,
+                    &node.axis,
+                    self.normal_force[a],
+                    tangent.is_some(),
+                );
                 force += step.force;
                 self.slip_end[a] = step.slip;
                 self.dissipated += step.dissipated;
-                if tangent.is_some() {
-                    let h_x = 1e-7;
-                    let mut d_dx = Matrix3::zeros();
-                    let mut d_axis = Matrix3::zeros();
-                    for k in 0..3 {
-                        let mut e = Vector3::zeros();
-                        e[k] = h_x;
-                        d_dx.set_column(
-                            k,
-                            &((kernel(&(dx + e), &node.axis, n, branch).force
-                                - kernel(&(dx - e), &node.axis, n, branch).force)
-                                / (2.0 * h_x)),
-                        );
-                        e[k] = 1e-7;
-                        d_axis.set_column(
-                            k,
-                            &((kernel(&dx, &(node.axis + e), n, branch).force
-                                - kernel(&dx, &(node.axis - e), n, branch).force)
-                                / 2e-7),
-                        );
-                    }
-                    let h_n = 1e-7 * n.abs().max(1.0);
-                    self.friction_by_normal[a] = (kernel(&dx, &node.axis, n + h_n, branch).force
-                        - kernel(&dx, &node.axis, n - h_n, branch).force)
-                        / (2.0 * h_n);
-                    stiffness -= d_dx;
-                    let rotation_block = d_axis * skew(&node.axis) * node.axis_map;
+                if let Some(derivatives) = step.tangent {
+                    self.friction_by_normal[a] = derivatives.normal_force;
+                    stiffness -= derivatives.displacement;
+                    let rotation_block = derivatives.axis * skew(&node.axis) * node.axis_map;
                     block
                         .fixed_view_mut::<3, 3>(0, 3)
                         .copy_from(&rotation_block);
@@ -532,9 +445,7 @@ impl SeabedContact {
                 residual[6 * a + k] -= force[k];
             }
             if let Some(sink) = tangent.as_mut() {
-                if block != Matrix6::zeros() {
-                    sink.add_node(a, &block);
-                }
+                sink.add_node(a, &block);
             }
         }
         self.energy_end = energy_end + self.spring_energy(&self.slip_end);
@@ -678,6 +589,7 @@ mod tests {
 
     use crate::environment::bathymetry::Bathymetry;
     use crate::so3::exp;
+    use crate::solver::test_support::wavy_seabed;
 
     struct Dense(nalgebra::DMatrix<f64>);
 
@@ -700,19 +612,6 @@ mod tests {
 
     fn seabed(bathymetry: Bathymetry, damping: f64) -> Seabed {
         Seabed::new(2e5, damping, [0.5, 0.8], 0.02, bathymetry).expect("valid seabed")
-    }
-
-    fn wavy() -> Bathymetry {
-        let x: Vec<f64> = (0..5).map(|i| -5.0 + 4.0 * i as f64).collect();
-        let y = vec![-5.0, 0.0, 5.0];
-        let z = x
-            .iter()
-            .flat_map(|xi| {
-                y.iter()
-                    .map(move |yj| 0.02 * xi + 0.05 * (0.4 * xi).sin() + 0.01 * yj)
-            })
-            .collect();
-        Bathymetry::grid(x, y, z).expect("grid")
     }
 
     /// Elastic slips at the step's start: two nodes with slip, two without.
@@ -767,7 +666,7 @@ mod tests {
     fn tangent_matches_finite_differences() {
         let slips = start_slips();
         let plane = Bathymetry::plane(0.0, Vector2::new(0.05, -0.02)).expect("plane");
-        for bathymetry in [plane, wavy()] {
+        for bathymetry in [plane, wavy_seabed()] {
             for rule in [
                 ContactRule::Static,
                 ContactRule::EnergyMomentum { time_step: 0.1 },
@@ -823,7 +722,7 @@ mod tests {
     fn step_work_is_the_energy_change_less_dissipation() {
         let slips = start_slips();
         let plane = Bathymetry::plane(0.0, Vector2::new(0.05, -0.02)).expect("plane");
-        for bathymetry in [plane, wavy()] {
+        for bathymetry in [plane, wavy_seabed()] {
             for scale in [0.01, 0.3, 1.0, 3.0] {
                 let mut contact = SeabedContact::new(
                     &seabed(bathymetry.clone(), 3e3),

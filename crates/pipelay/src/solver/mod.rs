@@ -7,6 +7,7 @@ pub mod catenary;
 pub mod contact;
 pub mod dynamics;
 pub mod energy;
+pub mod friction;
 pub mod history;
 pub mod laid_catenary;
 pub mod lay_summary;

@@ -1,6 +1,7 @@
-//! What the linear solvers' tests share.
+//! What the solver's tests share.
 // Indexing cannot go out of bounds here: a dense n×n matrix and n-vectors.
 #![allow(clippy::indexing_slicing)]
+use crate::environment::bathymetry::Bathymetry;
 
 /// The largest error of `solve` on A x = b for the dense row-major n×n matrix A and a fixed smooth x.
 pub fn solve_error(dense: &[f64], n: usize, solve: impl FnOnce(&mut [f64])) -> f64 {
@@ -13,4 +14,18 @@ pub fn solve_error(dense: &[f64], n: usize, solve: impl FnOnce(&mut [f64])) -> f
         .zip(&x)
         .map(|(a, e)| (a - e).abs())
         .fold(0.0, f64::max)
+}
+
+/// A gently sloping, wavy seabed on a 5 × 3 grid around the origin (elevations in m, e3 down).
+pub fn wavy_seabed() -> Bathymetry {
+    let x: Vec<f64> = (0..5).map(|i| -5.0 + 4.0 * i as f64).collect();
+    let y = vec![-5.0, 0.0, 5.0];
+    let z = x
+        .iter()
+        .flat_map(|xi| {
+            y.iter()
+                .map(move |yj| 0.02 * xi + 0.05 * (0.4 * xi).sin() + 0.01 * yj)
+        })
+        .collect();
+    Bathymetry::grid(x, y, z).expect("grid")
 }
