@@ -125,8 +125,10 @@ def test_a_state_that_blows_up_stops_the_run_with_a_convergence_error() -> None:
 
 
 def test_two_simulations_in_two_threads_run_at_once_and_agree() -> None:
-    """The engine releases the GIL while stepping: two runs in two threads overlap (together they take well
-    under twice one run's time on two cores) and give, bit for bit, what they give one after the other."""
+    """The engine releases the GIL while stepping: while two runs go on in two threads, the main thread's Python
+    keeps running (its longest pause is a small part of the runs' time, where holding the GIL would stop it for
+    a whole run), and the runs give, bit for bit, what they give one after the other. (The engine's own
+    threads share the cores between the runs, so their wall time is not the measure.)"""
 
     def heavy() -> pl.Simulation:
         """A 400 m pipe clamped at B, let go from its straight inclined reference: no Python in the loop."""
@@ -134,34 +136,24 @@ def test_two_simulations_in_two_threads_run_at_once_and_agree() -> None:
         model.clamp("B")
         return model.simulation(model.rest(), dt=0.05)
 
-    def one_after_the_other() -> list[pl.Results]:
-        return [heavy().run(8.0, progress=False) for _ in range(2)]
+    alone = [heavy().run(8.0, progress=False) for _ in range(2)]
+    results: dict[int, pl.Results] = {}
 
-    def at_once() -> list[pl.Results]:
-        results: dict[int, pl.Results] = {}
+    def work(index: int) -> None:
+        results[index] = heavy().run(8.0, progress=False)
 
-        def work(index: int) -> None:
-            results[index] = heavy().run(8.0, progress=False)
-
-        threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
-        for thread in threads:
-            thread.start()
-        for thread in threads:
-            thread.join()
-        return [results[0], results[1]]
-
-    def timed(run: Callable[[], list[pl.Results]]) -> tuple[float, list[pl.Results]]:
-        """The best of two timings (shared machines are noisy), and the results."""
-        best, results = np.inf, []
-        for _ in range(2):
-            start = time.perf_counter()
-            results = run()
-            best = min(best, time.perf_counter() - start)
-        return best, results
-
-    sequential, alone = timed(one_after_the_other)
-    concurrent, together = timed(at_once)
-    print(f"two runs one after the other {sequential:.2f} s, at once in two threads {concurrent:.2f} s")
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    start = time.perf_counter()
+    for thread in threads:
+        thread.start()
+    longest_pause, last = 0.0, time.perf_counter()
+    while any(thread.is_alive() for thread in threads):
+        now = time.perf_counter()
+        longest_pause, last = max(longest_pause, now - last), now
+    wall = time.perf_counter() - start
+    for thread in threads:
+        thread.join()
+    print(f"two runs at once in two threads {wall:.2f} s; the main thread's longest pause {longest_pause:.3f} s")
     for index in range(2):
-        assert np.array_equal(together[index].positions, alone[index].positions)
-    assert concurrent < 0.8 * sequential
+        assert np.array_equal(results[index].positions, alone[index].positions)
+    assert longest_pause < 0.2 * wall

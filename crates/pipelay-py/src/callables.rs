@@ -3,9 +3,8 @@ use crate::convert::{matrix3, vector3};
 use nalgebra::{Matrix3, Vector3};
 use pipelay::model::TimeFunction;
 use pyo3::prelude::*;
-use std::cell::RefCell;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard};
 
 /// Set when a callable was interrupted by Ctrl-C (KeyboardInterrupt raised inside it), so that a run can
 /// stop cleanly instead of reporting a failed callable.
@@ -16,22 +15,25 @@ pub fn take_interrupt() -> bool {
     INTERRUPTED.swap(false, Ordering::SeqCst)
 }
 
-thread_local! {
-    /// The exception a user callable raised last on this thread, with the message the engine carries for it:
-    /// the error that reaches Python is chained to it (`raise ... from`), so the user's own exception and
-    /// traceback are kept.
-    static FAILED_CALLABLE: RefCell<Option<(String, PyErr)>> = const { RefCell::new(None) };
+/// The exception a user callable raised last, with the message the engine carries for it: the error that
+/// reaches Python is chained to it (`raise ... from`), so the user's own exception and traceback are kept.
+/// Process-wide, since the engine calls the callables from its own threads.
+static FAILED_CALLABLE: Mutex<Option<(String, PyErr)>> = Mutex::new(None);
+
+/// The failed callable's slot, whether or not a thread panicked while holding it.
+fn failed_callable() -> MutexGuard<'static, Option<(String, PyErr)>> {
+    FAILED_CALLABLE
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// The exception behind an engine error whose message contains a failed callable's message, if any.
 pub fn take_callable_error(message: &str) -> Option<PyErr> {
-    FAILED_CALLABLE.with(|slot| {
-        let mut slot = slot.borrow_mut();
-        match slot.as_ref() {
-            Some((text, _)) if message.contains(text.as_str()) => slot.take().map(|(_, e)| e),
-            _ => None,
-        }
-    })
+    let mut slot = failed_callable();
+    match slot.as_ref() {
+        Some((text, _)) if message.contains(text.as_str()) => slot.take().map(|(_, e)| e),
+        _ => None,
+    }
 }
 
 /// Wraps `callable(t)`, converting its result with `convert`; a Python error becomes the message (and is kept
@@ -52,7 +54,7 @@ fn wrap<T: 'static>(
                     .name()
                     .map_or_else(|_| "Exception".to_string(), |n| n.to_string());
                 let message = format!("{argument}({time}) raised {kind}: {}", e.value(py));
-                FAILED_CALLABLE.with(|slot| *slot.borrow_mut() = Some((message.clone(), e)));
+                *failed_callable() = Some((message.clone(), e));
                 message
             })?;
             convert(&value, argument).map_err(|e| e.to_string())

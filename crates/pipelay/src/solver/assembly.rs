@@ -4,7 +4,7 @@
 #![allow(clippy::indexing_slicing)]
 use crate::environment::drag::element_current_drag;
 use crate::model::Model;
-use crate::rod::element::{evaluate, ElementMatrix};
+use crate::rod::element::{evaluate, ElementMatrix, ElementVector};
 use crate::so3::exp_quat;
 use crate::solver::contact::{ContactRule, SeabedContact, TangentSink};
 use crate::solver::linsolve::SparseLu;
@@ -104,6 +104,9 @@ pub struct Assembler {
     pub point_load_scales: Vec<f64>,
     /// Where each node's 6×6 diagonal block goes in `values`.
     node_scatter: ScatterMap,
+    /// Where the columns of each node begin in `values` (and, last, their end): the rod's elements and nodes
+    /// write only in their own nodes' columns.
+    node_values: Vec<usize>,
     /// How far a vessel's static target has moved from the end node's reference pose (0 to 1).
     pub vessel_motion: f64,
     /// The holding thrust of the last static assembly (body frame).
@@ -122,6 +125,109 @@ pub struct Assembler {
     pub contact_slips: Vec<Vector2<f64>>,
     /// The vessel's rollers, if it has any.
     pub rollers: Option<RollerContact>,
+}
+
+/// The residual, magnitude and tangent entries of a run of consecutive nodes: everything their own DOFs' rows
+/// (residual) and columns (tangent) hold. Two sinks split at a node write disjoint memory, so the rod's
+/// elements and nodes can be assembled in parallel (see [`crate::solver::rod_step`]).
+pub struct RodSink<'a> {
+    /// The first node of the run.
+    first_node: usize,
+    residual: &'a mut [f64],
+    magnitude: &'a mut [f64],
+    /// The tangent values of the run's columns (`None`: residual only), from position `values_offset`.
+    values: Option<&'a mut [f64]>,
+    values_offset: usize,
+    node_values: &'a [usize],
+    elements: &'a ScatterMap,
+    nodes: &'a ScatterMap,
+}
+
+impl RodSink<'_> {
+    /// The run's nodes before `node` and from `node` on.
+    pub fn split_at_node(&mut self, node: usize) -> (RodSink<'_>, RodSink<'_>) {
+        let dofs = NODE_DOFS * (node - self.first_node);
+        let (residual_left, residual_right) = self.residual.split_at_mut(dofs);
+        let (magnitude_left, magnitude_right) = self.magnitude.split_at_mut(dofs);
+        let split = self.node_values[node];
+        let (values_left, values_right) = match self.values.as_deref_mut() {
+            Some(values) => {
+                let (left, right) = values.split_at_mut(split - self.values_offset);
+                (Some(left), Some(right))
+            }
+            None => (None, None),
+        };
+        (
+            RodSink {
+                first_node: self.first_node,
+                residual: residual_left,
+                magnitude: magnitude_left,
+                values: values_left,
+                values_offset: self.values_offset,
+                node_values: self.node_values,
+                elements: self.elements,
+                nodes: self.nodes,
+            },
+            RodSink {
+                first_node: node,
+                residual: residual_right,
+                magnitude: magnitude_right,
+                values: values_right,
+                values_offset: split,
+                node_values: self.node_values,
+                elements: self.elements,
+                nodes: self.nodes,
+            },
+        )
+    }
+
+    /// Adds element `element`'s forces (its 12 residual entries), their magnitudes and, with a tangent, its
+    /// 12×12 block. Both its nodes must be in the run.
+    pub fn add_element(
+        &mut self,
+        element: usize,
+        forces: &ElementVector,
+        magnitude: &ElementVector,
+        tangent: &ElementMatrix,
+    ) {
+        let base = NODE_DOFS * (element - self.first_node);
+        add(&mut self.residual[base..base + 12], forces.as_slice());
+        add(&mut self.magnitude[base..base + 12], magnitude.as_slice());
+        if let Some(values) = self.values.as_deref_mut() {
+            self.elements
+                .add_from(values, self.values_offset, element, tangent.as_slice());
+        }
+    }
+
+    /// Adds node `node`'s forces, their magnitudes and its 6×6 tangent block (if the sink takes tangents).
+    pub fn add_node(
+        &mut self,
+        node: usize,
+        forces: &Vector6<f64>,
+        magnitude: &Vector6<f64>,
+        tangent: Option<&Matrix6<f64>>,
+    ) {
+        let base = NODE_DOFS * (node - self.first_node);
+        add(
+            &mut self.residual[base..base + NODE_DOFS],
+            forces.as_slice(),
+        );
+        add(
+            &mut self.magnitude[base..base + NODE_DOFS],
+            magnitude.as_slice(),
+        );
+        if let (Some(values), Some(tangent)) = (self.values.as_deref_mut(), tangent) {
+            self.nodes
+                .add_from(values, self.values_offset, node, tangent.as_slice());
+        }
+    }
+}
+
+/// `target` += `terms`, entry by entry.
+fn add(target: &mut [f64], terms: &[f64]) {
+    for (t, x) in target.iter_mut().zip(terms) {
+        *t += x;
+    }
 }
 
 /// Tangent entries by global DOF, where the pattern has them.
@@ -174,8 +280,14 @@ impl ScatterMap {
 
     /// Adds block `index` (column-major entries) to `values`.
     fn add(&self, values: &mut [f64], index: usize, block: &[f64]) {
+        self.add_from(values, 0, index, block);
+    }
+
+    /// Adds block `index` to `values`, a slice of the tangent's values that starts at position `offset`.
+    fn add_from(&self, values: &mut [f64], offset: usize, index: usize, block: &[f64]) {
         for &(entry, position, length) in &self.runs[self.first[index]..self.first[index + 1]] {
-            let (entry, position, length) = (entry as usize, position as usize, length as usize);
+            let (entry, position, length) =
+                (entry as usize, position as usize - offset, length as usize);
             for (value, term) in values[position..position + length]
                 .iter_mut()
                 .zip(&block[entry..entry + length])
@@ -266,6 +378,15 @@ impl Assembler {
                 .collect(),
             _ => Vec::new(),
         };
+        let mut node_values = Vec::with_capacity(model.rod.node_count() + 1);
+        let mut equation = 0;
+        for node in 0..model.rod.node_count() {
+            node_values.push(col_ptr[equation]);
+            equation += (0..NODE_DOFS)
+                .filter(|k| dofs.equation[NODE_DOFS * node + k].is_some())
+                .count();
+        }
+        node_values.push(col_ptr[equation]);
         let lu = SparseLu::for_rod(&dofs.free_dofs, col_ptr, row_idx, &border);
         let scatter = ScatterMap::new((0..elements).map(|e| {
             let mut map = [FIXED; 144];
@@ -329,6 +450,7 @@ impl Assembler {
             vessel_force: Vector6::zeros(),
             external_vessel_norm: 0.0,
             node_scatter,
+            node_values,
             rotation_diagonal,
             point_load_scales: vec![1.0; model.point_loads.len()],
             values: vec![0.0; lu.nnz()],
@@ -527,6 +649,21 @@ impl Assembler {
     /// Adds a node's 6×6 tangent block (free entries only).
     pub fn add_node_matrix(&mut self, node: usize, k: &Matrix6<f64>) {
         self.node_scatter.add(&mut self.values, node, k.as_slice());
+    }
+
+    /// Where the rod's elements and nodes put their residual (all DOFs), its per-DOF magnitude `magnitude`
+    /// and, with `with_tangent`, their tangent blocks: the whole rod.
+    pub fn rod_sink<'a>(&'a mut self, magnitude: &'a mut [f64], with_tangent: bool) -> RodSink<'a> {
+        RodSink {
+            first_node: 0,
+            residual: &mut self.residual,
+            magnitude,
+            values: with_tangent.then_some(&mut self.values[..]),
+            values_offset: 0,
+            node_values: &self.node_values,
+            elements: &self.scatter,
+            nodes: &self.node_scatter,
+        }
     }
 
     /// Evaluates `contact` at the nodes set in it, from elastic slips `slips`, and adds its residual and (with

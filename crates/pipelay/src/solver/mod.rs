@@ -13,7 +13,9 @@ pub mod laid_catenary;
 pub mod lay_summary;
 pub mod linsolve;
 pub mod pay_out;
+pub mod pool;
 pub mod response;
+pub mod rod_step;
 pub mod rollers;
 pub mod statics;
 #[cfg(test)]
