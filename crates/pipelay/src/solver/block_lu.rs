@@ -1,12 +1,17 @@
 //! LU of a block-tridiagonal matrix of 6×6 blocks: the rod's tangent with its unknowns in node order, where
 //! each node couples only to its two neighbours (Golub & Van Loan, Matrix Computations, §4.5.1, block
-//! tridiagonal LU). With A_i,i−1 = L_i, A_ii = D_i, A_i,i+1 = U_i:
+//! tridiagonal LU), eliminated from both ends towards the middle node m (a "twisted" factorisation, whose two
+//! halves run in parallel). With A_i,i−1 = L_i, A_ii = D_i, A_i,i+1 = U_i:
 //!
-//!   S_0 = D_0,   X_i = S_i⁻¹U_i,   S_i = D_i − L_i X_i−1,
+//!   from the top, i < m:     S_0 = D_0,          S_i = D_i − L_i X_i−1,   X_i = S_i⁻¹U_i;
+//!   from the bottom, i > m:  T_n−1 = D_n−1,      T_i = D_i − U_i Y_i+1,   Y_i = T_i⁻¹L_i;
+//!   the middle:              M = D_m − L_m X_m−1 − U_m Y_m+1,
 //!
-//! each S_i factorised by LU with partial pivoting inside the block; then A x = b by
-//! y_i = S_i⁻¹(b_i − L_i y_i−1) and x_i = y_i − X_i x_i+1. It costs about 500 multiply–adds per node in
-//! fixed-size loops, against 6·kl·(kl + ku) ≈ 1450 for the band LU with kl = ku = 11.
+//! each S_i, T_i and M factorised by LU with partial pivoting inside the block. Then A x = b by
+//! y_i = S_i⁻¹(b_i − L_i y_i−1) (i < m), z_i = T_i⁻¹(b_i − U_i z_i+1) (i > m),
+//! x_m = M⁻¹(b_m − L_m y_m−1 − U_m z_m+1), and outwards x_i = y_i − X_i x_i+1, x_i = z_i − Y_i x_i−1. It costs
+//! about 500 multiply–adds per node in fixed-size loops, against 6·kl·(kl + ku) ≈ 1450 for the band LU with
+//! kl = ku = 11.
 //!
 //! Pivoting stays within the diagonal blocks. That is stable for the block diagonally dominant or positive
 //! definite tangents of dynamics (mass over Δt²) and of stable statics; a block whose pivot falls below
@@ -17,6 +22,11 @@
 // Indexing cannot go out of bounds here: node indices below the node count, entries below 36 and 6, and
 // block positions computed at construction from the pattern they scatter.
 #![allow(clippy::indexing_slicing)]
+use crate::solver::pool;
+
+/// Nodes from which the two halves are eliminated and substituted in parallel (the arithmetic is the same
+/// below it, one half after the other).
+const PARALLEL_NODES: usize = 256;
 
 /// Smallest pivot accepted, relative to the largest entry of its block.
 const PIVOT_FLOOR: f64 = 1e-13;
@@ -47,8 +57,9 @@ pub struct BlockTridiagonalLu {
     runs: Vec<Run>,
     /// Block entries no value lands on (block, entry, value): the identity of prescribed DOFs, zeros.
     constants: Vec<(u32, u8, f64)>,
-    /// Blocks ordered [D | L | U], each by node: D_i, then the LU factors of S_i in place (unit lower
-    /// triangle below the diagonal); L_i = A_i,i−1; U_i = A_i,i+1, then X_i = S_i⁻¹U_i (row-major).
+    /// Blocks ordered [D | L | U], each by node: D_i, then the LU factors of S_i, T_i or M in place (unit
+    /// lower triangle below the diagonal); L_i = A_i,i−1, then Y_i = T_i⁻¹L_i (row-major) below the middle;
+    /// U_i = A_i,i+1, then X_i = S_i⁻¹U_i (row-major) above it.
     blocks: Vec<Block>,
     /// Row interchanged with row k at step k of block i's LU.
     pivots: Vec<[u8; 6]>,
@@ -131,20 +142,49 @@ impl BlockTridiagonalLu {
         for &(block, entry, value) in &self.constants {
             self.blocks[block as usize][entry as usize] = value;
         }
+        let middle = n / 2;
         let (diagonal, rest) = self.blocks.split_at_mut(n);
         let (lower, upper) = rest.split_at_mut(n);
-        for i in 0..n {
-            if i > 0 {
-                // S_i = D_i − L_i X_i−1.
-                subtract_product(&mut diagonal[i], &lower[i], &upper[i - 1]);
-            }
-            factorise_block(&mut diagonal[i], &mut self.pivots[i])?;
-            if i + 1 < n {
-                transpose(&mut upper[i]);
-                solve_block_rows(&diagonal[i], &self.pivots[i], &mut upper[i]);
-            }
+        let (diagonal_top, diagonal_rest) = diagonal.split_at_mut(middle);
+        let (diagonal_middle, diagonal_bottom) = diagonal_rest.split_at_mut(1);
+        let (lower_top, lower_rest) = lower.split_at_mut(middle);
+        let (lower_middle, lower_bottom) = lower_rest.split_at_mut(1);
+        let (upper_top, upper_rest) = upper.split_at_mut(middle);
+        let (upper_middle, upper_bottom) = upper_rest.split_at_mut(1);
+        let (pivots_top, pivots_rest) = self.pivots.split_at_mut(middle);
+        let (pivots_middle, pivots_bottom) = pivots_rest.split_at_mut(1);
+        let (top, bottom) = pool::join(
+            n >= PARALLEL_NODES,
+            || {
+                eliminate(
+                    diagonal_top,
+                    lower_top,
+                    upper_top,
+                    pivots_top,
+                    Direction::Down,
+                )
+            },
+            || {
+                eliminate(
+                    diagonal_bottom,
+                    upper_bottom,
+                    lower_bottom,
+                    pivots_bottom,
+                    Direction::Up,
+                )
+            },
+        );
+        top?;
+        bottom?;
+        // M = D_m − L_m X_m−1 − U_m Y_m+1.
+        let block = &mut diagonal_middle[0];
+        if let Some(x) = upper_top.last() {
+            subtract_product(block, &lower_middle[0], x);
         }
-        Ok(())
+        if let Some(y) = lower_bottom.first() {
+            subtract_product(block, &upper_middle[0], y);
+        }
+        factorise_block(block, &mut pivots_middle[0])
     }
 
     /// Solves A x = b in place (b → x, unknowns only) with the factors.
@@ -154,22 +194,123 @@ impl BlockTridiagonalLu {
         for (&slot, &value) in self.slots.iter().zip(rhs.iter()) {
             self.work[slot / 6][slot % 6] = value;
         }
+        let middle = n / 2;
         let (diagonal, rest) = self.blocks.split_at(n);
-        let (lower, solved) = rest.split_at(n);
-        for i in 0..n {
-            if i > 0 {
-                let previous = self.work[i - 1];
-                subtract_product_vector(&mut self.work[i], &lower[i], &previous);
-            }
-            solve_block(&diagonal[i], &self.pivots[i], &mut self.work[i]);
+        let (lower, upper) = rest.split_at(n);
+        let (work_top, work_rest) = self.work.split_at_mut(middle);
+        let (work_middle, work_bottom) = work_rest.split_at_mut(1);
+        let (pivots_top, pivots_rest) = self.pivots.split_at(middle);
+        let (pivots_middle, pivots_bottom) = pivots_rest.split_at(1);
+        let bottom = middle + 1..n;
+        let parallel = n >= PARALLEL_NODES;
+        pool::join(
+            parallel,
+            || {
+                let top = ..middle;
+                substitute(
+                    &diagonal[top],
+                    &lower[top],
+                    pivots_top,
+                    work_top,
+                    Direction::Down,
+                );
+            },
+            || {
+                let (diagonal, upper) = (&diagonal[bottom.clone()], &upper[bottom.clone()]);
+                substitute(diagonal, upper, pivots_bottom, work_bottom, Direction::Up);
+            },
+        );
+        let x = &mut work_middle[0];
+        if let Some(y) = work_top.last() {
+            subtract_product_vector(x, &lower[middle], y);
         }
-        for i in (0..n.saturating_sub(1)).rev() {
-            let next = self.work[i + 1];
-            subtract_row_major_product_vector(&mut self.work[i], &solved[i], &next);
+        if let Some(z) = work_bottom.first() {
+            subtract_product_vector(x, &upper[middle], z);
         }
+        solve_block(&diagonal[middle], &pivots_middle[0], x);
+        let x = *x;
+        pool::join(
+            parallel,
+            || back_substitute(&upper[..middle], work_top, &x, Direction::Down),
+            || back_substitute(&lower[bottom.clone()], work_bottom, &x, Direction::Up),
+        );
         for (&slot, value) in self.slots.iter().zip(rhs.iter_mut()) {
             *value = self.work[slot / 6][slot % 6];
         }
+    }
+}
+
+/// Which way an elimination runs over its half: from the first node down to the middle (its blocks in
+/// order), or from the last node up to it (in reverse).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Direction {
+    Down,
+    Up,
+}
+
+impl Direction {
+    /// The half's nodes in elimination order, as indices into its slices of `count`.
+    fn order(self, count: usize) -> impl Iterator<Item = (usize, Option<usize>)> {
+        (0..count).map(move |k| match self {
+            Direction::Down => (k, k.checked_sub(1)),
+            Direction::Up => (count - 1 - k, (k > 0).then_some(count - k)),
+        })
+    }
+}
+
+/// Eliminates one half: for each node i in order, with `behind` its coupling to the node eliminated before
+/// it and `ahead` its coupling towards the middle, S_i = D_i − behind_i Z_prev, then Z_i = S_i⁻¹ ahead_i
+/// (row-major, in place of `ahead`).
+fn eliminate(
+    diagonal: &mut [Block],
+    behind: &mut [Block],
+    ahead: &mut [Block],
+    pivots: &mut [[u8; 6]],
+    direction: Direction,
+) -> Result<(), SmallPivot> {
+    for (i, previous) in direction.order(diagonal.len()) {
+        if let Some(p) = previous {
+            subtract_product(&mut diagonal[i], &behind[i], &ahead[p]);
+        }
+        factorise_block(&mut diagonal[i], &mut pivots[i])?;
+        transpose(&mut ahead[i]);
+        solve_block_rows(&diagonal[i], &pivots[i], &mut ahead[i]);
+    }
+    Ok(())
+}
+
+/// Forward substitution over one half: w_i ← S_i⁻¹(w_i − behind_i w_prev).
+fn substitute(
+    diagonal: &[Block],
+    behind: &[Block],
+    pivots: &[[u8; 6]],
+    work: &mut [[f64; 6]],
+    direction: Direction,
+) {
+    for (i, previous) in direction.order(diagonal.len()) {
+        if let Some(p) = previous {
+            let before = work[p];
+            subtract_product_vector(&mut work[i], &behind[i], &before);
+        }
+        solve_block(&diagonal[i], &pivots[i], &mut work[i]);
+    }
+}
+
+/// Back substitution over one half, outwards from the middle's solution x_m: x_i = w_i − Z_i x_next.
+fn back_substitute(
+    solved: &[Block],
+    work: &mut [[f64; 6]],
+    middle: &[f64; 6],
+    direction: Direction,
+) {
+    let count = work.len();
+    for k in 0..count {
+        let (i, next) = match direction {
+            Direction::Down => (count - 1 - k, count - k),
+            Direction::Up => (k, k.wrapping_sub(1)),
+        };
+        let toward = if next < count { work[next] } else { *middle };
+        subtract_row_major_product_vector(&mut work[i], &solved[i], &toward);
     }
 }
 
@@ -347,14 +488,19 @@ mod tests {
         for (nodes, fixed, seed) in [
             (1, vec![], 1),
             (2, vec![0, 1, 2], 2),
+            (3, vec![15, 16, 17], 6),
             (40, vec![0, 1, 2, 237, 238, 239], 3),
             (25, vec![3, 4, 5, 60], 4),
+            (PARALLEL_NODES + 3, vec![0, 1, 2, 5], 7),
         ] {
             let (slots, col_ptr, row_idx, values, dense) = random_system(nodes, &fixed, seed);
             let n = slots.len();
             let mut lu = BlockTridiagonalLu::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
-            lu.factorise(&values).expect("regular");
-            let error = solve_error(&dense, n, |b| lu.solve_in_place(b));
+            // On the pool, so that the halves run in parallel where there are enough nodes.
+            let error = pool::run(|| {
+                lu.factorise(&values).expect("regular");
+                solve_error(&dense, n, |b| lu.solve_in_place(b))
+            });
             assert!(error < 1e-10, "{nodes} nodes: error {error:e}");
         }
     }
