@@ -31,6 +31,10 @@ use crate::rod::element::ElementMatrix;
 use crate::so3::skew;
 use crate::solver::friction::FrictionNode;
 use nalgebra::{Matrix2, Matrix3, Matrix6, UnitQuaternion, Vector2, Vector3};
+use rayon::prelude::*;
+
+/// Nodes per parallel task in a contact evaluation.
+const PARALLEL_NODES: usize = 512;
 
 /// How a contact evaluation treats the step from the start state to the trial state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -284,35 +288,39 @@ impl SeabedContact {
         mut tangent: Option<&mut dyn TangentSink>,
     ) -> f64 {
         let energy_momentum = matches!(rule, ContactRule::EnergyMomentum { .. });
-        // 1. Nodal penetrations and the gradients of δ that carry the forces.
-        for (a, node) in self.nodes.iter().enumerate() {
-            let end = node.start + node.displacement;
-            let gap_end = self.bathymetry.penetration(&end);
-            self.gap_end[a] = gap_end;
-            if energy_momentum {
-                let gap_start = self.bathymetry.penetration(&node.start).value;
-                self.gap_start[a] = gap_start;
-            }
-            if energy_momentum && !self.bathymetry.is_plane() {
-                let gap_start = self.gap_start[a];
-                let mid = self
-                    .bathymetry
-                    .penetration(&(node.start + 0.5 * node.displacement));
-                let (q, dq) = gonzalez(
-                    gap_end.value - gap_start,
-                    &node.displacement,
-                    &gap_end.gradient,
-                    &mid.gradient,
-                    &mid.hessian,
-                    1e-10,
-                );
-                self.gap_gradient[a] = q;
-                self.gap_gradient_derivative[a] = dq;
-            } else {
-                self.gap_gradient[a] = gap_end.gradient;
-                self.gap_gradient_derivative[a] = gap_end.hessian;
-            }
-        }
+        // 1. Nodal penetrations and the gradients of δ that carry the forces (node by node, in parallel).
+        let bathymetry = &self.bathymetry;
+        self.nodes
+            .par_iter()
+            .zip(self.gap_end.par_iter_mut())
+            .zip(self.gap_start.par_iter_mut())
+            .zip(
+                self.gap_gradient
+                    .par_iter_mut()
+                    .zip(self.gap_gradient_derivative.par_iter_mut()),
+            )
+            .with_min_len(PARALLEL_NODES)
+            .for_each(|(((node, gap_end), gap_start), (gradient, derivative))| {
+                let end = node.start + node.displacement;
+                *gap_end = bathymetry.penetration(&end);
+                if energy_momentum {
+                    *gap_start = bathymetry.penetration(&node.start).value;
+                }
+                if energy_momentum && !bathymetry.is_plane() {
+                    let mid = bathymetry.penetration(&(node.start + 0.5 * node.displacement));
+                    (*gradient, *derivative) = gonzalez(
+                        gap_end.value - *gap_start,
+                        &node.displacement,
+                        &gap_end.gradient,
+                        &mid.gradient,
+                        &mid.hessian,
+                        1e-10,
+                    );
+                } else {
+                    *gradient = gap_end.gradient;
+                    *derivative = gap_end.hessian;
+                }
+            });
         // 2. Element resultants: the discrete (or exact) gradient of V_e and its Jacobian.
         self.resultant.iter_mut().for_each(|p| *p = 0.0);
         self.normal_force.iter_mut().for_each(|p| *p = 0.0);

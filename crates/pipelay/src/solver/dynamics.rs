@@ -52,6 +52,9 @@ const SIMPLIFIED_RATE: f64 = 0.1;
 /// the S-lay example at n = 1000 takes 7.5 ms per step so, 11.1 ms with 0.01.
 const REUSE_BELOW: f64 = 0.01;
 
+/// Nodes per parallel task when the seabed contact's node steps are set up.
+const PARALLEL_CONTACT_NODES: usize = 512;
+
 /// Fraction of the tolerance below which a converged iterate needs no polishing correction.
 const POLISHED_BELOW: f64 = 1e-2;
 
@@ -1144,19 +1147,25 @@ impl Integrator {
             growth.internal_work = self.element_work[growth.element].internal;
         }
         if let Some(mut contact) = self.contact.take() {
-            for (node, step) in contact.nodes.iter_mut().enumerate() {
-                let base = NODE_DOFS * node;
-                let half_theta =
-                    0.5 * Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
-                let rotation_mid =
-                    cayley(&half_theta) * state.configuration.rotations[node].to_rotation_matrix();
-                *step = NodeStep {
-                    start: state.configuration.positions[node],
-                    displacement: Vector3::from_column_slice(&self.increments[base..base + 3]),
-                    axis: rotation_mid.column(0).into_owned(),
-                    axis_map: 0.5 * cayley_tangent(&half_theta),
-                };
-            }
+            let increments = &self.increments;
+            contact
+                .nodes
+                .par_iter_mut()
+                .with_min_len(PARALLEL_CONTACT_NODES)
+                .enumerate()
+                .for_each(|(node, step)| {
+                    let base = NODE_DOFS * node;
+                    let half_theta =
+                        0.5 * Vector3::from_column_slice(&increments[base + 3..base + 6]);
+                    let rotation_mid = cayley(&half_theta)
+                        * state.configuration.rotations[node].to_rotation_matrix();
+                    *step = NodeStep {
+                        start: state.configuration.positions[node],
+                        displacement: Vector3::from_column_slice(&increments[base..base + 3]),
+                        axis: rotation_mid.column(0).into_owned(),
+                        axis_map: 0.5 * cayley_tangent(&half_theta),
+                    };
+                });
             let rule = ContactRule::EnergyMomentum { time_step: dt };
             self.assembler
                 .add_contact(&mut contact, rule, &state.slips, with_tangent);

@@ -562,7 +562,8 @@ fn continuation(
 /// more than 60° from the vertical: an equilibrium of the restoring's director form that no vessel floats in)
 /// is a failure.
 pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
-    let solution = solve_unchecked(model, options)?;
+    // On the engine's threads, where the factorisation and contact run in parallel.
+    let solution = crate::solver::pool::run(|| solve_unchecked(model, options))?;
     if let Some(attachment) = &model.vessel {
         let node = attachment.node;
         let body = crate::vessel::coupling::body_rotation(
