@@ -204,6 +204,9 @@ class _Case:
 
 def _task(case: _Case, directory: Path) -> dict[str, Any]:
     """Runs a case on a worker and writes its JSON record (statistics or failure) atomically; returns it."""
+    # One engine thread per worker unless the user says otherwise: a sweep's parallelism is its cases (the
+    # engine's results do not depend on its thread count). Read when the engine first runs in this process.
+    os.environ.setdefault("RAYON_NUM_THREADS", "1")
     record: dict[str, Any] = {"name": case.name, "case": case.settings}
     try:
         record["statistics"] = run_case(case.scenario(), directory / "cases" / f"{case.name}.nc", case.checks)

@@ -62,8 +62,9 @@ fn main() {
     .unwrap();
     let t = std::time::Instant::now();
     // On the engine's threads, as a run from Python.
-    let its: usize =
-        pipelay::solver::pool::run(|| (0..steps).map(|_| sim.step().unwrap().iterations).sum());
+    let its: usize = pipelay::solver::pool::run(true, || {
+        (0..steps).map(|_| sim.step().unwrap().iterations).sum()
+    });
     println!(
         "n {n}: {:.3} ms/step, {its} iterations",
         t.elapsed().as_secs_f64() * 1e3 / steps as f64

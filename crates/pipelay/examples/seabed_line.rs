@@ -63,8 +63,9 @@ fn main() {
     let mut sim = Integrator::new(model, state, options).unwrap();
     let t = std::time::Instant::now();
     // On the engine's threads, as a run from Python.
-    let its: usize =
-        pipelay::solver::pool::run(|| (0..steps).map(|_| sim.step().unwrap().iterations).sum());
+    let its: usize = pipelay::solver::pool::run(true, || {
+        (0..steps).map(|_| sim.step().unwrap().iterations).sum()
+    });
     println!(
         "n {n}, seabed {with_seabed}: {:.3} ms/step, {its} iterations",
         t.elapsed().as_secs_f64() * 1e3 / steps as f64

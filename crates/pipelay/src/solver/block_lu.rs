@@ -497,7 +497,7 @@ mod tests {
             let n = slots.len();
             let mut lu = BlockTridiagonalLu::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
             // On the pool, so that the halves run in parallel where there are enough nodes.
-            let error = pool::run(|| {
+            let error = pool::run(true, || {
                 lu.factorise(&values).expect("regular");
                 solve_error(&dense, n, |b| lu.solve_in_place(b))
             });

@@ -707,7 +707,7 @@ impl Integrator {
         history: &mut History,
         counter: &mut usize,
     ) -> Result<()> {
-        pool::run(|| {
+        pool::run(self.parallel(), || {
             for _ in 0..steps {
                 let report = self.step()?;
                 *counter += 1;
@@ -719,10 +719,15 @@ impl Integrator {
         })
     }
 
+    /// Whether the model is large enough for the engine's threads.
+    fn parallel(&self) -> bool {
+        pool::worth_it(self.model.rod.element_count())
+    }
+
     /// Advances one time step Δt. Where Newton fails, the step is split into two halves, up to
     /// [`MAX_HALVINGS`] times; each sub-step keeps the exact energy balance.
     pub fn step(&mut self) -> Result<StepReport> {
-        pool::run(|| self.substep(self.options.time_step, 0))
+        pool::run(self.parallel(), || self.substep(self.options.time_step, 0))
     }
 
     fn substep(&mut self, dt: f64, depth: usize) -> Result<StepReport> {
@@ -1092,12 +1097,17 @@ impl Integrator {
             0.5 * (positions[e] + positions[e + 1]) + 0.25 * (moved(e) + moved(e + 1))
         };
         let elements = self.model.rod.element_count();
-        pool::run(|| {
-            (0..elements)
-                .into_par_iter()
-                .map(|e| waves.kinematics(&midpoint(e), time_mid))
-                .collect_into_vec(&mut self.wave_kinematics);
-        });
+        let kinematics = |e: usize| waves.kinematics(&midpoint(e), time_mid);
+        if pool::worth_it(elements) {
+            pool::run(true, || {
+                (0..elements)
+                    .into_par_iter()
+                    .map(kinematics)
+                    .collect_into_vec(&mut self.wave_kinematics);
+            });
+        } else {
+            self.wave_kinematics.extend((0..elements).map(kinematics));
+        }
     }
 
     /// Residual (all DOFs), per-DOF magnitude, the step's work and, with `with_tangent`, the tangent (free
@@ -1435,7 +1445,7 @@ mod tests {
         sim.predict(&targets, dt);
         let mut assemble = |run: usize| {
             sim.serial_run = run;
-            pool::run(|| sim.assemble(&[], time_mid, dt, true)).expect("assembly");
+            pool::run(true, || sim.assemble(&[], time_mid, dt, true)).expect("assembly");
             (
                 sim.assembler.residual.clone(),
                 sim.magnitude.clone(),

@@ -16,12 +16,20 @@ fn pool() -> Option<&'static rayon::ThreadPool> {
     .as_ref()
 }
 
-/// Runs `work` on the pool (directly when already on it).
-pub fn run<R: Send>(work: impl FnOnce() -> R + Send) -> R {
+/// Runs `work` on the pool when `worth_it` (a model large enough for the parallel loops), directly when
+/// already on it or not worth it: handing work to the pool wakes one of its threads, which costs more than a
+/// small model's whole run.
+pub fn run<R: Send>(worth_it: bool, work: impl FnOnce() -> R + Send) -> R {
     match pool() {
-        Some(pool) if pool.current_thread_index().is_none() => pool.install(work),
+        Some(pool) if worth_it && pool.current_thread_index().is_none() => pool.install(work),
         _ => work(),
     }
+}
+
+/// Whether a rod of `elements` elements has work for the pool: more than one serial run of its assembly
+/// ([`crate::solver::rod_step::SERIAL_RUN`]).
+pub fn worth_it(elements: usize) -> bool {
+    elements > crate::solver::rod_step::SERIAL_RUN
 }
 
 /// Runs `a` and `b`, in parallel when `worth_it` and called from the pool (else one after the other, on the

@@ -563,7 +563,10 @@ fn continuation(
 /// is a failure.
 pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
     // On the engine's threads, where the factorisation and contact run in parallel.
-    let solution = crate::solver::pool::run(|| solve_unchecked(model, options))?;
+    let solution = crate::solver::pool::run(
+        crate::solver::pool::worth_it(model.rod.element_count()),
+        || solve_unchecked(model, options),
+    )?;
     if let Some(attachment) = &model.vessel {
         let node = attachment.node;
         let body = crate::vessel::coupling::body_rotation(
