@@ -153,7 +153,9 @@ def test_two_simulations_in_two_threads_run_at_once_and_agree() -> None:
     wall = time.perf_counter() - start
     for thread in threads:
         thread.join()
-    print(f"two runs at once in two threads {wall:.2f} s; the main thread's longest pause {longest_pause:.3f} s")
+    print(
+        f"two runs at once in two threads {wall:.2f} s; the main thread's longest pause {longest_pause:.3f} s"
+    )
     for index in range(2):
         assert np.array_equal(results[index].positions, alone[index].positions)
     assert longest_pause < 0.2 * wall
