@@ -203,6 +203,7 @@ pub fn tangent_right_inv(theta: &Vector3<f64>) -> Matrix3<f64> {
 }
 
 /// Cayley map cay(θ) = (I − ½θ̂)⁻¹(I + ½θ̂) = I + (θ̂ + ½θ̂²)/(1 + |θ|²/4).
+#[inline]
 pub fn cayley(theta: &Vector3<f64>) -> Matrix3<f64> {
     // θ̂² = θθᵀ − |θ|²I, written out rather than multiplied.
     let norm2 = theta.norm_squared();
