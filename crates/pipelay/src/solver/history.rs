@@ -120,6 +120,18 @@ impl History {
         Ok(history)
     }
 
+    /// Room for `records` more records of the node and element series (the bulk of a record), so that a run
+    /// whose length is known does not copy its records as they grow; [`crate::Error::Memory`] if there is no
+    /// room.
+    pub fn reserve_records(&mut self, records: usize) -> Result<()> {
+        let what = "the records of the run (stream them with output=, or record less often)";
+        let per_node = records.saturating_mul(self.nodes);
+        reserve(&mut self.positions, 3 * per_node, what)?;
+        reserve(&mut self.velocities, 3 * per_node, what)?;
+        reserve(&mut self.rotations, 9 * per_node, what)?;
+        reserve(&mut self.section_forces, 6 * per_node, what)
+    }
+
     /// An empty history of a rod with `nodes` nodes (to be filled field by field, e.g. from a file).
     pub fn empty(nodes: usize) -> Self {
         History {
