@@ -319,34 +319,43 @@ fn back_substitute(
 fn factorise_block(a: &mut Block, pivots: &mut [u8; 6]) -> Result<(), SmallPivot> {
     // A NaN is skipped by the largest entry but fails the pivot test (or, off the pivots, reaches the solution).
     let size = a.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    // Column by column in fixed-size arrays, which the compiler keeps free of bounds checks.
+    let mut columns = [[0.0; 6]; 6];
+    for (column, entries) in columns.iter_mut().zip(a.chunks_exact(6)) {
+        column.copy_from_slice(entries);
+    }
     for k in 0..6 {
         let mut pivot = k;
         for i in k + 1..6 {
-            if a[6 * k + i].abs() > a[6 * k + pivot].abs() {
+            if columns[k][i].abs() > columns[k][pivot].abs() {
                 pivot = i;
             }
         }
         pivots[k] = pivot as u8;
-        let largest = a[6 * k + pivot].abs();
+        let largest = columns[k][pivot].abs();
         if !(largest > PIVOT_FLOOR * size && largest.is_finite()) {
             return Err(SmallPivot);
         }
         if pivot != k {
-            for j in 0..6 {
-                a.swap(6 * j + k, 6 * j + pivot);
+            for column in columns.iter_mut() {
+                column.swap(k, pivot);
             }
         }
-        let inverse = 1.0 / a[6 * k + k];
-        a[6 * k + k] = inverse;
-        for i in k + 1..6 {
-            a[6 * k + i] *= inverse;
+        let inverse = 1.0 / columns[k][k];
+        columns[k][k] = inverse;
+        for entry in &mut columns[k][k + 1..] {
+            *entry *= inverse;
         }
-        for j in k + 1..6 {
-            let top = a[6 * j + k];
-            for i in k + 1..6 {
-                a[6 * j + i] -= a[6 * k + i] * top;
+        let multipliers = columns[k];
+        for column in &mut columns[k + 1..] {
+            let top = column[k];
+            for (entry, multiplier) in column[k + 1..].iter_mut().zip(&multipliers[k + 1..]) {
+                *entry -= multiplier * top;
             }
         }
+    }
+    for (column, entries) in columns.iter().zip(a.chunks_exact_mut(6)) {
+        entries.copy_from_slice(column);
     }
     Ok(())
 }
