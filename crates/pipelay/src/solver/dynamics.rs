@@ -1378,11 +1378,8 @@ mod tests {
         sim
     }
 
-    /// The assembled tangent of a step (elements, inertia, damping, drag in a sheared current) equals central
-    /// differences of the assembled residual, column by column, at an iterate away from the predictor.
-    #[test]
-    fn step_tangent_matches_differences_of_the_residual() {
-        let mut sim = moving_pipe(20);
+    /// Sets up the next step of `sim` at its predictor; returns Δt and the step's mid-time.
+    fn at_predictor(sim: &mut Integrator) -> (f64, f64) {
         let dt = sim.options.time_step;
         let time_mid = sim.state.time + 0.5 * dt;
         let targets = sim
@@ -1393,6 +1390,15 @@ mod tests {
             .map(|node| node_start(&sim.nodal, &sim.state, node))
             .collect();
         sim.predict(&targets, dt);
+        (dt, time_mid)
+    }
+
+    /// The assembled tangent of a step (elements, inertia, damping, drag in a sheared current) equals central
+    /// differences of the assembled residual, column by column, at an iterate away from the predictor.
+    #[test]
+    fn step_tangent_matches_differences_of_the_residual() {
+        let mut sim = moving_pipe(20);
+        let (dt, time_mid) = at_predictor(&mut sim);
         for (dof, increment) in sim.increments.iter_mut().enumerate() {
             if sim.assembler.dofs.equation[dof].is_some() {
                 *increment += 1e-3 * (dof as f64).sin();
@@ -1433,16 +1439,7 @@ mod tests {
     #[test]
     fn parallel_assembly_is_the_serial_one_bit_for_bit() {
         let mut sim = moving_pipe_of(301, 2);
-        let dt = sim.options.time_step;
-        let time_mid = sim.state.time + 0.5 * dt;
-        let targets = sim
-            .model
-            .support_targets(sim.state.time + dt)
-            .expect("targets");
-        sim.node_start = (0..sim.model.rod.node_count())
-            .map(|node| node_start(&sim.nodal, &sim.state, node))
-            .collect();
-        sim.predict(&targets, dt);
+        let (dt, time_mid) = at_predictor(&mut sim);
         let mut assemble = |run: usize| {
             sim.serial_run = run;
             pool::run(true, || sim.assemble(&[], time_mid, dt, true)).expect("assembly");
