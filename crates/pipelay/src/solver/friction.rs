@@ -63,17 +63,10 @@ impl FrictionNode<'_> {
         with_tangent: bool,
     ) -> FrictionStep {
         let (normal, d_normal) = self.normal(rule, displacement);
-        let (axial, lateral) = directions(&normal, &d_normal, axis);
-        let row = |v: &Vector3<f64>| v.transpose();
+        let (axial, lateral) = directions(&normal, with_tangent.then_some(&d_normal), axis);
         let dx = displacement;
-        // Δu = (â·Δx, l̂·Δx) and its derivatives (2×3).
+        // Δu = (â·Δx, l̂·Δx).
         let du = Vector2::new(axial.value.dot(dx), lateral.value.dot(dx));
-        let du_dx = Matrix2x3::from_rows(&[
-            row(&axial.value) + dx.transpose() * axial.displacement,
-            row(&lateral.value) + dx.transpose() * lateral.displacement,
-        ]);
-        let du_da =
-            Matrix2x3::from_rows(&[dx.transpose() * axial.axis, dx.transpose() * lateral.axis]);
         let trial = self.slip_start + du;
         let radius = self.yield_per_force * normal_force.max(0.0);
         let size = trial.norm();
@@ -119,6 +112,13 @@ impl FrictionNode<'_> {
         }
         let tangent = with_tangent.then(|| {
             let q = nalgebra::Matrix3x2::from_columns(&[axial.value, lateral.value]);
+            // dΔu (2×3).
+            let du_dx = Matrix2x3::from_rows(&[
+                axial.value.transpose() + dx.transpose() * axial.displacement,
+                lateral.value.transpose() + dx.transpose() * lateral.displacement,
+            ]);
+            let du_da =
+                Matrix2x3::from_rows(&[dx.transpose() * axial.axis, dx.transpose() * lateral.axis]);
             let slip_dx = slip_by_trial * du_dx;
             let slip_da = slip_by_trial * du_da;
             // −d(Q K e_acting) = −Q K share de − dâ (K e_acting)_x − dl̂ (K e_acting)_y.
@@ -184,38 +184,49 @@ impl FrictionNode<'_> {
     }
 }
 
-/// The axial and lateral directions â and l̂ = n̂ × â with their derivatives, from the normal n̂ (and its
-/// derivative by Δx) and the section axis t1. When t1 stands along n̂ (the pipe end-on on the seabed), any
-/// direction of the plane serves as "axial": n̂ × e2, or n̂ × e1.
+/// The axial and lateral directions â and l̂ = n̂ × â from the normal n̂ and the section axis t1; with
+/// `d_normal` (dn̂/dΔx), their derivatives too (else zero). When t1 stands along n̂ (the pipe end-on on the
+/// seabed), any direction of the plane serves as "axial": n̂ × e2, or n̂ × e1.
 fn directions(
     normal: &Vector3<f64>,
-    d_normal: &Matrix3<f64>,
+    d_normal: Option<&Matrix3<f64>>,
     axis: &Vector3<f64>,
 ) -> (Direction, Direction) {
     let along_normal = normal.dot(axis);
     let mut along = axis - normal * along_normal;
-    // db = −[(n̂·t1) I + n̂ t1ᵀ] dn̂ + (I − n̂n̂ᵀ) dt1.
-    let mut along_dx = -(Matrix3::identity() * along_normal + normal * axis.transpose()) * d_normal;
-    let mut along_da = Matrix3::identity() - normal * normal.transpose();
-    if along.norm() < 1e-9 {
-        let mut fixed = Vector3::y();
-        along = normal.cross(&fixed);
-        if along.norm() < 1e-9 {
-            fixed = Vector3::x();
-            along = normal.cross(&fixed);
+    // The fixed direction of the end-on case.
+    let mut fixed = None;
+    for e in [Vector3::y(), Vector3::x()] {
+        if along.norm() >= 1e-9 {
+            break;
         }
-        along_dx = -skew(&fixed) * d_normal;
-        along_da = Matrix3::zeros();
+        along = normal.cross(&e);
+        fixed = Some(e);
     }
     let length = along.norm();
     let axial = along / length;
-    let project = (Matrix3::identity() - axial * axial.transpose()) / length;
-    let axial_dx = project * along_dx;
-    let axial_da = project * along_da;
-    // dl̂ = −[â]× dn̂ + [n̂]× dâ.
     let lateral = normal.cross(&axial);
-    let lateral_dx = -skew(&axial) * d_normal + skew(normal) * axial_dx;
-    let lateral_da = skew(normal) * axial_da;
+    let zero = Matrix3::zeros();
+    let [axial_dx, axial_da, lateral_dx, lateral_da] = d_normal.map_or([zero; 4], |d_normal| {
+        // db = −[(n̂·t1) I + n̂ t1ᵀ] dn̂ + (I − n̂n̂ᵀ) dt1 (end-on: b = n̂ × e, db = −[e]× dn̂).
+        let (along_dx, along_da) = match fixed {
+            None => (
+                -(Matrix3::identity() * along_normal + normal * axis.transpose()) * d_normal,
+                Matrix3::identity() - normal * normal.transpose(),
+            ),
+            Some(e) => (-skew(&e) * d_normal, zero),
+        };
+        let project = (Matrix3::identity() - axial * axial.transpose()) / length;
+        let axial_dx = project * along_dx;
+        let axial_da = project * along_da;
+        // dl̂ = −[â]× dn̂ + [n̂]× dâ.
+        [
+            axial_dx,
+            axial_da,
+            -skew(&axial) * d_normal + skew(normal) * axial_dx,
+            skew(normal) * axial_da,
+        ]
+    });
     (
         Direction {
             value: axial,
