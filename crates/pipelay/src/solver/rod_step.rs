@@ -45,6 +45,7 @@ pub struct ElementWork {
 }
 
 /// The section's and the sea's constants the elements use.
+#[derive(Debug, Clone, Copy)]
 pub struct RodConstants {
     c_t: Matrix3<f64>,
     c_r: Matrix3<f64>,
@@ -183,8 +184,7 @@ impl RodStep<'_> {
             c_r,
             weight,
             drag: (k_axial, k_normal),
-        } = &self.constants;
-        let (k_axial, k_normal) = (*k_axial, *k_normal);
+        } = self.constants;
         let dt = self.dt;
         let base = NODE_DOFS * e;
         let increments = ElementVector::from_column_slice(&self.increments[base..base + 12]);
@@ -200,8 +200,8 @@ impl RodStep<'_> {
             &self.gauss[e],
             length_start,
             reference,
-            c_t,
-            c_r,
+            &c_t,
+            &c_r,
             self.stress_rule,
             tangent.as_deref_mut(),
         );
