@@ -155,22 +155,14 @@ impl BlockTridiagonalLu {
         let (pivots_middle, pivots_bottom) = pivots_rest.split_at_mut(1);
         let (top, bottom) = pool::join(
             n >= PARALLEL_NODES,
-            || {
-                eliminate(
-                    diagonal_top,
-                    lower_top,
-                    upper_top,
-                    pivots_top,
-                    Direction::Down,
-                )
-            },
+            || eliminate(diagonal_top, lower_top, upper_top, pivots_top, Sweep::Down),
             || {
                 eliminate(
                     diagonal_bottom,
                     upper_bottom,
                     lower_bottom,
                     pivots_bottom,
-                    Direction::Up,
+                    Sweep::Up,
                 )
             },
         );
@@ -212,12 +204,12 @@ impl BlockTridiagonalLu {
                     &lower[top],
                     pivots_top,
                     work_top,
-                    Direction::Down,
+                    Sweep::Down,
                 );
             },
             || {
                 let (diagonal, upper) = (&diagonal[bottom.clone()], &upper[bottom.clone()]);
-                substitute(diagonal, upper, pivots_bottom, work_bottom, Direction::Up);
+                substitute(diagonal, upper, pivots_bottom, work_bottom, Sweep::Up);
             },
         );
         let x = &mut work_middle[0];
@@ -231,8 +223,8 @@ impl BlockTridiagonalLu {
         let x = *x;
         pool::join(
             parallel,
-            || back_substitute(&upper[..middle], work_top, &x, Direction::Down),
-            || back_substitute(&lower[bottom.clone()], work_bottom, &x, Direction::Up),
+            || back_substitute(&upper[..middle], work_top, &x, Sweep::Down),
+            || back_substitute(&lower[bottom.clone()], work_bottom, &x, Sweep::Up),
         );
         for (&slot, value) in self.slots.iter().zip(rhs.iter_mut()) {
             *value = self.work[slot / 6][slot % 6];
@@ -243,17 +235,17 @@ impl BlockTridiagonalLu {
 /// Which way an elimination runs over its half: from the first node down to the middle (its blocks in
 /// order), or from the last node up to it (in reverse).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Direction {
+enum Sweep {
     Down,
     Up,
 }
 
-impl Direction {
+impl Sweep {
     /// The half's nodes in elimination order, as indices into its slices of `count`.
     fn order(self, count: usize) -> impl Iterator<Item = (usize, Option<usize>)> {
         (0..count).map(move |k| match self {
-            Direction::Down => (k, k.checked_sub(1)),
-            Direction::Up => (count - 1 - k, (k > 0).then_some(count - k)),
+            Sweep::Down => (k, k.checked_sub(1)),
+            Sweep::Up => (count - 1 - k, (k > 0).then_some(count - k)),
         })
     }
 }
@@ -266,9 +258,9 @@ fn eliminate(
     behind: &mut [Block],
     ahead: &mut [Block],
     pivots: &mut [[u8; 6]],
-    direction: Direction,
+    sweep: Sweep,
 ) -> Result<(), SmallPivot> {
-    for (i, previous) in direction.order(diagonal.len()) {
+    for (i, previous) in sweep.order(diagonal.len()) {
         if let Some(p) = previous {
             subtract_product(&mut diagonal[i], &behind[i], &ahead[p]);
         }
@@ -285,9 +277,9 @@ fn substitute(
     behind: &[Block],
     pivots: &[[u8; 6]],
     work: &mut [[f64; 6]],
-    direction: Direction,
+    sweep: Sweep,
 ) {
-    for (i, previous) in direction.order(diagonal.len()) {
+    for (i, previous) in sweep.order(diagonal.len()) {
         if let Some(p) = previous {
             let before = work[p];
             subtract_product_vector(&mut work[i], &behind[i], &before);
@@ -297,17 +289,12 @@ fn substitute(
 }
 
 /// Back substitution over one half, outwards from the middle's solution x_m: x_i = w_i − Z_i x_next.
-fn back_substitute(
-    solved: &[Block],
-    work: &mut [[f64; 6]],
-    middle: &[f64; 6],
-    direction: Direction,
-) {
+fn back_substitute(solved: &[Block], work: &mut [[f64; 6]], middle: &[f64; 6], sweep: Sweep) {
     let count = work.len();
     for k in 0..count {
-        let (i, next) = match direction {
-            Direction::Down => (count - 1 - k, count - k),
-            Direction::Up => (k, k.wrapping_sub(1)),
+        let (i, next) = match sweep {
+            Sweep::Down => (count - 1 - k, count - k),
+            Sweep::Up => (k, k.wrapping_sub(1)),
         };
         let toward = if next < count { work[next] } else { *middle };
         subtract_row_major_product_vector(&mut work[i], &solved[i], &toward);
