@@ -7,7 +7,7 @@ use crate::model::Model;
 use crate::rod::element::{evaluate, ElementMatrix, ElementVector};
 use crate::so3::exp_quat;
 use crate::solver::contact::{ContactRule, SeabedContact, TangentSink};
-use crate::solver::linsolve::SparseLu;
+use crate::solver::linsolve::{largest_magnitude, SparseLu};
 use crate::solver::rollers::{EntrySink, RollerContact};
 use crate::vessel::coupling::{static_forces, StaticTarget};
 use crate::vessel::VesselAttachment;
@@ -728,7 +728,7 @@ impl Assembler {
 
     /// Adds the small shift on the rotational diagonal (see [`ROTATION_SHIFT`]) once a tangent is complete.
     pub fn shift_rotations(&mut self) {
-        let largest = self.values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let largest = largest_magnitude(&self.values);
         for &p in &self.rotation_diagonal {
             self.values[p] += ROTATION_SHIFT * largest;
         }

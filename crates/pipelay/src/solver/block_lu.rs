@@ -22,6 +22,7 @@
 // Indexing cannot go out of bounds here: node indices below the node count, entries below 36 and 6, and
 // block positions computed at construction from the pattern they scatter.
 #![allow(clippy::indexing_slicing)]
+use crate::solver::linsolve::largest_magnitude;
 use crate::solver::pool;
 
 /// Nodes from which the two halves are eliminated and substituted in parallel (the arithmetic is the same
@@ -305,46 +306,62 @@ fn back_substitute(solved: &[Block], work: &mut [[f64; 6]], middle: &[f64; 6], s
 /// the reciprocals of U's diagonal on it (whole rows interchanged, as LAPACK's getrf).
 fn factorise_block(a: &mut Block, pivots: &mut [u8; 6]) -> Result<(), SmallPivot> {
     // A NaN is skipped by the largest entry but fails the pivot test (or, off the pivots, reaches the solution).
-    let size = a.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    // Column by column in fixed-size arrays, which the compiler keeps free of bounds checks.
+    let floor = PIVOT_FLOOR * largest_magnitude(a);
+    // Column by column in fixed-size arrays, one step per column with its bounds known at compile time
+    // (unrolled, free of bounds checks).
     let mut columns = [[0.0; 6]; 6];
     for (column, entries) in columns.iter_mut().zip(a.chunks_exact(6)) {
         column.copy_from_slice(entries);
     }
-    for k in 0..6 {
-        let mut pivot = k;
-        for i in k + 1..6 {
-            if columns[k][i].abs() > columns[k][pivot].abs() {
-                pivot = i;
-            }
-        }
-        pivots[k] = pivot as u8;
-        let largest = columns[k][pivot].abs();
-        if !(largest > PIVOT_FLOOR * size && largest.is_finite()) {
-            return Err(SmallPivot);
-        }
-        if pivot != k {
-            for column in columns.iter_mut() {
-                column.swap(k, pivot);
-            }
-        }
-        let inverse = 1.0 / columns[k][k];
-        columns[k][k] = inverse;
-        for entry in &mut columns[k][k + 1..] {
-            *entry *= inverse;
-        }
-        let multipliers = columns[k];
-        for column in &mut columns[k + 1..] {
-            let top = column[k];
-            for (entry, multiplier) in column[k + 1..].iter_mut().zip(&multipliers[k + 1..]) {
-                *entry -= multiplier * top;
-            }
-        }
-    }
+    pivots[0] = eliminate_column::<0>(&mut columns, floor)?;
+    pivots[1] = eliminate_column::<1>(&mut columns, floor)?;
+    pivots[2] = eliminate_column::<2>(&mut columns, floor)?;
+    pivots[3] = eliminate_column::<3>(&mut columns, floor)?;
+    pivots[4] = eliminate_column::<4>(&mut columns, floor)?;
+    pivots[5] = eliminate_column::<5>(&mut columns, floor)?;
     for (column, entries) in columns.iter().zip(a.chunks_exact_mut(6)) {
         entries.copy_from_slice(column);
     }
     Ok(())
+}
+
+/// Step `K` of [`factorise_block`]: picks the largest pivot of column `K` at or below the diagonal (it must
+/// exceed `floor`), interchanges its row with row `K` in every column, stores the multipliers below the
+/// pivot and the pivot's reciprocal on it, and updates the columns to the right. Returns the pivot's row.
+#[inline(always)]
+fn eliminate_column<const K: usize>(
+    columns: &mut [[f64; 6]; 6],
+    floor: f64,
+) -> Result<u8, SmallPivot> {
+    let mut pivot = K;
+    let mut largest = columns[K][K].abs();
+    for (i, entry) in columns[K].iter().enumerate().skip(K + 1) {
+        if entry.abs() > largest {
+            largest = entry.abs();
+            pivot = i;
+        }
+    }
+    if !(largest > floor && largest.is_finite()) {
+        return Err(SmallPivot);
+    }
+    if pivot != K {
+        for column in columns.iter_mut() {
+            column.swap(K, pivot);
+        }
+    }
+    let inverse = 1.0 / columns[K][K];
+    columns[K][K] = inverse;
+    for entry in &mut columns[K][K + 1..] {
+        *entry *= inverse;
+    }
+    let multipliers = columns[K];
+    for column in &mut columns[K + 1..] {
+        let top = column[K];
+        for (entry, multiplier) in column[K + 1..].iter_mut().zip(&multipliers[K + 1..]) {
+            *entry -= multiplier * top;
+        }
+    }
+    Ok(pivot as u8)
 }
 
 /// Solves S x = b in place with the factors of [`factorise_block`].
