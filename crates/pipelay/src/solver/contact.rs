@@ -33,8 +33,8 @@ use crate::solver::friction::FrictionNode;
 use nalgebra::{Matrix2, Matrix3, Matrix6, UnitQuaternion, Vector2, Vector3};
 use rayon::prelude::*;
 
-/// Nodes per parallel task in a contact evaluation.
-const PARALLEL_NODES: usize = 512;
+/// Nodes per parallel task in a contact evaluation, and where the integrator sets up the nodes' steps.
+pub const PARALLEL_NODES: usize = 512;
 
 /// How a contact evaluation treats the step from the start state to the trial state.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -23,7 +23,9 @@ use crate::rod::dynamic_element::{GaussPoint, StressRule};
 use crate::rod::element::ElementReference;
 use crate::so3::{cayley, cayley_parameter, cayley_quaternion, cayley_tangent};
 use crate::solver::assembly::{Assembler, Configuration, NODE_DOFS};
-use crate::solver::contact::{ContactRule, NodeStep, SeabedContact, Touchdown};
+use crate::solver::contact::{
+    ContactRule, NodeStep, SeabedContact, Touchdown, PARALLEL_NODES as PARALLEL_CONTACT_NODES,
+};
 pub use crate::solver::energy::Energy;
 use crate::solver::history::{History, Snapshot};
 use crate::solver::pay_out::{self, MeshChange};
@@ -51,9 +53,6 @@ const SIMPLIFIED_RATE: f64 = 0.1;
 /// or sparse one (rollers), several times an assembly's cost, a simplified correction is always tried first:
 /// the S-lay example at n = 1000 takes 7.5 ms per step so, 11.1 ms with 0.01.
 const REUSE_BELOW: f64 = 0.01;
-
-/// Nodes per parallel task when the seabed contact's node steps are set up.
-const PARALLEL_CONTACT_NODES: usize = 512;
 
 /// Fraction of the tolerance below which a converged iterate needs no polishing correction.
 const POLISHED_BELOW: f64 = 1e-2;
@@ -1098,7 +1097,7 @@ impl Integrator {
         };
         let elements = self.model.rod.element_count();
         let kinematics = |e: usize| waves.kinematics(&midpoint(e), time_mid);
-        if pool::worth_it(elements) {
+        if self.parallel() {
             pool::run(true, || {
                 (0..elements)
                     .into_par_iter()
