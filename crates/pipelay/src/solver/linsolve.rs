@@ -9,12 +9,15 @@
 //! **Border.** A vessel's rollers couple its node to every node within their reach. A sparse LU analysed
 //! on AᵀA (as faer's is) sees those few dense rows as a dense block and fills hundreds of columns. Given the
 //! border unknowns (at most six, the vessel node's), the system [A B; C D][x; z] = [r; s] is solved by block
-//! elimination instead: A (the rod with the border held) by the sparse LU, X = A⁻¹B once per factorisation,
-//! the Schur complement D − C X (at most 6×6) densely, then x = A⁻¹r − X z. Cost stays linear in the unknowns.
+//! elimination instead: A (the rod with the border held) by the LU of [`crate::solver::window_lu`] (the
+//! rollers' wider coupling lies in a window of nodes next to the vessel) or else by the band or sparse LU,
+//! X = A⁻¹B once per factorisation, the Schur complement D − C X (at most 6×6) densely, then
+//! x = A⁻¹r − X z. Cost stays linear in the unknowns.
 // Indexing cannot go out of bounds here: Row and column indices of the pattern the solver built.
 #![allow(clippy::indexing_slicing)]
 use crate::solver::band_lu::BandLu;
 use crate::solver::block_lu::BlockTridiagonalLu;
+use crate::solver::window_lu::WindowLu;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::factor::{
     lu_in_place, lu_in_place_scratch, PartialPivLuParams,
@@ -81,6 +84,8 @@ enum Factors {
 pub struct SparseLu {
     /// With border unknowns: the block elimination around the interior's factorisation.
     border: Option<Box<Border>>,
+    /// A rod whose wide coupling lies in a window at one end: the block elimination around it.
+    window: Option<Box<WindowLu>>,
     size: usize,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
@@ -119,11 +124,19 @@ impl SparseLu {
                 lu.row_idx = row_idx;
                 return lu;
             }
+            if let Some(window) = WindowLu::new(slots, &col_ptr, &row_idx) {
+                let mut lu = Self::new(0, vec![0], Vec::new());
+                lu.window = Some(Box::new(window));
+                lu.size = size;
+                lu.col_ptr = col_ptr;
+                lu.row_idx = row_idx;
+                return lu;
+            }
             return Self::new(size, col_ptr, row_idx);
         }
         // The whole pattern is only kept for positions; the factorisation is the border's.
         let mut lu = Self::new(0, vec![0], Vec::new());
-        lu.border = Some(Box::new(Border::new(size, &col_ptr, &row_idx, border)));
+        lu.border = Some(Box::new(Border::new(slots, &col_ptr, &row_idx, border)));
         lu.size = size;
         lu.col_ptr = col_ptr;
         lu.row_idx = row_idx;
@@ -178,6 +191,7 @@ impl SparseLu {
         };
         SparseLu {
             border: None,
+            window: None,
             size,
             col_ptr,
             row_idx,
@@ -190,7 +204,9 @@ impl SparseLu {
 
     /// Whether the factorisation is the block-tridiagonal one, whose cost is about an assembly's.
     pub fn is_block_tridiagonal(&self) -> bool {
-        self.border.is_none() && matches!(self.factors, Factors::Block { .. })
+        self.border.is_none()
+            && self.window.is_none()
+            && matches!(self.factors, Factors::Block { .. })
     }
 
     /// Number of stored entries.
@@ -209,6 +225,11 @@ impl SparseLu {
     pub fn factorise(&mut self, values: &[f64]) -> Result<(), Singular> {
         if let Some(border) = self.border.as_mut() {
             let ok = border.factorise(values).is_ok();
+            self.factorised = ok;
+            return if ok { Ok(()) } else { Err(Singular) };
+        }
+        if let Some(window) = self.window.as_mut() {
+            let ok = window.factorise(values).is_ok();
             self.factorised = ok;
             return if ok { Ok(()) } else { Err(Singular) };
         }
@@ -277,6 +298,9 @@ impl SparseLu {
         if let Some(border) = self.border.as_mut() {
             return border.solve_in_place(rhs);
         }
+        if let Some(window) = self.window.as_mut() {
+            return window.solve_in_place(rhs);
+        }
         let stack = MemStack::new(&mut self.solve_scratch);
         match &mut self.factors {
             Factors::Block {
@@ -318,11 +342,35 @@ impl SparseLu {
 /// Most border unknowns (one node's).
 const BORDER_MAX: usize = 6;
 
-/// Where an entry of the whole pattern goes in the block elimination.
+/// Copies part of a pattern's values into a smaller pattern's, as runs of consecutive positions that land on
+/// consecutive positions (a column of the part is one run), instead of one decision per value.
+#[derive(Debug, Default)]
+pub struct Gather {
+    /// (first source position, first destination position, length).
+    runs: Vec<(usize, usize, usize)>,
+}
+
+impl Gather {
+    /// Value `source` of the whole pattern goes to position `destination` of the part.
+    pub fn push(&mut self, source: usize, destination: usize) {
+        match self.runs.last_mut() {
+            Some(run) if run.0 + run.2 == source && run.1 + run.2 == destination => run.2 += 1,
+            _ => self.runs.push((source, destination, 1)),
+        }
+    }
+
+    /// Copies the part's values from `values` into `part`.
+    pub fn copy(&self, values: &[f64], part: &mut [f64]) {
+        for &(source, destination, length) in &self.runs {
+            part[destination..destination + length]
+                .copy_from_slice(&values[source..source + length]);
+        }
+    }
+}
+
+/// Where an entry of the whole pattern outside the interior goes in the block elimination.
 #[derive(Debug, Clone, Copy)]
 enum Block {
-    /// The interior A, at this value position of its own pattern.
-    Interior(usize),
     /// B (interior row, border column), C (border row, interior column), D: row and column indices.
     Right(usize, usize),
     Below(usize, usize),
@@ -334,8 +382,9 @@ struct Border {
     /// Border unknowns, and each unknown's interior index (`usize::MAX` on the border).
     unknowns: Vec<usize>,
     interior_of: Vec<usize>,
-    /// Destination of each value of the whole pattern.
-    blocks: Vec<Block>,
+    /// The interior's values in the whole pattern, and where each other value goes (position, destination).
+    interior_gather: Gather,
+    blocks: Vec<(usize, Block)>,
     interior: SparseLu,
     interior_values: Vec<f64>,
     /// B and X = A⁻¹B, column by column (interior × border), and C row by row (border × interior).
@@ -349,7 +398,9 @@ struct Border {
 }
 
 impl Border {
-    fn new(size: usize, col_ptr: &[usize], row_idx: &[usize], border: &[usize]) -> Self {
+    /// The system of unknowns at node-major positions `slots` (see [`SparseLu::for_rod`]).
+    fn new(slots: &[usize], col_ptr: &[usize], row_idx: &[usize], border: &[usize]) -> Self {
+        let size = slots.len();
         let mut interior_of = vec![usize::MAX; size];
         let mut count = 0;
         for (i, slot) in interior_of.iter_mut().enumerate() {
@@ -361,30 +412,38 @@ impl Border {
         let place = |i: usize| border.iter().position(|&b| b == i);
         let mut inner_ptr = vec![0];
         let mut inner_rows = Vec::new();
-        let mut blocks = vec![Block::Interior(0); row_idx.len()];
+        let mut interior_gather = Gather::default();
+        let mut blocks = Vec::new();
         for col in 0..size {
-            for k in col_ptr[col]..col_ptr[col + 1] {
-                let row = row_idx[k];
-                blocks[k] = match (place(row), place(col)) {
+            let range = col_ptr[col]..col_ptr[col + 1];
+            for (k, &row) in range.clone().zip(&row_idx[range]) {
+                let block = match (place(row), place(col)) {
                     (None, None) => {
+                        interior_gather.push(k, inner_rows.len());
                         inner_rows.push(interior_of[row]);
-                        Block::Interior(inner_rows.len() - 1)
+                        continue;
                     }
                     (None, Some(c)) => Block::Right(interior_of[row], c),
                     (Some(r), None) => Block::Below(r, interior_of[col]),
                     (Some(r), Some(c)) => Block::Corner(r, c),
                 };
+                blocks.push((k, block));
             }
             if interior_of[col] != usize::MAX {
                 inner_ptr.push(inner_rows.len());
             }
         }
         let nnz = inner_rows.len();
+        let interior_slots: Vec<usize> = (0..size)
+            .filter(|&i| interior_of[i] != usize::MAX)
+            .map(|i| slots[i])
+            .collect();
         Border {
             unknowns: border.to_vec(),
             interior_of,
+            interior_gather,
             blocks,
-            interior: SparseLu::new(count, inner_ptr, inner_rows),
+            interior: SparseLu::for_rod(&interior_slots, inner_ptr, inner_rows, &[]),
             interior_values: vec![0.0; nnz],
             right: vec![vec![0.0; count]; border.len()],
             solved: vec![vec![0.0; count]; border.len()],
@@ -406,12 +465,13 @@ impl Border {
                 self.corner[(r, c)] = 0.0;
             }
         }
-        for (block, value) in self.blocks.iter().zip(values) {
-            match *block {
-                Block::Interior(p) => self.interior_values[p] = *value,
-                Block::Right(i, c) => self.right[c][i] = *value,
-                Block::Below(r, i) => self.below[r][i] = *value,
-                Block::Corner(r, c) => self.corner[(r, c)] = *value,
+        self.interior_gather.copy(values, &mut self.interior_values);
+        for &(position, block) in &self.blocks {
+            let value = values[position];
+            match block {
+                Block::Right(i, c) => self.right[c][i] = value,
+                Block::Below(r, i) => self.below[r][i] = value,
+                Block::Corner(r, c) => self.corner[(r, c)] = value,
             }
         }
         self.interior.factorise(&self.interior_values)?;

@@ -20,3 +20,4 @@ pub mod rollers;
 pub mod statics;
 #[cfg(test)]
 mod test_support;
+pub mod window_lu;

@@ -1,0 +1,336 @@
+//! LU of a rod's tangent that is block tridiagonal except in a window of nodes at one end, where a vessel's
+//! rollers couple each node to its neighbours up to three nodes away.
+//!
+//! Ordered as [P; W] (the rest of the rod P, the window W), the system [A B; C D][x; w] = [r; s] couples P
+//! and W only through the block between the window's first node and its neighbour: B has at most six
+//! nonzero columns and C at most six nonzero rows. Block elimination factorises A by the block-tridiagonal
+//! LU of [`crate::solver::block_lu`], forms Z = A⁻¹B (one solve per nonzero column of B) and the Schur
+//! complement D − C Z, which differs from D in one 6×6 block and so keeps D's band, and factorises it by the
+//! band LU. A solve is then x̃ = A⁻¹r, w = (D − C Z)⁻¹(s − C x̃), x = x̃ − Z w: the band LU's cost is paid on
+//! the window alone, not on the whole rod's widest band.
+// Indexing cannot go out of bounds here: Row, column and value indices of the pattern the solver built.
+#![allow(clippy::indexing_slicing)]
+use crate::solver::linsolve::{Gather, Singular, SparseLu};
+
+/// Fewest unknowns outside the window for which the split pays (below, the whole band LU is as cheap).
+const MIN_REST: usize = 60;
+
+/// Most columns of B (one node's unknowns).
+const MAX_COUPLING: usize = 6;
+
+/// Where an entry of the whole pattern outside A and D goes.
+#[derive(Debug, Clone, Copy)]
+enum Place {
+    /// B: row of A, index of the coupled column.
+    Right(usize, usize),
+    /// C: index of the coupled row, column of A.
+    Below(usize, usize),
+}
+
+/// The factorisation of a rod's tangent split at its roller window (module docs).
+pub struct WindowLu {
+    /// Each unknown's index in A or in D (the other is `usize::MAX`).
+    rest_of: Vec<usize>,
+    window_of: Vec<usize>,
+    /// A's and D's values in the whole pattern, and where each of B's and C's goes (position, place).
+    rest_gather: Gather,
+    window_gather: Gather,
+    places: Vec<(usize, Place)>,
+    rest: SparseLu,
+    rest_values: Vec<f64>,
+    window: SparseLu,
+    window_values: Vec<f64>,
+    /// D-indices of B's nonzero columns and of C's nonzero rows.
+    coupled_columns: Vec<usize>,
+    coupled_rows: Vec<usize>,
+    /// Value position in D's pattern of (coupled row i, coupled column j), row-major.
+    schur_positions: Vec<usize>,
+    /// B's entries (row of A, coupled column, value) and C's (coupled row, column of A, value), as factorised.
+    right: Vec<(usize, usize, f64)>,
+    below: Vec<(usize, usize, f64)>,
+    /// Z = A⁻¹B, column by column.
+    solved: Vec<Vec<f64>>,
+    rest_work: Vec<f64>,
+    window_work: Vec<f64>,
+}
+
+impl WindowLu {
+    /// The split of the tangent whose unknown i sits at node-major position `slots[i]` (6·node + k,
+    /// increasing), with columns `col_ptr` and sorted rows `row_idx`; `None` where the entries coupling nodes
+    /// more than one apart do not lie in one window at an end of the rod, or the rest is too small to pay.
+    pub fn new(slots: &[usize], col_ptr: &[usize], row_idx: &[usize]) -> Option<Self> {
+        let size = slots.len();
+        let node = |i: usize| slots[i] / 6;
+        let (mut low, mut high) = (usize::MAX, 0);
+        for column in 0..size {
+            for &row in &row_idx[col_ptr[column]..col_ptr[column + 1]] {
+                let (a, b) = (node(row), node(column));
+                if a.abs_diff(b) > 1 {
+                    low = low.min(a.min(b));
+                    high = high.max(a.max(b));
+                }
+            }
+        }
+        if low == usize::MAX || size == 0 || (low != node(0) && high != node(size - 1)) {
+            return None;
+        }
+        let in_window = |i: usize| (low..=high).contains(&node(i));
+        let (mut rest_of, mut window_of) = (vec![usize::MAX; size], vec![usize::MAX; size]);
+        let (mut rest_count, mut window_count) = (0, 0);
+        let mut rest_slots = Vec::new();
+        for i in 0..size {
+            if in_window(i) {
+                window_of[i] = window_count;
+                window_count += 1;
+            } else {
+                rest_of[i] = rest_count;
+                rest_count += 1;
+                rest_slots.push(slots[i]);
+            }
+        }
+        if rest_count < MIN_REST {
+            return None;
+        }
+        let (mut rest_gather, mut window_gather) = (Gather::default(), Gather::default());
+        let mut places = Vec::new();
+        let (mut rest_ptr, mut rest_rows) = (vec![0], Vec::new());
+        let (mut window_ptr, mut window_rows) = (vec![0], Vec::new());
+        let (mut coupled_columns, mut coupled_rows) = (Vec::new(), Vec::new());
+        let index_in = |list: &mut Vec<usize>, item: usize| {
+            list.iter().position(|&x| x == item).unwrap_or_else(|| {
+                list.push(item);
+                list.len() - 1
+            })
+        };
+        for column in 0..size {
+            let range = col_ptr[column]..col_ptr[column + 1];
+            for (k, &row) in range.clone().zip(&row_idx[range]) {
+                let place = match (in_window(row), in_window(column)) {
+                    (false, false) => {
+                        rest_gather.push(k, rest_rows.len());
+                        rest_rows.push(rest_of[row]);
+                        continue;
+                    }
+                    (true, true) => {
+                        window_gather.push(k, window_rows.len());
+                        window_rows.push(window_of[row]);
+                        continue;
+                    }
+                    (false, true) => Place::Right(
+                        rest_of[row],
+                        index_in(&mut coupled_columns, window_of[column]),
+                    ),
+                    (true, false) => {
+                        Place::Below(index_in(&mut coupled_rows, window_of[row]), rest_of[column])
+                    }
+                };
+                places.push((k, place));
+            }
+            if in_window(column) {
+                window_ptr.push(window_rows.len());
+            } else {
+                rest_ptr.push(rest_rows.len());
+            }
+        }
+        if coupled_columns.len() > MAX_COUPLING || coupled_rows.len() > MAX_COUPLING {
+            return None;
+        }
+        // C Z changes D where a coupled row meets a coupled column: D's pattern must hold those entries.
+        let position = |row: usize, column: usize| {
+            let start = window_ptr[column];
+            window_rows[start..window_ptr[column + 1]]
+                .binary_search(&row)
+                .ok()
+                .map(|k| start + k)
+        };
+        let mut schur_positions = Vec::with_capacity(coupled_rows.len() * coupled_columns.len());
+        for &row in &coupled_rows {
+            for &column in &coupled_columns {
+                schur_positions.push(position(row, column)?);
+            }
+        }
+        let (rest_nnz, window_nnz) = (rest_rows.len(), window_rows.len());
+        Some(WindowLu {
+            rest: SparseLu::for_rod(&rest_slots, rest_ptr, rest_rows, &[]),
+            rest_values: vec![0.0; rest_nnz],
+            window: SparseLu::new(window_count, window_ptr, window_rows),
+            window_values: vec![0.0; window_nnz],
+            solved: vec![vec![0.0; rest_count]; coupled_columns.len()],
+            right: Vec::new(),
+            below: Vec::new(),
+            coupled_columns,
+            coupled_rows,
+            schur_positions,
+            rest_of,
+            window_of,
+            rest_gather,
+            window_gather,
+            places,
+            rest_work: vec![0.0; rest_count],
+            window_work: vec![0.0; window_count],
+        })
+    }
+
+    /// Factorises the matrix with `values` in the whole pattern's order.
+    pub fn factorise(&mut self, values: &[f64]) -> Result<(), Singular> {
+        self.right.clear();
+        self.below.clear();
+        self.rest_gather.copy(values, &mut self.rest_values);
+        self.window_gather.copy(values, &mut self.window_values);
+        for &(position, place) in &self.places {
+            let value = values[position];
+            match place {
+                Place::Right(row, j) => self.right.push((row, j, value)),
+                Place::Below(i, column) => self.below.push((i, column, value)),
+            }
+        }
+        self.rest.factorise(&self.rest_values)?;
+        for column in &mut self.solved {
+            column.iter_mut().for_each(|z| *z = 0.0);
+        }
+        for &(row, j, value) in &self.right {
+            self.solved[j][row] = value;
+        }
+        for column in &mut self.solved {
+            self.rest.solve_in_place(column)?;
+        }
+        // D − C Z, in the coupled rows and columns.
+        let columns = self.coupled_columns.len();
+        for &(i, column, value) in &self.below {
+            for (j, solved) in self.solved.iter().enumerate() {
+                self.window_values[self.schur_positions[i * columns + j]] -= value * solved[column];
+            }
+        }
+        self.window.factorise(&self.window_values)
+    }
+
+    /// Solves A x = b in place (b → x) with the last factorisation.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), Singular> {
+        for ((&rest, &window), &value) in self.rest_of.iter().zip(&self.window_of).zip(rhs.iter()) {
+            if window == usize::MAX {
+                self.rest_work[rest] = value;
+            } else {
+                self.window_work[window] = value;
+            }
+        }
+        self.rest.solve_in_place(&mut self.rest_work)?;
+        for &(i, column, value) in &self.below {
+            self.window_work[self.coupled_rows[i]] -= value * self.rest_work[column];
+        }
+        self.window.solve_in_place(&mut self.window_work)?;
+        for (solved, &column) in self.solved.iter().zip(&self.coupled_columns) {
+            let w = self.window_work[column];
+            for (x, z) in self.rest_work.iter_mut().zip(solved) {
+                *x -= z * w;
+            }
+        }
+        for ((&rest, &window), value) in
+            self.rest_of.iter().zip(&self.window_of).zip(rhs.iter_mut())
+        {
+            *value = if window == usize::MAX {
+                self.rest_work[rest]
+            } else {
+                self.window_work[window]
+            };
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rod's pattern over `nodes` nodes of six unknowns, the first node's translations prescribed:
+    /// neighbours coupled, nodes `window` coupled up to three apart, and node `vessel` (if any) coupled to
+    /// every node of the window. Returns the unknowns' slots, the pattern and its (non-symmetric, diagonally
+    /// dominant) values.
+    fn rod_pattern(
+        nodes: usize,
+        window: std::ops::RangeInclusive<usize>,
+        vessel: Option<usize>,
+    ) -> (Vec<usize>, Vec<usize>, Vec<usize>, Vec<f64>) {
+        let slots: Vec<usize> = (3..6 * nodes).collect();
+        let coupled = |a: usize, b: usize| {
+            let (na, nb) = (slots[a] / 6, slots[b] / 6);
+            na.abs_diff(nb) <= 1
+                || (window.contains(&na) && window.contains(&nb) && na.abs_diff(nb) <= 3)
+                || vessel.is_some_and(|v| {
+                    (na == v && window.contains(&nb)) || (nb == v && window.contains(&na))
+                })
+        };
+        let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
+        for col in 0..slots.len() {
+            for row in 0..slots.len() {
+                if coupled(row, col) {
+                    row_idx.push(row);
+                    values.push(if row == col {
+                        20.0 + (row % 7) as f64
+                    } else {
+                        0.3 * ((row * 31 + col * 17) as f64).sin()
+                    });
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        (slots, col_ptr, row_idx, values)
+    }
+
+    /// The split is found where the wide coupling lies in a window at either end of the rod, not in the
+    /// middle, and not without one.
+    #[test]
+    fn the_window_is_found_at_either_end_only() {
+        let found = |window, vessel| {
+            let (slots, col_ptr, row_idx, _) = rod_pattern(40, window, vessel);
+            WindowLu::new(&slots, &col_ptr, &row_idx).is_some()
+        };
+        assert!(found(28..=39, None));
+        assert!(found(0..=11, None));
+        assert!(!found(10..=20, None));
+        assert!(!found(39..=39, None));
+    }
+
+    /// A rod with its vessel at either end: the bordered factorisation around the window's solves it to
+    /// round-off, as the whole-pattern LU does.
+    #[test]
+    fn a_rod_with_a_roller_window_solves_to_round_off() {
+        for (window, vessel) in [(28..=38, 39), (1..=11, 0)] {
+            let (slots, col_ptr, row_idx, values) = rod_pattern(40, window, Some(vessel));
+            let size = slots.len();
+            let border: Vec<usize> = (0..size).filter(|&i| slots[i] / 6 == vessel).collect();
+            let exact: Vec<f64> = (0..size).map(|i| (0.1 * i as f64).cos()).collect();
+            let mut rhs = vec![0.0; size];
+            for col in 0..size {
+                for k in col_ptr[col]..col_ptr[col + 1] {
+                    rhs[row_idx[k]] += values[k] * exact[col];
+                }
+            }
+            let interior: Vec<usize> = (0..size).filter(|i| !border.contains(i)).collect();
+            let interior_slots: Vec<usize> = interior.iter().map(|&i| slots[i]).collect();
+            let (mut inner_ptr, mut inner_rows) = (vec![0], Vec::new());
+            for &col in &interior {
+                for &row in &row_idx[col_ptr[col]..col_ptr[col + 1]] {
+                    if let Some(r) = interior.iter().position(|&i| i == row) {
+                        inner_rows.push(r);
+                    }
+                }
+                inner_ptr.push(inner_rows.len());
+            }
+            assert!(WindowLu::new(&interior_slots, &inner_ptr, &inner_rows).is_some());
+            for mut lu in [
+                SparseLu::for_rod(&slots, col_ptr.clone(), row_idx.clone(), &border),
+                SparseLu::new(size, col_ptr.clone(), row_idx.clone()),
+            ] {
+                let mut x = rhs.clone();
+                lu.factorise(&values).expect("regular");
+                lu.solve_in_place(&mut x).expect("solves");
+                let error = x
+                    .iter()
+                    .zip(&exact)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max);
+                assert!(error < 1e-12, "vessel at node {vessel}: {error:e}");
+            }
+        }
+    }
+}
