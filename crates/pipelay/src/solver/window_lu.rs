@@ -206,14 +206,19 @@ impl WindowLu {
 
     /// Solves A x = b in place (b → x) with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), Singular> {
+        let mut rest_loaded = false;
         for ((&rest, &window), &value) in self.rest_of.iter().zip(&self.window_of).zip(rhs.iter()) {
             if window == usize::MAX {
                 self.rest_work[rest] = value;
+                rest_loaded |= value != 0.0;
             } else {
                 self.window_work[window] = value;
             }
         }
-        self.rest.solve_in_place(&mut self.rest_work)?;
+        // A⁻¹0 = 0: the bordered system's columns for the vessel load the window alone.
+        if rest_loaded {
+            self.rest.solve_in_place(&mut self.rest_work)?;
+        }
         for &(i, column, value) in &self.below {
             self.window_work[self.coupled_rows[i]] -= value * self.rest_work[column];
         }
