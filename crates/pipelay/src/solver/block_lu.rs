@@ -137,8 +137,16 @@ impl BlockTridiagonalLu {
         for run in &self.runs {
             let (source, entry) = (run.source as usize, run.entry as usize);
             let length = run.length as usize;
-            self.blocks[run.block as usize][entry..entry + length]
-                .copy_from_slice(&values[source..source + length]);
+            let block = &mut self.blocks[run.block as usize];
+            // A block's whole column (the common run) as a fixed-size copy: a call to memcpy per run of six
+            // values cost more than the copy.
+            match (
+                <&mut [f64; 6]>::try_from(&mut block[entry..entry + length]),
+                <&[f64; 6]>::try_from(&values[source..source + length]),
+            ) {
+                (Ok(column), Ok(column_values)) => *column = *column_values,
+                _ => block[entry..entry + length].copy_from_slice(&values[source..source + length]),
+            }
         }
         for &(block, entry, value) in &self.constants {
             self.blocks[block as usize][entry as usize] = value;
