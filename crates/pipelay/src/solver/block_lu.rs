@@ -315,21 +315,14 @@ fn back_substitute(solved: &[Block], work: &mut [[f64; 6]], middle: &[f64; 6], s
 fn factorise_block(a: &mut Block, pivots: &mut [u8; 6]) -> Result<(), SmallPivot> {
     // A NaN is skipped by the largest entry but fails the pivot test (or, off the pivots, reaches the solution).
     let floor = PIVOT_FLOOR * largest_magnitude(a);
-    // Column by column in fixed-size arrays, one step per column with its bounds known at compile time
-    // (unrolled, free of bounds checks).
-    let mut columns = [[0.0; 6]; 6];
-    for (column, entries) in columns.iter_mut().zip(a.chunks_exact(6)) {
-        column.copy_from_slice(entries);
-    }
-    pivots[0] = eliminate_column::<0>(&mut columns, floor)?;
-    pivots[1] = eliminate_column::<1>(&mut columns, floor)?;
-    pivots[2] = eliminate_column::<2>(&mut columns, floor)?;
-    pivots[3] = eliminate_column::<3>(&mut columns, floor)?;
-    pivots[4] = eliminate_column::<4>(&mut columns, floor)?;
-    pivots[5] = eliminate_column::<5>(&mut columns, floor)?;
-    for (column, entries) in columns.iter().zip(a.chunks_exact_mut(6)) {
-        entries.copy_from_slice(column);
-    }
+    // Column by column in place, one step per column with its bounds known at compile time (unrolled, free
+    // of bounds checks), and no copy in or out.
+    pivots[0] = eliminate_column::<0>(a, floor)?;
+    pivots[1] = eliminate_column::<1>(a, floor)?;
+    pivots[2] = eliminate_column::<2>(a, floor)?;
+    pivots[3] = eliminate_column::<3>(a, floor)?;
+    pivots[4] = eliminate_column::<4>(a, floor)?;
+    pivots[5] = eliminate_column::<5>(a, floor)?;
     Ok(())
 }
 
@@ -337,36 +330,32 @@ fn factorise_block(a: &mut Block, pivots: &mut [u8; 6]) -> Result<(), SmallPivot
 /// exceed `floor`), interchanges its row with row `K` in every column, stores the multipliers below the
 /// pivot and the pivot's reciprocal on it, and updates the columns to the right. Returns the pivot's row.
 #[inline(always)]
-fn eliminate_column<const K: usize>(
-    columns: &mut [[f64; 6]; 6],
-    floor: f64,
-) -> Result<u8, SmallPivot> {
+fn eliminate_column<const K: usize>(a: &mut Block, floor: f64) -> Result<u8, SmallPivot> {
     let mut pivot = K;
-    let mut largest = columns[K][K].abs();
-    for (i, entry) in columns[K].iter().enumerate().skip(K + 1) {
-        if entry.abs() > largest {
-            largest = entry.abs();
-            pivot = i;
+    let mut largest = a[6 * K + K].abs();
+    for row in K + 1..6 {
+        if a[6 * K + row].abs() > largest {
+            largest = a[6 * K + row].abs();
+            pivot = row;
         }
     }
     if !(largest > floor && largest.is_finite()) {
         return Err(SmallPivot);
     }
     if pivot != K {
-        for column in columns.iter_mut() {
-            column.swap(K, pivot);
+        for column in 0..6 {
+            a.swap(6 * column + K, 6 * column + pivot);
         }
     }
-    let inverse = 1.0 / columns[K][K];
-    columns[K][K] = inverse;
-    for entry in &mut columns[K][K + 1..] {
-        *entry *= inverse;
+    let inverse = 1.0 / a[6 * K + K];
+    a[6 * K + K] = inverse;
+    for row in K + 1..6 {
+        a[6 * K + row] *= inverse;
     }
-    let multipliers = columns[K];
-    for column in &mut columns[K + 1..] {
-        let top = column[K];
-        for (entry, multiplier) in column[K + 1..].iter_mut().zip(&multipliers[K + 1..]) {
-            *entry -= multiplier * top;
+    for column in K + 1..6 {
+        let top = a[6 * column + K];
+        for row in K + 1..6 {
+            a[6 * column + row] -= a[6 * K + row] * top;
         }
     }
     Ok(pivot as u8)
