@@ -252,36 +252,47 @@ impl RodStep<'_> {
             let length = reference.length * stretch;
             let z_mid = 0.5 * (positions[e].z + positions[e + 1].z) + 0.25 * (dphi1.z + dphi2.z);
             let (current, current_shear) = sea.current_at(z_mid, self.time_mid);
-            // ∂U/∂x at the midpoint: the current's shear with depth (the waves are held over the step).
-            let flow_gradient = current_shear * Vector3::z().transpose();
             let mut flow = current;
             if let Some(kinematics) = waves {
                 flow += kinematics.velocity;
             }
             let velocity = 0.5 * (dphi1 + dphi2) / dt;
             let relative = flow - velocity;
-            let drag_force = morison_force(&relative, &t, k_axial, k_normal);
+            // With a tangent, the drag's derivatives too (they include the force).
+            let drag = tangent
+                .is_some()
+                .then(|| morison_drag(&relative, &t, k_axial, k_normal));
+            let drag_force = drag.as_ref().map_or_else(
+                || morison_force(&relative, &t, k_axial, k_normal),
+                |drag| drag.force,
+            );
             let force = length * drag_force;
             work.supplied += dt * force.dot(&flow);
             work.dissipated += dt * length * drag_force.dot(&relative);
             share_force(&force);
             // dF/dΔφ_b for b = 1, 2 (s_b = ∓1): through ℓ and t (via φ′_{n+½}) and the relative flow.
-            if let Some(tangent) = tangent {
-                let drag = morison_drag(&relative, &t, k_axial, k_normal);
+            if let (Some(tangent), Some(drag)) = (tangent, drag) {
                 let projector = Matrix3::identity() - t * t.transpose();
                 let d_chord = 0.5 * (drag.force * t.transpose() + drag.d_tangent * projector);
                 let d_flow = length * drag.d_flow;
-                let d_depth = 0.25 * d_flow * flow_gradient;
                 let d_velocity = -0.5 / dt * d_flow;
-                let d1 = -d_chord + d_depth + d_velocity;
-                let d2 = d_chord + d_depth + d_velocity;
+                // Through the midpoint's depth, where the current is sheared: ∂U/∂x = U′(z) e3ᵀ at the
+                // midpoint (the waves are held over the step).
+                let (d1, d2) = if current_shear == Vector3::zeros() {
+                    (-d_chord + d_velocity, d_chord + d_velocity)
+                } else {
+                    let flow_gradient = current_shear * Vector3::z().transpose();
+                    let d_depth = 0.25 * d_flow * flow_gradient;
+                    (
+                        -d_chord + d_depth + d_velocity,
+                        d_chord + d_depth + d_velocity,
+                    )
+                };
                 for a in 0..2 {
-                    for i in 0..3 {
-                        for j in 0..3 {
-                            tangent[(NODE_DOFS * a + i, j)] -= 0.5 * d1[(i, j)];
-                            tangent[(NODE_DOFS * a + i, NODE_DOFS + j)] -= 0.5 * d2[(i, j)];
-                        }
-                    }
+                    let mut by_phi1 = tangent.fixed_view_mut::<3, 3>(NODE_DOFS * a, 0);
+                    by_phi1 -= 0.5 * d1;
+                    let mut by_phi2 = tangent.fixed_view_mut::<3, 3>(NODE_DOFS * a, NODE_DOFS);
+                    by_phi2 -= 0.5 * d2;
                 }
             }
         }
