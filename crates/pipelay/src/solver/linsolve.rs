@@ -534,6 +534,7 @@ impl Border {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solver::test_support::sparse_solve_error;
 
     /// The largest |entry| wherever it sits (in the eight lanes or the remainder), of either sign, with NaNs
     /// skipped, against a plain fold.
@@ -585,13 +586,6 @@ mod tests {
             }
             col_ptr.push(row_idx.len());
         }
-        let exact: Vec<f64> = (0..size).map(|i| (0.1 * i as f64).cos()).collect();
-        let mut rhs = vec![0.0; size];
-        for col in 0..size {
-            for k in col_ptr[col]..col_ptr[col + 1] {
-                rhs[row_idx[k]] += values[k] * exact[col];
-            }
-        }
         for mut lu in [
             SparseLu::for_rod(
                 &(0..size).collect::<Vec<_>>(),
@@ -601,14 +595,7 @@ mod tests {
             ),
             SparseLu::new(size, col_ptr.clone(), row_idx.clone()),
         ] {
-            let mut x = rhs.clone();
-            lu.factorise(&values).expect("regular");
-            lu.solve_in_place(&mut x).expect("solves");
-            let error = x
-                .iter()
-                .zip(&exact)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
+            let error = sparse_solve_error(&mut lu, &col_ptr, &row_idx, &values);
             assert!(error < 1e-12, "{error:e}");
         }
     }
@@ -633,21 +620,8 @@ mod tests {
                 }
                 col_ptr.push(row_idx.len());
             }
-            let exact: Vec<f64> = (0..size).map(|i| (i as f64).sin()).collect();
-            let mut rhs = vec![0.0; size];
-            for col in 0..size {
-                for k in col_ptr[col]..col_ptr[col + 1] {
-                    rhs[row_idx[k]] += values[k] * exact[col];
-                }
-            }
-            let mut lu = SparseLu::new(size, col_ptr, row_idx);
-            lu.factorise(&values).expect("regular");
-            lu.solve_in_place(&mut rhs).expect("solves");
-            let error = rhs
-                .iter()
-                .zip(&exact)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
+            let mut lu = SparseLu::new(size, col_ptr.clone(), row_idx.clone());
+            let error = sparse_solve_error(&mut lu, &col_ptr, &row_idx, &values);
             assert!(error < 1e-13, "size {size}: {error:e}");
         }
     }

@@ -2,6 +2,7 @@
 // Indexing cannot go out of bounds here: a dense n×n matrix and n-vectors.
 #![allow(clippy::indexing_slicing)]
 use crate::environment::bathymetry::Bathymetry;
+use crate::solver::linsolve::SparseLu;
 
 /// The largest error of `solve` on A x = b for the dense row-major n×n matrix A and a fixed smooth x.
 pub fn solve_error(dense: &[f64], n: usize, solve: impl FnOnce(&mut [f64])) -> f64 {
@@ -10,6 +11,30 @@ pub fn solve_error(dense: &[f64], n: usize, solve: impl FnOnce(&mut [f64])) -> f
         .map(|i| (0..n).map(|j| dense[i * n + j] * x[j]).sum())
         .collect();
     solve(&mut b);
+    b.iter()
+        .zip(&x)
+        .map(|(a, e)| (a - e).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The largest error of `lu` (factorised here) on A x = b for the sparse A of columns `col_ptr`, rows
+/// `row_idx` and `values`, and a fixed smooth x.
+pub fn sparse_solve_error(
+    lu: &mut SparseLu,
+    col_ptr: &[usize],
+    row_idx: &[usize],
+    values: &[f64],
+) -> f64 {
+    let n = col_ptr.len() - 1;
+    let x: Vec<f64> = (0..n).map(|i| (0.1 * i as f64).cos()).collect();
+    let mut b = vec![0.0; n];
+    for (col, &x_col) in x.iter().enumerate() {
+        for k in col_ptr[col]..col_ptr[col + 1] {
+            b[row_idx[k]] += values[k] * x_col;
+        }
+    }
+    lu.factorise(values).expect("regular");
+    lu.solve_in_place(&mut b).expect("solves");
     b.iter()
         .zip(&x)
         .map(|(a, e)| (a - e).abs())
