@@ -534,7 +534,7 @@ impl Border {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solver::test_support::sparse_solve_error;
+    use crate::solver::test_support::{sparse_matrix, sparse_solve_error};
 
     /// The largest |entry| wherever it sits (in the eight lanes or the remainder), of either sign, with NaNs
     /// skipped, against a plain fold.
@@ -570,22 +570,7 @@ mod tests {
                 || (border.contains(&a) && (b % 10 == 0 || border.contains(&b)))
                 || (border.contains(&b) && a % 10 == 0)
         };
-        let mut col_ptr = vec![0];
-        let mut row_idx = Vec::new();
-        let mut values = Vec::new();
-        for col in 0..size {
-            for row in 0..size {
-                if coupled(row, col) {
-                    row_idx.push(row);
-                    values.push(if row == col {
-                        6.0 + (row % 7) as f64
-                    } else {
-                        0.3 * ((row * 31 + col * 17) as f64).sin()
-                    });
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
+        let (col_ptr, row_idx, values) = sparse_matrix(size, coupled, 6.0);
         for mut lu in [
             SparseLu::for_rod(
                 &(0..size).collect::<Vec<_>>(),

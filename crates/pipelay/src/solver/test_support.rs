@@ -17,6 +17,28 @@ pub fn solve_error(dense: &[f64], n: usize, solve: impl FnOnce(&mut [f64])) -> f
         .fold(0.0, f64::max)
 }
 
+/// A sparse non-symmetric matrix of `size` unknowns with entries where `coupled(row, column)`: `diagonal` +
+/// (row mod 7) on the diagonal, 0.3 sin(31 row + 17 column) off it. Returns its columns, rows and values.
+pub fn sparse_matrix(
+    size: usize,
+    coupled: impl Fn(usize, usize) -> bool,
+    diagonal: f64,
+) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
+    let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
+    for col in 0..size {
+        for row in (0..size).filter(|&row| coupled(row, col)) {
+            row_idx.push(row);
+            values.push(if row == col {
+                diagonal + (row % 7) as f64
+            } else {
+                0.3 * ((row * 31 + col * 17) as f64).sin()
+            });
+        }
+        col_ptr.push(row_idx.len());
+    }
+    (col_ptr, row_idx, values)
+}
+
 /// The largest error of `lu` (factorised here) on A x = b for the sparse A of columns `col_ptr`, rows
 /// `row_idx` and `values`, and a fixed smooth x.
 pub fn sparse_solve_error(

@@ -245,7 +245,7 @@ impl WindowLu {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solver::test_support::sparse_solve_error;
+    use crate::solver::test_support::{sparse_matrix, sparse_solve_error};
 
     /// A rod's pattern over `nodes` nodes of six unknowns, the first node's translations prescribed:
     /// neighbours coupled, nodes `window` coupled up to three apart, and node `vessel` (if any) coupled to
@@ -265,20 +265,7 @@ mod tests {
                     (na == v && window.contains(&nb)) || (nb == v && window.contains(&na))
                 })
         };
-        let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
-        for col in 0..slots.len() {
-            for row in 0..slots.len() {
-                if coupled(row, col) {
-                    row_idx.push(row);
-                    values.push(if row == col {
-                        20.0 + (row % 7) as f64
-                    } else {
-                        0.3 * ((row * 31 + col * 17) as f64).sin()
-                    });
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
+        let (col_ptr, row_idx, values) = sparse_matrix(slots.len(), coupled, 20.0);
         (slots, col_ptr, row_idx, values)
     }
 
