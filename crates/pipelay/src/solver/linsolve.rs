@@ -368,13 +368,73 @@ impl Gather {
     }
 }
 
-/// Where an entry of the whole pattern outside the interior goes in the block elimination.
-#[derive(Debug, Clone, Copy)]
-enum Block {
-    /// B (interior row, border column), C (border row, interior column), D: row and column indices.
-    Right(usize, usize),
-    Below(usize, usize),
-    Corner(usize, usize),
+/// A square pattern's unknowns in two groups, the first (A) and the second (D), for block elimination of
+/// [A B; C D]: each group's own pattern with the runs that copy its values out of the whole pattern's, and
+/// the entries that couple the groups.
+pub struct Partition {
+    /// Each unknown's index within its group, and whether that is the second.
+    pub index: Vec<usize>,
+    pub second: Vec<bool>,
+    /// A's and D's patterns (columns, rows) and values.
+    pub patterns: [(Vec<usize>, Vec<usize>); 2],
+    pub gathers: [Gather; 2],
+    /// B's entries (first row, second column) and C's (second row, first column): (position in the whole
+    /// pattern, row, column), each index within its group.
+    pub right: Vec<(usize, usize, usize)>,
+    pub below: Vec<(usize, usize, usize)>,
+}
+
+impl Partition {
+    /// The pattern of columns `col_ptr` and sorted rows `row_idx` split by `in_second(unknown)`.
+    pub fn new(col_ptr: &[usize], row_idx: &[usize], in_second: impl Fn(usize) -> bool) -> Self {
+        let size = col_ptr.len() - 1;
+        let second: Vec<bool> = (0..size).map(in_second).collect();
+        let mut counts = [0, 0];
+        let index = second
+            .iter()
+            .map(|&group| {
+                let count = &mut counts[usize::from(group)];
+                *count += 1;
+                *count - 1
+            })
+            .collect::<Vec<_>>();
+        let mut patterns = [(vec![0], Vec::new()), (vec![0], Vec::new())];
+        let mut gathers = [Gather::default(), Gather::default()];
+        let (mut right, mut below) = (Vec::new(), Vec::new());
+        for col in 0..size {
+            let range = col_ptr[col]..col_ptr[col + 1];
+            for (k, &row) in range.clone().zip(&row_idx[range]) {
+                let entry = (k, index[row], index[col]);
+                match (second[row], second[col]) {
+                    (false, true) => right.push(entry),
+                    (true, false) => below.push(entry),
+                    (group, _) => {
+                        let (gather, pattern) = (
+                            &mut gathers[usize::from(group)],
+                            &mut patterns[usize::from(group)],
+                        );
+                        gather.push(k, pattern.1.len());
+                        pattern.1.push(index[row]);
+                    }
+                }
+            }
+            let pattern = &mut patterns[usize::from(second[col])];
+            pattern.0.push(pattern.1.len());
+        }
+        Partition {
+            index,
+            second,
+            patterns,
+            gathers,
+            right,
+            below,
+        }
+    }
+
+    /// The unknowns of group `second` (false: the first), in order.
+    pub fn members(&self, second: bool) -> impl Iterator<Item = usize> + '_ {
+        (0..self.index.len()).filter(move |&i| self.second[i] == second)
+    }
 }
 
 /// The block elimination of a bordered system (module docs).
@@ -382,9 +442,9 @@ struct Border {
     /// Border unknowns, and each unknown's interior index (`usize::MAX` on the border).
     unknowns: Vec<usize>,
     interior_of: Vec<usize>,
-    /// The interior's values in the whole pattern, and where each other value goes (position, destination).
-    interior_gather: Gather,
-    blocks: Vec<(usize, Block)>,
+    /// The interior (A) and the border (D) of the whole pattern, and where B and C go.
+    partition: Partition,
+    corner_values: Vec<f64>,
     interior: SparseLu,
     interior_values: Vec<f64>,
     /// B and X = A⁻¹B, column by column (interior × border), and C row by row (border × interior).
@@ -400,51 +460,27 @@ struct Border {
 impl Border {
     /// The system of unknowns at node-major positions `slots` (see [`SparseLu::for_rod`]).
     fn new(slots: &[usize], col_ptr: &[usize], row_idx: &[usize], border: &[usize]) -> Self {
-        let size = slots.len();
-        let mut interior_of = vec![usize::MAX; size];
-        let mut count = 0;
-        for (i, slot) in interior_of.iter_mut().enumerate() {
-            if !border.contains(&i) {
-                *slot = count;
-                count += 1;
-            }
-        }
-        let place = |i: usize| border.iter().position(|&b| b == i);
-        let mut inner_ptr = vec![0];
-        let mut inner_rows = Vec::new();
-        let mut interior_gather = Gather::default();
-        let mut blocks = Vec::new();
-        for col in 0..size {
-            let range = col_ptr[col]..col_ptr[col + 1];
-            for (k, &row) in range.clone().zip(&row_idx[range]) {
-                let block = match (place(row), place(col)) {
-                    (None, None) => {
-                        interior_gather.push(k, inner_rows.len());
-                        inner_rows.push(interior_of[row]);
-                        continue;
-                    }
-                    (None, Some(c)) => Block::Right(interior_of[row], c),
-                    (Some(r), None) => Block::Below(r, interior_of[col]),
-                    (Some(r), Some(c)) => Block::Corner(r, c),
-                };
-                blocks.push((k, block));
-            }
-            if interior_of[col] != usize::MAX {
-                inner_ptr.push(inner_rows.len());
-            }
-        }
-        let nnz = inner_rows.len();
-        let interior_slots: Vec<usize> = (0..size)
-            .filter(|&i| interior_of[i] != usize::MAX)
-            .map(|i| slots[i])
+        let mut partition = Partition::new(col_ptr, row_idx, |i| border.contains(&i));
+        let interior_of = (0..slots.len())
+            .map(|i| {
+                if partition.second[i] {
+                    usize::MAX
+                } else {
+                    partition.index[i]
+                }
+            })
             .collect();
+        let interior_slots: Vec<usize> = partition.members(false).map(|i| slots[i]).collect();
+        let count = interior_slots.len();
+        // The interior's pattern moves to its LU; the corner's stays for the copy into the 6×6 block.
+        let (inner_ptr, inner_rows) = std::mem::take(&mut partition.patterns[0]);
         Border {
             unknowns: border.to_vec(),
             interior_of,
-            interior_gather,
-            blocks,
+            interior_values: vec![0.0; inner_rows.len()],
             interior: SparseLu::for_rod(&interior_slots, inner_ptr, inner_rows, &[]),
-            interior_values: vec![0.0; nnz],
+            corner_values: vec![0.0; partition.patterns[1].1.len()],
+            partition,
             right: vec![vec![0.0; count]; border.len()],
             solved: vec![vec![0.0; count]; border.len()],
             below: vec![vec![0.0; count]; border.len()],
@@ -465,13 +501,23 @@ impl Border {
                 self.corner[(r, c)] = 0.0;
             }
         }
-        self.interior_gather.copy(values, &mut self.interior_values);
-        for &(position, block) in &self.blocks {
-            let value = values[position];
-            match block {
-                Block::Right(i, c) => self.right[c][i] = value,
-                Block::Below(r, i) => self.below[r][i] = value,
-                Block::Corner(r, c) => self.corner[(r, c)] = value,
+        let partition = &self.partition;
+        partition.gathers[0].copy(values, &mut self.interior_values);
+        partition.gathers[1].copy(values, &mut self.corner_values);
+        for &(position, i, c) in &partition.right {
+            self.right[c][i] = values[position];
+        }
+        for &(position, r, i) in &partition.below {
+            self.below[r][i] = values[position];
+        }
+        let (corner_ptr, corner_rows) = &partition.patterns[1];
+        for c in 0..m {
+            let range = corner_ptr[c]..corner_ptr[c + 1];
+            for (&r, &value) in corner_rows[range.clone()]
+                .iter()
+                .zip(&self.corner_values[range])
+            {
+                self.corner[(r, c)] = value;
             }
         }
         self.interior.factorise(&self.interior_values)?;

@@ -10,7 +10,7 @@
 //! the window alone, not on the whole rod's widest band.
 // Indexing cannot go out of bounds here: Row, column and value indices of the pattern the solver built.
 #![allow(clippy::indexing_slicing)]
-use crate::solver::linsolve::{Gather, Singular, SparseLu};
+use crate::solver::linsolve::{Gather, Partition, Singular, SparseLu};
 
 /// Fewest unknowns outside the window for which the split pays (below, the whole band LU is as cheap).
 const MIN_REST: usize = 60;
@@ -18,24 +18,14 @@ const MIN_REST: usize = 60;
 /// Most columns of B (one node's unknowns).
 const MAX_COUPLING: usize = 6;
 
-/// Where an entry of the whole pattern outside A and D goes.
-#[derive(Debug, Clone, Copy)]
-enum Place {
-    /// B: row of A, index of the coupled column.
-    Right(usize, usize),
-    /// C: index of the coupled row, column of A.
-    Below(usize, usize),
-}
-
 /// The factorisation of a rod's tangent split at its roller window (module docs).
 pub struct WindowLu {
     /// Each unknown's index in A or in D (the other is `usize::MAX`).
     rest_of: Vec<usize>,
     window_of: Vec<usize>,
-    /// A's and D's values in the whole pattern, and where each of B's and C's goes (position, place).
+    /// A's and D's values in the whole pattern.
     rest_gather: Gather,
     window_gather: Gather,
-    places: Vec<(usize, Place)>,
     rest: SparseLu,
     rest_values: Vec<f64>,
     window: SparseLu,
@@ -45,9 +35,11 @@ pub struct WindowLu {
     coupled_rows: Vec<usize>,
     /// Value position in D's pattern of (coupled row i, coupled column j), row-major.
     schur_positions: Vec<usize>,
-    /// B's entries (row of A, coupled column, value) and C's (coupled row, column of A, value), as factorised.
-    right: Vec<(usize, usize, f64)>,
-    below: Vec<(usize, usize, f64)>,
+    /// B's entries (position in the whole pattern, row of A, coupled column), C's (position, coupled row,
+    /// column of A), and C's values as factorised.
+    right: Vec<(usize, usize, usize)>,
+    below: Vec<(usize, usize, usize)>,
+    below_values: Vec<f64>,
     /// Z = A⁻¹B, column by column.
     solved: Vec<Vec<f64>>,
     rest_work: Vec<f64>,
@@ -74,64 +66,44 @@ impl WindowLu {
         if low == usize::MAX || size == 0 || (low != node(0) && high != node(size - 1)) {
             return None;
         }
-        let in_window = |i: usize| (low..=high).contains(&node(i));
-        let (mut rest_of, mut window_of) = (vec![usize::MAX; size], vec![usize::MAX; size]);
-        let (mut rest_count, mut window_count) = (0, 0);
-        let mut rest_slots = Vec::new();
-        for i in 0..size {
-            if in_window(i) {
-                window_of[i] = window_count;
-                window_count += 1;
-            } else {
-                rest_of[i] = rest_count;
-                rest_count += 1;
-                rest_slots.push(slots[i]);
-            }
-        }
-        if rest_count < MIN_REST {
+        let mut partition = Partition::new(col_ptr, row_idx, |i| (low..=high).contains(&node(i)));
+        let rest_slots: Vec<usize> = partition.members(false).map(|i| slots[i]).collect();
+        if rest_slots.len() < MIN_REST {
             return None;
         }
-        let (mut rest_gather, mut window_gather) = (Gather::default(), Gather::default());
-        let mut places = Vec::new();
-        let (mut rest_ptr, mut rest_rows) = (vec![0], Vec::new());
-        let (mut window_ptr, mut window_rows) = (vec![0], Vec::new());
-        let (mut coupled_columns, mut coupled_rows) = (Vec::new(), Vec::new());
+        let own = |second: bool| {
+            (0..size)
+                .map(|i| {
+                    if partition.second[i] == second {
+                        partition.index[i]
+                    } else {
+                        usize::MAX
+                    }
+                })
+                .collect::<Vec<_>>()
+        };
+        let (rest_of, window_of) = (own(false), own(true));
+        // B's nonzero columns and C's nonzero rows, as D-indices, in order of appearance.
         let index_in = |list: &mut Vec<usize>, item: usize| {
             list.iter().position(|&x| x == item).unwrap_or_else(|| {
                 list.push(item);
                 list.len() - 1
             })
         };
-        for column in 0..size {
-            let range = col_ptr[column]..col_ptr[column + 1];
-            for (k, &row) in range.clone().zip(&row_idx[range]) {
-                let place = match (in_window(row), in_window(column)) {
-                    (false, false) => {
-                        rest_gather.push(k, rest_rows.len());
-                        rest_rows.push(rest_of[row]);
-                        continue;
-                    }
-                    (true, true) => {
-                        window_gather.push(k, window_rows.len());
-                        window_rows.push(window_of[row]);
-                        continue;
-                    }
-                    (false, true) => Place::Right(
-                        rest_of[row],
-                        index_in(&mut coupled_columns, window_of[column]),
-                    ),
-                    (true, false) => {
-                        Place::Below(index_in(&mut coupled_rows, window_of[row]), rest_of[column])
-                    }
-                };
-                places.push((k, place));
-            }
-            if in_window(column) {
-                window_ptr.push(window_rows.len());
-            } else {
-                rest_ptr.push(rest_rows.len());
-            }
-        }
+        let (mut coupled_columns, mut coupled_rows) = (Vec::new(), Vec::new());
+        let right: Vec<(usize, usize, usize)> = partition
+            .right
+            .iter()
+            .map(|&(k, row, column)| (k, row, index_in(&mut coupled_columns, column)))
+            .collect();
+        let below: Vec<(usize, usize, usize)> = partition
+            .below
+            .iter()
+            .map(|&(k, row, column)| (k, index_in(&mut coupled_rows, row), column))
+            .collect();
+        let [(rest_ptr, rest_rows), (window_ptr, window_rows)] =
+            std::mem::take(&mut partition.patterns);
+        let [rest_gather, window_gather] = std::mem::take(&mut partition.gathers);
         if coupled_columns.len() > MAX_COUPLING || coupled_rows.len() > MAX_COUPLING {
             return None;
         }
@@ -149,15 +121,16 @@ impl WindowLu {
                 schur_positions.push(position(row, column)?);
             }
         }
-        let (rest_nnz, window_nnz) = (rest_rows.len(), window_rows.len());
+        let (rest_count, window_count) = (rest_ptr.len() - 1, window_ptr.len() - 1);
         Some(WindowLu {
+            rest_values: vec![0.0; rest_rows.len()],
             rest: SparseLu::for_rod(&rest_slots, rest_ptr, rest_rows, &[]),
-            rest_values: vec![0.0; rest_nnz],
+            window_values: vec![0.0; window_rows.len()],
             window: SparseLu::new(window_count, window_ptr, window_rows),
-            window_values: vec![0.0; window_nnz],
             solved: vec![vec![0.0; rest_count]; coupled_columns.len()],
-            right: Vec::new(),
-            below: Vec::new(),
+            right,
+            below_values: vec![0.0; below.len()],
+            below,
             coupled_columns,
             coupled_rows,
             schur_positions,
@@ -165,7 +138,6 @@ impl WindowLu {
             window_of,
             rest_gather,
             window_gather,
-            places,
             rest_work: vec![0.0; rest_count],
             window_work: vec![0.0; window_count],
         })
@@ -173,30 +145,24 @@ impl WindowLu {
 
     /// Factorises the matrix with `values` in the whole pattern's order.
     pub fn factorise(&mut self, values: &[f64]) -> Result<(), Singular> {
-        self.right.clear();
-        self.below.clear();
         self.rest_gather.copy(values, &mut self.rest_values);
         self.window_gather.copy(values, &mut self.window_values);
-        for &(position, place) in &self.places {
-            let value = values[position];
-            match place {
-                Place::Right(row, j) => self.right.push((row, j, value)),
-                Place::Below(i, column) => self.below.push((i, column, value)),
-            }
+        for (value, &(position, _, _)) in self.below_values.iter_mut().zip(&self.below) {
+            *value = values[position];
         }
         self.rest.factorise(&self.rest_values)?;
         for column in &mut self.solved {
             column.iter_mut().for_each(|z| *z = 0.0);
         }
-        for &(row, j, value) in &self.right {
-            self.solved[j][row] = value;
+        for &(position, row, j) in &self.right {
+            self.solved[j][row] = values[position];
         }
         for column in &mut self.solved {
             self.rest.solve_in_place(column)?;
         }
         // D − C Z, in the coupled rows and columns.
         let columns = self.coupled_columns.len();
-        for &(i, column, value) in &self.below {
+        for (&(_, i, column), value) in self.below.iter().zip(&self.below_values) {
             for (j, solved) in self.solved.iter().enumerate() {
                 self.window_values[self.schur_positions[i * columns + j]] -= value * solved[column];
             }
@@ -219,7 +185,7 @@ impl WindowLu {
         if rest_loaded {
             self.rest.solve_in_place(&mut self.rest_work)?;
         }
-        for &(i, column, value) in &self.below {
+        for (&(_, i, column), value) in self.below.iter().zip(&self.below_values) {
             self.window_work[self.coupled_rows[i]] -= value * self.rest_work[column];
         }
         self.window.solve_in_place(&mut self.window_work)?;
