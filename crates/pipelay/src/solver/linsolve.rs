@@ -101,9 +101,10 @@ pub struct Singular;
 
 impl SparseLu {
     /// The tangent of a rod whose unknown i sits at node-major position `slots[i]` (6·node + k, increasing):
-    /// block tridiagonal where the pattern is. Unknowns `border` (sorted, at most six) that couple densely to
-    /// the rest are factorised by block elimination around the LU of the others (module docs). The values
-    /// stay in the whole pattern's order.
+    /// block tridiagonal where the pattern is, split at a window of wider coupling at one end of the rod
+    /// where it has one ([`WindowLu`]). Unknowns `border` (sorted, at most six) that couple densely to the rest
+    /// are factorised by block elimination around the LU of the others (module docs). The values stay in the
+    /// whole pattern's order.
     pub fn for_rod(
         slots: &[usize],
         col_ptr: Vec<usize>,
