@@ -114,31 +114,32 @@ impl SparseLu {
         let size = slots.len();
         if border.is_empty() || border.len() > BORDER_MAX || border.len() >= size {
             if let Some(blocks) = BlockTridiagonalLu::new(slots, &col_ptr, &row_idx) {
-                let mut lu = Self::new(0, vec![0], Vec::new());
+                let mut lu = Self::keeping_positions(col_ptr, row_idx);
                 lu.factors = Factors::Block {
                     blocks: Box::new(blocks),
                     band: None,
                     banded: false,
                 };
-                lu.size = size;
-                lu.col_ptr = col_ptr;
-                lu.row_idx = row_idx;
                 return lu;
             }
             if let Some(window) = WindowLu::new(slots, &col_ptr, &row_idx) {
-                let mut lu = Self::new(0, vec![0], Vec::new());
+                let mut lu = Self::keeping_positions(col_ptr, row_idx);
                 lu.window = Some(Box::new(window));
-                lu.size = size;
-                lu.col_ptr = col_ptr;
-                lu.row_idx = row_idx;
                 return lu;
             }
             return Self::new(size, col_ptr, row_idx);
         }
-        // The whole pattern is only kept for positions; the factorisation is the border's.
+        let border = Border::new(slots, &col_ptr, &row_idx, border);
+        let mut lu = Self::keeping_positions(col_ptr, row_idx);
+        lu.border = Some(Box::new(border));
+        lu
+    }
+
+    /// An LU that keeps the whole pattern only for positions, its factorisation to be set by the caller (no
+    /// analysis of the pattern for the general LU).
+    fn keeping_positions(col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Self {
         let mut lu = Self::new(0, vec![0], Vec::new());
-        lu.border = Some(Box::new(Border::new(slots, &col_ptr, &row_idx, border)));
-        lu.size = size;
+        lu.size = col_ptr.len() - 1;
         lu.col_ptr = col_ptr;
         lu.row_idx = row_idx;
         lu
@@ -432,18 +433,20 @@ impl Partition {
         }
     }
 
-    /// The unknowns of group `second` (false: the first), in order.
-    pub fn members(&self, second: bool) -> impl Iterator<Item = usize> + '_ {
-        (0..self.index.len()).filter(move |&i| self.second[i] == second)
+    /// The unknowns of group `second` (false: the first) in order, each with its index within the group.
+    pub fn group(&self, second: bool) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (0..self.index.len())
+            .filter(move |&i| self.second[i] == second)
+            .map(|i| (i, self.index[i]))
     }
 }
 
 /// The block elimination of a bordered system (module docs).
 struct Border {
-    /// Border unknowns, and each unknown's interior index (`usize::MAX` on the border).
+    /// Border unknowns.
     unknowns: Vec<usize>,
-    interior_of: Vec<usize>,
-    /// The interior (A) and the border (D) of the whole pattern, and where B and C go.
+    /// The interior (A) and the border (D) of the whole pattern (each unknown's index in its own), and where
+    /// B and C go.
     partition: Partition,
     corner_values: Vec<f64>,
     interior: SparseLu,
@@ -462,22 +465,12 @@ impl Border {
     /// The system of unknowns at node-major positions `slots` (see [`SparseLu::for_rod`]).
     fn new(slots: &[usize], col_ptr: &[usize], row_idx: &[usize], border: &[usize]) -> Self {
         let mut partition = Partition::new(col_ptr, row_idx, |i| border.contains(&i));
-        let interior_of = (0..slots.len())
-            .map(|i| {
-                if partition.second[i] {
-                    usize::MAX
-                } else {
-                    partition.index[i]
-                }
-            })
-            .collect();
-        let interior_slots: Vec<usize> = partition.members(false).map(|i| slots[i]).collect();
+        let interior_slots: Vec<usize> = partition.group(false).map(|(i, _)| slots[i]).collect();
         let count = interior_slots.len();
         // The interior's pattern moves to its LU; the corner's stays for the copy into the 6×6 block.
         let (inner_ptr, inner_rows) = std::mem::take(&mut partition.patterns[0]);
         Border {
             unknowns: border.to_vec(),
-            interior_of,
             interior_values: vec![0.0; inner_rows.len()],
             interior: SparseLu::for_rod(&interior_slots, inner_ptr, inner_rows, &[]),
             corner_values: vec![0.0; partition.patterns[1].1.len()],
@@ -548,10 +541,8 @@ impl Border {
         let Some(schur) = &self.schur else {
             return Err(Singular);
         };
-        for (i, slot) in self.interior_of.iter().enumerate() {
-            if *slot != usize::MAX {
-                self.work[*slot] = rhs[i];
-            }
+        for (i, slot) in self.partition.group(false) {
+            self.work[slot] = rhs[i];
         }
         self.interior.solve_in_place(&mut self.work)?;
         let m = self.unknowns.len();
@@ -565,11 +556,9 @@ impl Border {
             reduced[r] = rhs[self.unknowns[r]] - product;
         }
         let z = schur.solve(&reduced).ok_or(Singular)?;
-        for (i, slot) in self.interior_of.iter().enumerate() {
-            if *slot != usize::MAX {
-                let correction: f64 = (0..m).map(|c| self.solved[c][*slot] * z[c]).sum();
-                rhs[i] = self.work[*slot] - correction;
-            }
+        for (i, slot) in self.partition.group(false) {
+            let correction: f64 = (0..m).map(|c| self.solved[c][slot] * z[c]).sum();
+            rhs[i] = self.work[slot] - correction;
         }
         for (r, &i) in self.unknowns.iter().enumerate() {
             rhs[i] = z[r];

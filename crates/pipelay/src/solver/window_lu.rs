@@ -20,9 +20,9 @@ const MAX_COUPLING: usize = 6;
 
 /// The factorisation of a rod's tangent split at its roller window (module docs).
 pub struct WindowLu {
-    /// Each unknown's index in A or in D (the other is `usize::MAX`).
-    rest_of: Vec<usize>,
-    window_of: Vec<usize>,
+    /// Each unknown's index in A or in D, and whether it is in the window (D).
+    index: Vec<usize>,
+    in_window: Vec<bool>,
     /// A's and D's values in the whole pattern.
     rest_gather: Gather,
     window_gather: Gather,
@@ -67,22 +67,10 @@ impl WindowLu {
             return None;
         }
         let mut partition = Partition::new(col_ptr, row_idx, |i| (low..=high).contains(&node(i)));
-        let rest_slots: Vec<usize> = partition.members(false).map(|i| slots[i]).collect();
+        let rest_slots: Vec<usize> = partition.group(false).map(|(i, _)| slots[i]).collect();
         if rest_slots.len() < MIN_REST {
             return None;
         }
-        let own = |second: bool| {
-            (0..size)
-                .map(|i| {
-                    if partition.second[i] == second {
-                        partition.index[i]
-                    } else {
-                        usize::MAX
-                    }
-                })
-                .collect::<Vec<_>>()
-        };
-        let (rest_of, window_of) = (own(false), own(true));
         // B's nonzero columns and C's nonzero rows, as D-indices, in order of appearance.
         let index_in = |list: &mut Vec<usize>, item: usize| {
             list.iter().position(|&x| x == item).unwrap_or_else(|| {
@@ -107,26 +95,21 @@ impl WindowLu {
         if coupled_columns.len() > MAX_COUPLING || coupled_rows.len() > MAX_COUPLING {
             return None;
         }
+        let (rest_count, window_count) = (rest_ptr.len() - 1, window_ptr.len() - 1);
+        let window_values = vec![0.0; window_rows.len()];
+        let window = SparseLu::new(window_count, window_ptr, window_rows);
         // C Z changes D where a coupled row meets a coupled column: D's pattern must hold those entries.
-        let position = |row: usize, column: usize| {
-            let start = window_ptr[column];
-            window_rows[start..window_ptr[column + 1]]
-                .binary_search(&row)
-                .ok()
-                .map(|k| start + k)
-        };
         let mut schur_positions = Vec::with_capacity(coupled_rows.len() * coupled_columns.len());
         for &row in &coupled_rows {
             for &column in &coupled_columns {
-                schur_positions.push(position(row, column)?);
+                schur_positions.push(window.position(row, column)?);
             }
         }
-        let (rest_count, window_count) = (rest_ptr.len() - 1, window_ptr.len() - 1);
         Some(WindowLu {
             rest_values: vec![0.0; rest_rows.len()],
             rest: SparseLu::for_rod(&rest_slots, rest_ptr, rest_rows, &[]),
-            window_values: vec![0.0; window_rows.len()],
-            window: SparseLu::new(window_count, window_ptr, window_rows),
+            window_values,
+            window,
             solved: vec![vec![0.0; rest_count]; coupled_columns.len()],
             right,
             below_values: vec![0.0; below.len()],
@@ -134,8 +117,8 @@ impl WindowLu {
             coupled_columns,
             coupled_rows,
             schur_positions,
-            rest_of,
-            window_of,
+            index: std::mem::take(&mut partition.index),
+            in_window: std::mem::take(&mut partition.second),
             rest_gather,
             window_gather,
             rest_work: vec![0.0; rest_count],
@@ -173,12 +156,13 @@ impl WindowLu {
     /// Solves A x = b in place (b → x) with the last factorisation.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), Singular> {
         let mut rest_loaded = false;
-        for ((&rest, &window), &value) in self.rest_of.iter().zip(&self.window_of).zip(rhs.iter()) {
-            if window == usize::MAX {
-                self.rest_work[rest] = value;
-                rest_loaded |= value != 0.0;
+        for ((&index, &in_window), &value) in self.index.iter().zip(&self.in_window).zip(rhs.iter())
+        {
+            if in_window {
+                self.window_work[index] = value;
             } else {
-                self.window_work[window] = value;
+                self.rest_work[index] = value;
+                rest_loaded |= value != 0.0;
             }
         }
         // A⁻¹0 = 0: the bordered system's columns for the vessel load the window alone.
@@ -195,13 +179,13 @@ impl WindowLu {
                 *x -= z * w;
             }
         }
-        for ((&rest, &window), value) in
-            self.rest_of.iter().zip(&self.window_of).zip(rhs.iter_mut())
+        for ((&index, &in_window), value) in
+            self.index.iter().zip(&self.in_window).zip(rhs.iter_mut())
         {
-            *value = if window == usize::MAX {
-                self.rest_work[rest]
+            *value = if in_window {
+                self.window_work[index]
             } else {
-                self.window_work[window]
+                self.rest_work[index]
             };
         }
         Ok(())
