@@ -1,10 +1,11 @@
 //! Python callables of time as engine time functions: they take the GIL when the engine calls them.
 use crate::convert::{matrix3, vector3};
+use crate::errors::remember_callable_error;
 use nalgebra::{Matrix3, Vector3};
-use pipelay::model::TimeFunction;
+use pipelay::table::TimeFunction;
 use pyo3::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::Arc;
 
 /// Set when a callable was interrupted by Ctrl-C (KeyboardInterrupt raised inside it), so that a run can
 /// stop cleanly instead of reporting a failed callable.
@@ -15,29 +16,8 @@ pub fn take_interrupt() -> bool {
     INTERRUPTED.swap(false, Ordering::SeqCst)
 }
 
-/// The exception a user callable raised last, with the message the engine carries for it: the error that
-/// reaches Python is chained to it (`raise ... from`), so the user's own exception and traceback are kept.
-/// Process-wide, since the engine calls the callables from its own threads.
-static FAILED_CALLABLE: Mutex<Option<(String, PyErr)>> = Mutex::new(None);
-
-/// The failed callable's slot, whether or not a thread panicked while holding it.
-fn failed_callable() -> MutexGuard<'static, Option<(String, PyErr)>> {
-    FAILED_CALLABLE
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner())
-}
-
-/// The exception behind an engine error whose message contains a failed callable's message, if any.
-pub fn take_callable_error(message: &str) -> Option<PyErr> {
-    let mut slot = failed_callable();
-    match slot.as_ref() {
-        Some((text, _)) if message.contains(text.as_str()) => slot.take().map(|(_, e)| e),
-        _ => None,
-    }
-}
-
 /// Wraps `callable(t)`, converting its result with `convert`; a Python error becomes the message (and is kept
-/// for [`take_callable_error`]).
+/// for [`crate::errors::to_py`]).
 fn wrap<T: 'static>(
     callable: Py<PyAny>,
     argument: &'static str,
@@ -54,7 +34,7 @@ fn wrap<T: 'static>(
                     .name()
                     .map_or_else(|_| "Exception".to_string(), |n| n.to_string());
                 let message = format!("{argument}({time}) raised {kind}: {}", e.value(py));
-                *failed_callable() = Some((message.clone(), e));
+                remember_callable_error(&message, e);
                 message
             })?;
             convert(&value, argument).map_err(|e| e.to_string())

@@ -6,10 +6,10 @@ use crate::state::State;
 use crate::structure::{Rod, Sea};
 use crate::vessel::{PyForce, PyPid, Vessel};
 use nalgebra::{Matrix3, Vector3};
+use pipelay::assembly::configuration::Configuration;
 use pipelay::model::PayOutSpeed;
-use pipelay::solver::assembly::Configuration;
-use pipelay::solver::response::Response;
-use pipelay::solver::statics::{self, Start, StaticOptions};
+use pipelay::response::configuration::Response;
+use pipelay::statics::solve::{self as statics, Start, StaticOptions};
 use pyo3::prelude::*;
 
 /// A rod with its sea, gravity, supports and loads.

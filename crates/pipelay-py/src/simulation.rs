@@ -6,11 +6,13 @@ use crate::errors::{input, to_py};
 use crate::state::State;
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3, Vector6};
 use numpy::{PyArray1, PyArrayMethods};
+use pipelay::dynamics::history::History;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::ledger::Ledger;
+use pipelay::dynamics::state::{DynamicState, VesselMotion};
 use pipelay::model::Model;
+use pipelay::response::lay_summary::LAY_FIELDS;
 use pipelay::rod::dynamic_element::GaussPoint;
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator, VesselMotion};
-use pipelay::solver::history::History;
-use pipelay::solver::lay_summary::LAY_FIELDS;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -241,12 +243,13 @@ impl Simulation {
         };
         rows("time", vec![state.time], 1)?;
         rows("dt", vec![self.time_step()], 1)?;
+        let ledger = self.integrator.ledger();
         rows(
             "ledger",
             vec![
-                self.integrator.supplied_work(),
-                self.integrator.dissipated(),
-                self.integrator.pay_out_energy(),
+                ledger.supplied_work(),
+                ledger.dissipated(),
+                ledger.pay_out_energy(),
             ],
             3,
         )?;
@@ -504,7 +507,7 @@ impl Simulation {
         let dt = get("dt")?.first().copied().unwrap_or(f64::NAN);
         let state = DynamicState {
             time,
-            configuration: pipelay::solver::assembly::Configuration {
+            configuration: pipelay::assembly::configuration::Configuration {
                 positions: vectors("positions", nodes)?,
                 rotations,
             },
@@ -524,10 +527,10 @@ impl Simulation {
         match ledger[..] {
             [supplied, dissipated] => simulation
                 .integrator
-                .restore_ledger(supplied, dissipated, 0.0),
+                .restore_ledger(Ledger::new(supplied, dissipated, 0.0)),
             [supplied, dissipated, pay_out] => simulation
                 .integrator
-                .restore_ledger(supplied, dissipated, pay_out),
+                .restore_ledger(Ledger::new(supplied, dissipated, pay_out)),
             _ => {
                 return Err(input(
                     "ledger",
@@ -557,21 +560,21 @@ impl Simulation {
     /// Work supplied since the simulation started (J).
     #[getter]
     fn supplied_work(&self) -> f64 {
-        self.integrator.supplied_work()
+        self.integrator.ledger().supplied_work()
     }
     /// Energy dissipated since the simulation started (J).
     #[getter]
     fn dissipated(&self) -> f64 {
-        self.integrator.dissipated()
+        self.integrator.ledger().dissipated()
     }
     /// Linear momentum (3,) (kg·m/s).
     fn linear_momentum(&self) -> (f64, f64, f64) {
-        let p = self.integrator.linear_momentum();
+        let p = self.integrator.observe().linear_momentum();
         (p.x, p.y, p.z)
     }
     /// Angular momentum about the origin (3,) (kg·m²/s).
     fn angular_momentum(&self) -> (f64, f64, f64) {
-        let j = self.integrator.angular_momentum();
+        let j = self.integrator.observe().angular_momentum();
         (j.x, j.y, j.z)
     }
 }

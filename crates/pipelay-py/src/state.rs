@@ -3,12 +3,14 @@ use crate::convert::{matrices_to_numpy, points_to_numpy, to_numpy};
 use crate::errors::input;
 use nalgebra::{Matrix3, Vector2, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2, PyArray3};
+use pipelay::assembly::configuration::Configuration;
+use pipelay::contact::touchdown::Touchdown;
+use pipelay::dynamics::integrator::Integrator;
+use pipelay::dynamics::ledger::Energy;
+use pipelay::dynamics::state::DynamicState;
 use pipelay::model::Model;
-use pipelay::solver::assembly::Configuration;
-use pipelay::solver::contact::Touchdown;
-use pipelay::solver::dynamics::{DynamicState, Energy, Integrator};
-use pipelay::solver::lay_summary::{lay_summary, roller_tops, LaySummary, LAY_FIELDS};
-use pipelay::solver::response::Response;
+use pipelay::response::configuration::Response;
+use pipelay::response::lay_summary::{lay_summary, roller_tops, LaySummary, LAY_FIELDS};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -152,13 +154,14 @@ impl State {
     /// The current state of a simulation.
     pub fn from_integrator(integrator: &Integrator, iterations: usize) -> Self {
         let state = integrator.state();
-        let section_forces = integrator.section_forces();
+        let observables = integrator.observe();
+        let section_forces = observables.section_forces();
         let lay = LayState::new(
             integrator.model(),
             &state.configuration,
             &section_forces,
-            integrator.roller_forces(),
-            integrator.lay_summary(&section_forces),
+            observables.roller_forces(),
+            observables.lay_summary(&section_forces),
         );
         State {
             lay,
@@ -167,9 +170,9 @@ impl State {
             angular_velocities: state.angular_velocities(),
             section_forces,
             reactions: integrator.reactions().to_vec(),
-            energy: integrator.energy(),
-            vessel: integrator.vessel_values(),
-            seabed: match (integrator.seabed_forces(), integrator.touchdown()) {
+            energy: observables.energy(),
+            vessel: observables.vessel_values(),
+            seabed: match (observables.seabed_forces(), observables.touchdown()) {
                 (Some(forces), Some(touchdown)) => Some(SeabedState {
                     forces: forces.to_vec(),
                     touchdown,

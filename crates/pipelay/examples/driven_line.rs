@@ -7,12 +7,13 @@
 //! Arguments: elements (default 100) and steps (default 320). Prints the wall time per step and the Newton
 //! iterations; run with 0 steps to count the statics alone.
 use nalgebra::Vector3;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::state::DynamicState;
 use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
-use pipelay::solver::statics::{solve, StaticOptions};
+use pipelay::statics::solve::{solve, StaticOptions};
 use std::sync::Arc;
 fn main() {
     let n: usize = std::env::args()
@@ -62,7 +63,7 @@ fn main() {
     .unwrap();
     let t = std::time::Instant::now();
     // On the engine's threads, as a run from Python.
-    let its: usize = pipelay::solver::pool::run(true, || {
+    let its: usize = pipelay::linalg::pool::run(true, || {
         (0..steps).map(|_| sim.step().unwrap().iterations).sum()
     });
     println!(

@@ -8,14 +8,15 @@
 //! Arguments: elements (default 1000), steps (default 40) and `0` to leave the seabed out. Prints the wall time
 //! per step and the Newton iterations.
 use nalgebra::Vector3;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::state::DynamicState;
 use pipelay::environment::bathymetry::Bathymetry;
 use pipelay::environment::sea::Sea;
 use pipelay::environment::seabed::Seabed;
 use pipelay::model::Model;
 use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
-use pipelay::solver::statics::{solve, StaticOptions};
+use pipelay::statics::solve::{solve, StaticOptions};
 use std::sync::Arc;
 fn main() {
     let argument = |i: usize, default: usize| {
@@ -63,7 +64,7 @@ fn main() {
     let mut sim = Integrator::new(model, state, options).unwrap();
     let t = std::time::Instant::now();
     // On the engine's threads, as a run from Python.
-    let its: usize = pipelay::solver::pool::run(true, || {
+    let its: usize = pipelay::linalg::pool::run(true, || {
         (0..steps).map(|_| sim.step().unwrap().iterations).sum()
     });
     println!(

@@ -71,13 +71,25 @@ impl fmt::Display for Error {
             Error::Memory { what, bytes } => write!(
                 f,
                 "out of memory: could not reserve {} for {what}",
-                crate::memory::human(*bytes)
+                human(*bytes)
             ),
         }
     }
 }
 
 impl std::error::Error for Error {}
+
+/// Bytes in a readable unit.
+pub fn human(bytes: f64) -> String {
+    let units = ["B", "KB", "MB", "GB", "TB", "PB"];
+    let mut value = bytes;
+    let mut unit = 0;
+    while value >= 1024.0 && unit + 1 < units.len() {
+        value /= 1024.0;
+        unit += 1;
+    }
+    format!("{value:.1} {}", units.get(unit).copied().unwrap_or("B"))
+}
 
 /// Result type of the engine.
 pub type Result<T> = std::result::Result<T, Error>;

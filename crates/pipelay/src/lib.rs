@@ -7,7 +7,12 @@
 //! - [`environment`]: the sea, its current and Morison drag;
 //! - [`vessel`]: the DP vessel as a rigid body, its Euler angles, its coupling to the pipe and its control;
 //! - [`model`]: what is simulated: rod, environment, supports, loads, vessel;
-//! - [`solver`]: assembly and linear solves, statics, dynamics, the response and the record of a run.
+//! - [`linalg`]: the LU factorisations of the tangent, and the engine's thread pool;
+//! - [`contact`]: the pipe's contact with the seabed (normal and friction) and with the vessel's rollers;
+//! - [`assembly`]: the global residual and tangent over the nodal DOFs;
+//! - [`response`]: what users read off a configuration (section forces, reactions, lay summary);
+//! - [`statics`]: static equilibrium by Newton's method from a catenary start;
+//! - [`dynamics`]: the energy–momentum time step, pay-out, the energy ledger and the record of a run.
 //!
 //! Data flows one way: a lower layer never imports a higher one.
 //!
@@ -17,14 +22,19 @@
     not(test),
     deny(clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)
 )]
+pub mod assembly;
+pub mod contact;
+pub mod dynamics;
 pub mod environment;
 pub mod error;
+pub mod linalg;
 pub mod memory;
 pub mod model;
+pub mod response;
 pub mod rod;
 pub mod smooth;
 pub mod so3;
-pub mod solver;
+pub mod statics;
 pub mod table;
 pub mod vessel;
 

@@ -1,6 +1,6 @@
 //! Memory: sizes users set are checked against the memory they need before anything is allocated, and large
 //! buffers are reserved fallibly, so that too large a model is an error, never an abort of the process.
-use crate::error::{Error, Result};
+use crate::error::{human, Error, Result};
 use std::fmt;
 
 /// Bytes the rod's reference takes per element: node, frame and element data (measured: 0.16 KB).
@@ -23,18 +23,6 @@ pub fn available() -> Option<f64> {
         Some(kib * 1024.0)
     };
     Some(field("MemAvailable:")? + field("SwapFree:").unwrap_or(0.0))
-}
-
-/// Bytes in a readable unit.
-pub fn human(bytes: f64) -> String {
-    let units = ["B", "KB", "MB", "GB", "TB", "PB"];
-    let mut value = bytes;
-    let mut unit = 0;
-    while value >= 1024.0 && unit + 1 < units.len() {
-        value /= 1024.0;
-        unit += 1;
-    }
-    format!("{value:.1} {}", units.get(unit).copied().unwrap_or("B"))
 }
 
 /// Refuses `value` of `argument` if what it asks for, `bytes` (for `what`), exceeds the available memory.

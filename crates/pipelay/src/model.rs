@@ -4,14 +4,11 @@ use crate::environment::waves::WaveField;
 use crate::error::{finite, non_negative, Error, Result};
 use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
+use crate::table::TimeFunction;
 use crate::vessel::control::Pid;
 use crate::vessel::{EnvironmentForce, VesselAttachment};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use std::fmt;
-use std::sync::Arc;
-
-/// A user function of time t (s), e.g. a Python callable; its error is a message.
-pub type TimeFunction<T> = Arc<dyn Fn(f64) -> std::result::Result<T, String> + Send + Sync>;
 
 /// How a node is held.
 #[derive(Clone)]

@@ -1,12 +1,14 @@
-//! Functions of time given as tables of samples (t_k, y_k), interpolated linearly: drives and pay-out speeds
-//! that a run evaluates in Rust, without calling Python at every step.
+//! Functions of time: user functions ([`TimeFunction`]) and tables of samples (t_k, y_k), interpolated
+//! linearly: drives and pay-out speeds that a run evaluates in Rust, without calling Python at every step.
 // Indexing cannot go out of bounds here: a table has at least two rows (checked at construction), segment
 // indices stay below the last row, and columns below the width.
 #![allow(clippy::indexing_slicing)]
 use crate::error::{Error, Result};
-use crate::model::TimeFunction;
 use nalgebra::Vector3;
 use std::sync::Arc;
+
+/// A user function of time t (s), e.g. a Python callable; its error is a message.
+pub type TimeFunction<T> = Arc<dyn Fn(f64) -> std::result::Result<T, String> + Send + Sync>;
 
 /// Samples y_k ∈ ℝ^width at strictly increasing times t_k.
 #[derive(Debug, Clone, PartialEq)]

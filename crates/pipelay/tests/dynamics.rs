@@ -1,14 +1,15 @@
 //! Invariants of the energy–momentum integrator: conservation in vacuum, order of accuracy, and the
 //! discrete energy balance with drag, damping, gravity, current and a driven support.
 use nalgebra::Vector3;
+use pipelay::assembly::configuration::Configuration;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::state::DynamicState;
 use pipelay::environment::current::{Current, CurrentProfile};
 use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::rod::dynamic_element::StressRule;
 use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;
-use pipelay::solver::assembly::Configuration;
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
 use std::sync::Arc;
 
 /// Hat function rising to 1 at t = 2.5 and back to 0 at t = 5.
@@ -63,9 +64,9 @@ fn free_flight_conserves_energy_and_momentum() {
     while rod.state().time < 5.0 - 1e-9 {
         rod.step().expect("step");
     }
-    let energy = rod.energy().total();
-    let linear = rod.linear_momentum();
-    let angular = rod.angular_momentum();
+    let energy = rod.observe().energy().total();
+    let linear = rod.observe().linear_momentum();
+    let angular = rod.observe().angular_momentum();
     assert!(
         energy > 100.0 && angular.norm() > 100.0,
         "the loads set it moving: E = {energy}, J = {angular}"
@@ -75,10 +76,10 @@ fn free_flight_conserves_energy_and_momentum() {
     let mut largest_rotation: f64 = 0.0;
     for _ in 0..2000 {
         rod.step().expect("step");
-        worst_energy = worst_energy.max((rod.energy().total() - energy).abs() / energy);
+        worst_energy = worst_energy.max((rod.observe().energy().total() - energy).abs() / energy);
         worst_momentum = worst_momentum
-            .max((rod.linear_momentum() - linear).norm() / linear.norm())
-            .max((rod.angular_momentum() - angular).norm() / angular.norm());
+            .max((rod.observe().linear_momentum() - linear).norm() / linear.norm())
+            .max((rod.observe().angular_momentum() - angular).norm() / angular.norm());
         largest_rotation = largest_rotation.max(rod.state().configuration.rotations[10].angle());
     }
     println!("free flight: energy drift {worst_energy:.2e}, momentum drift {worst_momentum:.2e}, tip rotation up to {largest_rotation:.2} rad");
@@ -97,8 +98,8 @@ fn plain_midpoint_rule_does_not_conserve_energy() {
     while rod.state().time < 5.0 - 1e-9 {
         rod.step().expect("step");
     }
-    let energy = rod.energy().total();
-    let angular = rod.angular_momentum();
+    let energy = rod.observe().energy().total();
+    let angular = rod.observe().angular_momentum();
     let mut worst_energy: f64 = 0.0;
     let mut worst_momentum: f64 = 0.0;
     for _ in 0..400 {
@@ -109,9 +110,9 @@ fn plain_midpoint_rule_does_not_conserve_energy() {
                 break;
             }
         }
-        worst_energy = worst_energy.max((rod.energy().total() - energy).abs() / energy);
-        worst_momentum =
-            worst_momentum.max((rod.angular_momentum() - angular).norm() / angular.norm());
+        worst_energy = worst_energy.max((rod.observe().energy().total() - energy).abs() / energy);
+        worst_momentum = worst_momentum
+            .max((rod.observe().angular_momentum() - angular).norm() / angular.norm());
     }
     println!(
         "plain midpoint: energy error {worst_energy:.2e}, momentum drift {worst_momentum:.2e}"
@@ -210,12 +211,20 @@ fn energy_balance_holds_every_step_with_drag_and_a_driven_top() {
         ..DynamicOptions::default()
     };
     let mut sim = Integrator::new(model, state, options).expect("integrator");
-    let mut previous = (sim.energy().total(), sim.supplied_work(), sim.dissipated());
+    let mut previous = (
+        sim.observe().energy().total(),
+        sim.ledger().supplied_work(),
+        sim.ledger().dissipated(),
+    );
     let scale = sim.model().submerged_weight() * 100.0 * 100.0;
     let mut worst: f64 = 0.0;
     for _ in 0..400 {
         sim.step().expect("step");
-        let now = (sim.energy().total(), sim.supplied_work(), sim.dissipated());
+        let now = (
+            sim.observe().energy().total(),
+            sim.ledger().supplied_work(),
+            sim.ledger().dissipated(),
+        );
         let imbalance = (now.0 - previous.0) - ((now.1 - previous.1) - (now.2 - previous.2));
         assert!(
             now.2 - previous.2 >= 0.0,
@@ -226,10 +235,10 @@ fn energy_balance_holds_every_step_with_drag_and_a_driven_top() {
     }
     println!(
         "energy balance: worst per-step imbalance {worst:.2e} of wL², supplied {:.4e} J, dissipated {:.4e} J",
-        sim.supplied_work(),
-        sim.dissipated()
+        sim.ledger().supplied_work(),
+        sim.ledger().dissipated()
     );
-    assert!(sim.dissipated() > 0.0 && sim.supplied_work().abs() > 0.0);
+    assert!(sim.ledger().dissipated() > 0.0 && sim.ledger().supplied_work().abs() > 0.0);
     assert!(
         worst < 1e-10,
         "worst per-step imbalance {worst:e} of the weight scale"

@@ -1,11 +1,12 @@
 //! Pay-out and pay-in: the energy ledger closes through growth and mesh changes, the energy pay-out brings in
 //! is the tensioner's work on the pipe it lets out, the length is exact, and pay-in undoes pay-out.
 use nalgebra::Vector3;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::state::DynamicState;
 use pipelay::model::{Model, PayOutSpeed};
 use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
-use pipelay::solver::statics::{solve, StaticOptions};
+use pipelay::statics::solve::{solve, StaticOptions};
 use std::sync::Arc;
 
 /// Smoothstep 3s² − 2s³ of s = t / ramp clipped to [0, 1].
@@ -47,7 +48,7 @@ fn hanging(sway: f64, speed: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Int
 fn energy_ledger_closes_through_pay_out() {
     let speed = |t: f64| 1.0 * smoothstep(t, 5.0);
     let mut sim = hanging(2.0, speed);
-    let e0 = sim.energy().total();
+    let e0 = sim.observe().energy().total();
     let mass = 7850.0 * std::f64::consts::PI * (0.3 - 0.02) * 0.02;
     let (mut worst, mut flux) = (0.0_f64, 0.0);
     let dt = sim.options().time_step;
@@ -62,22 +63,23 @@ fn energy_ledger_closes_through_pay_out() {
         let v_mid = speed(t + 0.5 * dt);
         let v_top = 0.5 * (v_end + sim.state().velocities[sim.model().rod.element_count()]);
         flux += dt * v_mid * (-tension + 0.5 * mass * v_top.norm_squared());
-        let balance = sim.energy().total() - e0 - sim.supplied_work() + sim.dissipated();
+        let balance = sim.observe().energy().total() - e0 - sim.ledger().supplied_work()
+            + sim.ledger().dissipated();
         worst = worst.max(balance.abs());
     }
-    let scale = sim.energy().total().abs().max(e0.abs());
+    let scale = sim.observe().energy().total().abs().max(e0.abs());
     let paid = 30.0 - 2.5; // ∫ smoothstep over 30 s with a 5 s ramp
     println!(
         "balance {worst:.3e} of {scale:.3e} J; pay-out energy {:.6e} J, −∫Tv + ½mv² {flux:.6e} J; \
          length {:.12} m; nodes {} → {}",
-        sim.pay_out_energy(),
-        sim.length(),
+        sim.ledger().pay_out_energy(),
+        sim.observe().length(),
         nodes0,
         sim.model().rod.node_count()
     );
     assert!(worst < 1e-9 * scale, "{worst:e}");
-    assert!((sim.pay_out_energy() - flux).abs() < 0.01 * flux.abs());
-    assert!((sim.length() - 100.0 - paid).abs() < 1e-3);
+    assert!((sim.ledger().pay_out_energy() - flux).abs() < 0.01 * flux.abs());
+    assert!((sim.observe().length() - 100.0 - paid).abs() < 1e-3);
     assert_eq!(sim.model().rod.node_count(), nodes0 + 5);
     assert!(sim.state().configuration.positions.len() == sim.model().rod.node_count());
 }
@@ -90,23 +92,24 @@ fn pay_in_undoes_pay_out() {
     let pulse = |t: f64| smoothstep(t, 3.0) - smoothstep(t - 9.0, 3.0);
     let speed = move |t: f64| pulse(t) - pulse(t - 12.0);
     let mut sim = hanging(0.0, speed);
-    let e0 = sim.energy().total();
+    let e0 = sim.observe().energy().total();
     let nodes0 = sim.model().rod.node_count();
     let mut most = nodes0;
     let mut worst = 0.0_f64;
     for _ in 0..1500 {
         sim.step().expect("step");
         most = most.max(sim.model().rod.node_count());
-        let balance = sim.energy().total() - e0 - sim.supplied_work() + sim.dissipated();
+        let balance = sim.observe().energy().total() - e0 - sim.ledger().supplied_work()
+            + sim.ledger().dissipated();
         worst = worst.max(balance.abs());
     }
     println!(
         "nodes {nodes0} → {most} → {}; length {:.15} m; balance {worst:.3e} J",
         sim.model().rod.node_count(),
-        sim.length()
+        sim.observe().length()
     );
     assert_eq!(most, nodes0 + 2);
     assert_eq!(sim.model().rod.node_count(), nodes0);
-    assert!((sim.length() - 100.0).abs() < 1e-9);
+    assert!((sim.observe().length() - 100.0).abs() < 1e-9);
     assert!(worst < 1e-9 * e0.abs());
 }

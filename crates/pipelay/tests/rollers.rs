@@ -2,14 +2,16 @@
 mod common;
 
 use nalgebra::{Vector3, Vector6};
+use pipelay::assembly::assembler::Assembler;
+use pipelay::assembly::dofs::NODE_DOFS;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::state::DynamicState;
 use pipelay::environment::sea::Sea;
 use pipelay::environment::seabed::Seabed;
 use pipelay::model::Model;
+use pipelay::response::configuration::Response;
 use pipelay::rod::{section::Section, Rod};
-use pipelay::solver::assembly::{Assembler, NODE_DOFS};
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
-use pipelay::solver::response::Response;
-use pipelay::solver::statics::{solve, StaticOptions};
+use pipelay::statics::solve::{solve, StaticOptions};
 use pipelay::vessel::lay::{stinger_rollers, LayEquipment};
 use pipelay::vessel::rigid_body::Vessel;
 
@@ -158,11 +160,12 @@ fn frictionless_rollers_keep_the_elastica_invariant() {
 fn rollers_keep_the_energy_balance_exact() {
     // Let go: the pipe pulls the vessel back over its stinger.
     let mut sim = common::released_without_dissipation(s_lay(620.0, 140, None), 0.1);
-    let start = sim.energy();
+    let start = sim.observe().energy();
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
     let mut worst: f64 = 0.0;
     let mut changes = 0;
     let mut previous: Vec<bool> = sim
+        .observe()
         .roller_forces()
         .expect("rollers")
         .iter()
@@ -170,8 +173,9 @@ fn rollers_keep_the_energy_balance_exact() {
         .collect();
     for _ in 0..200 {
         sim.step().expect("step");
-        worst = worst.max((sim.energy().total() - start.total()).abs() / scale);
+        worst = worst.max((sim.observe().energy().total() - start.total()).abs() / scale);
         let now: Vec<bool> = sim
+            .observe()
             .roller_forces()
             .expect("rollers")
             .iter()
@@ -180,11 +184,11 @@ fn rollers_keep_the_energy_balance_exact() {
         changes += now.iter().zip(&previous).filter(|(a, b)| a != b).count();
         previous = now;
     }
-    let eta = sim.vessel_values().expect("vessel")[0];
+    let eta = sim.observe().vessel_values().expect("vessel")[0];
     println!(
         "energy drift {worst:.2e} of {scale:.3e} J; vessel moved {:.2} m; {changes} roller lift-offs or touches; roller energy {:.3e} J",
         eta[0] - 620.0,
-        sim.energy().rollers
+        sim.observe().energy().rollers
     );
     assert!((eta[0] - 620.0).abs() > 1.0, "the vessel moves");
     assert!(changes >= 1, "contacts change during the run");

@@ -1,13 +1,14 @@
 //! Seabed contact through the whole engine: the assembled static tangent against finite differences, and
 //! statics that find the touchdown.
 use nalgebra::{Vector2, Vector3};
+use pipelay::assembly::assembler::Assembler;
+use pipelay::assembly::configuration::Configuration;
 use pipelay::environment::bathymetry::Bathymetry;
 use pipelay::environment::sea::Sea;
 use pipelay::environment::seabed::Seabed;
 use pipelay::model::Model;
 use pipelay::rod::Rod;
 use pipelay::so3::exp_quat;
-use pipelay::solver::assembly::{Assembler, Configuration};
 
 mod common;
 

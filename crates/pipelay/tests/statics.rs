@@ -1,15 +1,16 @@
 //! Validation of the static solver against analytic solutions (the validation ladder's first rung).
 use nalgebra::Vector3;
+use pipelay::assembly::assembler::Assembler;
+use pipelay::assembly::configuration::Configuration;
 use pipelay::environment::current::{Current, CurrentProfile};
 use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
+use pipelay::response::configuration::Response;
 use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;
 use pipelay::so3::{exp_quat, log_quat};
-use pipelay::solver::assembly::{Assembler, Configuration};
-use pipelay::solver::catenary::Catenary;
-use pipelay::solver::response::Response;
-use pipelay::solver::statics::{solve, Start, StaticOptions};
+use pipelay::statics::catenary::Catenary;
+use pipelay::statics::solve::{solve, Start, StaticOptions};
 use pipelay::Error;
 use std::f64::consts::PI;
 

@@ -3,10 +3,10 @@ use nalgebra::{Vector3, Vector6};
 use pipelay::environment::sea::Sea;
 use pipelay::environment::waves::{WaveField, Waves};
 use pipelay::model::Model;
+use pipelay::response::configuration::Response;
 use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
-use pipelay::solver::response::Response;
-use pipelay::solver::statics::{solve, StaticOptions};
+use pipelay::statics::solve::{solve, StaticOptions};
 use pipelay::vessel::rigid_body::Vessel;
 
 mod common;
@@ -111,9 +111,10 @@ fn static_vessel_holds_the_pipe() {
     );
 }
 
+use pipelay::assembly::configuration::Configuration;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::state::DynamicState;
 use pipelay::rod::section::SectionExtras;
-use pipelay::solver::assembly::Configuration;
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
 
 /// A vessel carrying only a tiny, light rod: the vessel's own dynamics.
 fn lone_vessel(vessel: Vessel, heave: f64, pitch: f64) -> Integrator {
@@ -243,22 +244,22 @@ fn coupled_system_held_at_a_tower_conserves_energy() {
 fn conserves_energy(lay: Option<LayEquipment>) {
     // Let go: the pipe pulls the vessel back.
     let mut sim = common::released_without_dissipation(pipe_with_lay(20, lay), 0.1);
-    let start = sim.energy();
+    let start = sim.observe().energy();
     let mut worst: f64 = 0.0;
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
     for _ in 0..300 {
         sim.step().expect("step");
-        worst = worst.max((sim.energy().total() - start.total()).abs() / scale);
+        worst = worst.max((sim.observe().energy().total() - start.total()).abs() / scale);
     }
-    let eta = sim.vessel_values().expect("vessel")[0];
+    let eta = sim.observe().vessel_values().expect("vessel")[0];
     let moved = (eta.fixed_rows::<3>(0) - Vector3::new(850.0, 0.0, -800.0)).norm();
     println!(
         "energy drift {worst:.2e} of {scale:.3e} J; vessel moved {moved:.2} m; kinetic {:.3e} J",
-        sim.energy().vessel_kinetic + sim.energy().kinetic
+        sim.observe().energy().vessel_kinetic + sim.observe().energy().kinetic
     );
     assert!(moved > 1.0, "the vessel moves");
     assert!(worst < 1e-8, "energy drift {worst:e}");
-    assert_eq!(sim.dissipated(), 0.0);
+    assert_eq!(sim.ledger().dissipated(), 0.0);
 }
 
 /// In a long head sea (25 s, kh = 0.2 in 10 m of water) the vessel heaves with the surface: the end of a light
@@ -298,15 +299,16 @@ fn vessel_in_waves_keeps_the_energy_ledger() {
         .expect("waves");
     model.waves = Some(WaveField::new(&waves, 800.0, 9.81).expect("field"));
     let mut sim = common::released_without_dissipation(model, 0.1);
-    let start = sim.energy();
+    let start = sim.observe().energy();
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
     let mut worst: f64 = 0.0;
     for _ in 0..300 {
         sim.step().expect("step");
-        let change = sim.energy().total() - start.total();
-        worst = worst.max((change - sim.supplied_work() + sim.dissipated()).abs() / scale);
+        let change = sim.observe().energy().total() - start.total();
+        worst = worst
+            .max((change - sim.ledger().supplied_work() + sim.ledger().dissipated()).abs() / scale);
     }
-    let supplied = sim.supplied_work();
+    let supplied = sim.ledger().supplied_work();
     println!("ledger error {worst:.2e} of {scale:.3e} J; work supplied {supplied:.3e} J");
     assert!(supplied.abs() > 1e4, "the waves do work: {supplied}");
     assert!(worst < 1e-8, "ledger error {worst:e}");

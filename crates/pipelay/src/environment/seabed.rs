@@ -1,5 +1,5 @@
 //! The seabed: elastic normal contact with optional damping, and Coulomb friction that is elastic up to a
-//! mobilisation distance, then slides (axial and lateral coefficients apart); see [`crate::solver::contact`]
+//! mobilisation distance, then slides (axial and lateral coefficients apart); see [`crate::contact::seabed`]
 //! for how it enters statics and the energy–momentum step.
 use super::bathymetry::Bathymetry;
 use crate::error::{non_negative, positive, Result};

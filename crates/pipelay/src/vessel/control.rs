@@ -4,7 +4,7 @@
 #![allow(clippy::indexing_slicing)]
 use super::euler;
 use crate::error::{finite, Error, Result};
-use crate::model::TimeFunction;
+use crate::table::TimeFunction;
 use nalgebra::{Matrix6, Vector2, Vector3, Vector6};
 
 /// The pose η_ref(t) the controller holds or follows, and its rate η̇_ref(t).

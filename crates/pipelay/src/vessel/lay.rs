@@ -2,7 +2,7 @@
 //! tensioner of an S-lay, the tower exit of a J-lay) and the rollers it runs over.
 //!
 //! A roller is a vessel-fixed cylinder: an axis line through its centre, a radius. The pipe's outer surface
-//! (radius d_o/2) rests on it, a unilateral contact ([`crate::solver::rollers`]). A stinger is a circular arc of
+//! (radius d_o/2) rests on it, a unilateral contact ([`crate::contact::rollers`]). A stinger is a circular arc of
 //! rollers: the arc is the rollers' top line (the pipe's bottom when it rests on all of them), starting at
 //! `origin` with the slope `angle` below the horizontal, running aft (−b1) and bending down with radius R.
 use crate::error::{finite, positive, Error, Result};

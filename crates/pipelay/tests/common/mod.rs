@@ -3,14 +3,17 @@
 //! vessel-held model let go without dissipation.
 #![allow(dead_code)]
 use nalgebra::Vector3;
+use pipelay::assembly::assembler::Assembler;
+use pipelay::assembly::configuration::Configuration;
+use pipelay::assembly::dofs::NODE_DOFS;
+use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
+use pipelay::dynamics::state::DynamicState;
 use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
 use pipelay::so3::exp_quat;
-use pipelay::solver::assembly::{Assembler, Configuration, NODE_DOFS};
-use pipelay::solver::dynamics::{DynamicOptions, DynamicState, Integrator};
-use pipelay::solver::statics::{solve, StaticOptions};
+use pipelay::statics::solve::{solve, StaticOptions};
 
 /// The flooded 0.6 m × 15 mm steel pipe's section (drag and added mass 1 normal).
 pub fn flooded_section() -> Section {

@@ -1,0 +1,36 @@
+//! A configuration of the rod: its nodal positions and rotations.
+// Indexing cannot go out of bounds here: node indices of the model's own elements.
+#![allow(clippy::indexing_slicing)]
+use crate::model::Model;
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// A configuration of the rod: nodal positions and rotations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Configuration {
+    pub positions: Vec<Vector3<f64>>,
+    pub rotations: Vec<UnitQuaternion<f64>>,
+}
+
+impl Configuration {
+    /// The rod's stress-free reference.
+    pub fn reference(model: &Model) -> Self {
+        Configuration {
+            positions: model.rod.nodes.clone(),
+            rotations: model.rod.frames.clone(),
+        }
+    }
+
+    /// Gravity potential of the submerged weight, −Σ ½L0 w (z1 + z2) (J).
+    pub fn gravity_potential(&self, model: &Model) -> f64 {
+        let weight = model.submerged_weight();
+        model
+            .rod
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(e, r)| {
+                -0.5 * r.length * weight * (self.positions[e].z + self.positions[e + 1].z)
+            })
+            .sum()
+    }
+}

@@ -1,0 +1,199 @@
+//! The static residual r = f_int − λ f_ext over all DOFs and its tangent on the free DOFs: internal forces,
+//! submerged weight, current drag on the rod held still, point loads, the vessel's static forces, seabed and
+//! roller contact.
+// Indexing cannot go out of bounds here: Node, element and DOF indices of the mesh the assembler was built for.
+#![allow(clippy::indexing_slicing)]
+use crate::assembly::assembler::Assembler;
+use crate::assembly::configuration::Configuration;
+use crate::assembly::dofs::NODE_DOFS;
+use crate::contact::rule::ContactRule;
+use crate::environment::drag::element_current_drag;
+use crate::model::Model;
+use crate::rod::element::{evaluate, ElementMatrix};
+use crate::so3::exp_quat;
+use crate::vessel::coupling::{static_forces, StaticTarget};
+use crate::vessel::VesselAttachment;
+use nalgebra::{Matrix6, UnitQuaternion, Vector3};
+
+/// Results of one assembly besides the residual and tangent.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct AssemblySummary {
+    /// Euclidean norm of the external load vector (N, N·m mixed).
+    pub external_norm: f64,
+    /// Strain energy Σ Π_e (J).
+    pub strain_energy: f64,
+    /// Largest relative rotation |ψ| between the two nodes of an element (rad).
+    pub max_element_rotation: f64,
+}
+
+impl Assembler {
+    /// Residual r = f_int − λ f_ext (all DOFs) and, if `with_tangent`, the free-DOF tangent at `config`.
+    /// With `support_increment` (prescribed increments on all DOFs, zero where free) and a tangent, also
+    /// K_fc Δu_c into `support_coupling`. Statics: drag from the current at t = 0 on the rod held still.
+    pub fn assemble(
+        &mut self,
+        model: &Model,
+        config: &Configuration,
+        load_factor: f64,
+        with_tangent: bool,
+        support_increment: Option<&[f64]>,
+    ) -> AssemblySummary {
+        self.support_coupling.iter_mut().for_each(|r| *r = 0.0);
+        self.external.iter_mut().for_each(|r| *r = 0.0);
+        self.clear(with_tangent);
+        let section = &model.rod.section;
+        let (c_t, c_r) = (section.c_t(), section.c_r() * self.bending_scale);
+        let weight = model.submerged_weight();
+        let (k_axial, k_normal) = model.drag_coefficients();
+        let has_drag = model
+            .sea
+            .as_ref()
+            .is_some_and(|sea| sea.current.is_some() && k_axial + k_normal > 0.0);
+        let mut strain_energy = 0.0;
+        let mut max_element_rotation: f64 = 0.0;
+        let mut k = ElementMatrix::zeros();
+        for (e, reference) in model.rod.elements.iter().enumerate() {
+            let (x1, x2) = (&config.positions[e], &config.positions[e + 1]);
+            let response = evaluate(
+                x1,
+                x2,
+                &config.rotations[e],
+                &config.rotations[e + 1],
+                reference,
+                &c_t,
+                &c_r,
+                with_tangent.then_some(&mut k),
+            );
+            strain_energy += response.energy;
+            max_element_rotation = max_element_rotation.max(response.relative_rotation);
+            let base = NODE_DOFS * e;
+            for (i, f) in response.forces.iter().enumerate() {
+                self.residual[base + i] += f;
+            }
+            // Submerged weight: ½ L0 w e3 on each node (a dead load, no stiffness).
+            let nodal_weight = 0.5 * reference.length * weight;
+            self.external[base + 2] += nodal_weight;
+            self.external[base + NODE_DOFS + 2] += nodal_weight;
+            if has_drag {
+                if let Some(sea) = &model.sea {
+                    let (force, d1, d2) = element_current_drag(x1, x2, sea, 0.0, k_axial, k_normal);
+                    for a in 0..2 {
+                        for i in 0..3 {
+                            self.external[base + NODE_DOFS * a + i] += force[i];
+                        }
+                    }
+                    if with_tangent {
+                        // r = f_int − λ f_ext: the load stiffness enters with −λ.
+                        for a in 0..2 {
+                            for (b, d) in [d1, d2].iter().enumerate() {
+                                for i in 0..3 {
+                                    for j in 0..3 {
+                                        k[(NODE_DOFS * a + i, NODE_DOFS * b + j)] -=
+                                            load_factor * d[(i, j)];
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            if let (true, Some(increment)) = (with_tangent, support_increment) {
+                for j in 0..12 {
+                    let du = increment[base + j];
+                    if du != 0.0 && self.dofs.equation[base + j].is_none() {
+                        for i in 0..12 {
+                            self.support_coupling[base + i] += k[(i, j)] * du;
+                        }
+                    }
+                }
+            }
+            if with_tangent {
+                self.add_element_matrix(e, &k);
+            }
+        }
+        for (load, scale) in model.point_loads.iter().zip(&self.point_load_scales) {
+            let base = NODE_DOFS * load.node;
+            for i in 0..3 {
+                self.external[base + i] += scale * load.force[i];
+                self.external[base + 3 + i] += scale * load.moment[i];
+            }
+        }
+        let mut external_norm2 = 0.0;
+        for (r, f) in self.residual.iter_mut().zip(&self.external) {
+            *r -= load_factor * f;
+            external_norm2 += (load_factor * f).powi(2);
+        }
+        self.external_vessel_norm = 0.0;
+        if let Some(attachment) = &model.vessel {
+            self.add_static_vessel(model, attachment, config, with_tangent);
+        }
+        if let Some(mut contact) = self.contact.take() {
+            contact.set_static_nodes(&self.contact_start, &config.positions, &config.rotations);
+            let slips = std::mem::take(&mut self.contact_slips);
+            self.add_contact(&mut contact, ContactRule::Static, &slips, with_tangent);
+            self.contact_slips = slips;
+            self.contact = Some(contact);
+        }
+        self.add_rollers(ContactRule::Static, config, None, None, with_tangent);
+        if with_tangent {
+            self.shift_rotations();
+        }
+        AssemblySummary {
+            external_norm: external_norm2.sqrt().max(self.external_vessel_norm),
+            strain_energy,
+            max_element_rotation,
+        }
+    }
+
+    /// The vessel's static forces on its node (restoring, holding springs) with their tangent by central
+    /// differences; records the holding thrust.
+    fn add_static_vessel(
+        &mut self,
+        model: &Model,
+        attachment: &VesselAttachment,
+        config: &Configuration,
+        with_tangent: bool,
+    ) {
+        let node = attachment.node;
+        let target = StaticTarget::at(
+            attachment,
+            &model.rod.nodes[node],
+            &model.rod.frames[node],
+            self.vessel_motion,
+        );
+        let forces = |position: &Vector3<f64>, rotation: &UnitQuaternion<f64>| {
+            static_forces(attachment, position, rotation, &target)
+        };
+        let (position, rotation) = (config.positions[node], config.rotations[node]);
+        let (force, thrust) = forces(&position, &rotation);
+        self.vessel_thrust = thrust;
+        self.vessel_force = force;
+        let base = NODE_DOFS * node;
+        for i in 0..NODE_DOFS {
+            self.residual[base + i] -= force[i];
+        }
+        self.external_vessel_norm = force.norm();
+        if with_tangent {
+            let mut block = Matrix6::zeros();
+            for j in 0..NODE_DOFS {
+                let h = if j < 3 {
+                    1e-6 * (1.0 + position.norm())
+                } else {
+                    1e-7
+                };
+                let perturbed = |step: f64| {
+                    let mut delta = Vector3::zeros();
+                    delta[j % 3] = step;
+                    if j < 3 {
+                        forces(&(position + delta), &rotation).0
+                    } else {
+                        forces(&position, &(exp_quat(&delta) * rotation)).0
+                    }
+                };
+                let column = (perturbed(h) - perturbed(-h)) / (2.0 * h);
+                block.set_column(j, &(-column));
+            }
+            self.add_node_matrix(node, &block);
+        }
+    }
+}

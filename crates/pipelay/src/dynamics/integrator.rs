@@ -1,0 +1,653 @@
+//! Time integration of the rod and its vessel: the energy–momentum conserving scheme of Simo, Tarnow & Doblaré (1995)
+//! with Simo & Wong's midpoint rule in the Lie algebra for the nodal rotations (formulary
+//! `numerics/rod-dynamics.md` §1–§5).
+//!
+//! Unknowns of a step: nodal displacement increments Δφ_I and Cayley rotation increments θ_I
+//! (Λ_{n+1} = cay(θ)Λ_n). Velocities follow the midpoint rule v_{n+1} = 2Δφ/Δt − v_n and
+//! W_{n+1} = 2Λ_nᵀθ/Δt − W_n; inertia is lumped at the nodes and balanced in spatial momentum. Loads
+//! enter at the step midpoint and are work-conjugate to (Δφ, θ), so each converged step satisfies
+//! E_{n+1} − E_n = supplied work − dissipation exactly, with
+//! - supplied: point loads, driven supports, the current's share of the drag (Δt F·U);
+//! - dissipated: drag on the relative velocity (Δt ℓ(k_a|u_t|³ + k_n|u_n|³) ≥ 0) and rotational damping
+//!   (θ·c θ/Δt ≥ 0).
+//!
+//! Added mass is isotropic here: C_a,normal ρ_w π/4 d_o² added to the translational mass per length in
+//! every direction (keeps the mass constant and the scheme exactly energy–momentum; over-estimates the
+//! axial added mass of a pipe).
+//!
+//! The integrator owns the model, the state and the step's work space, and advances them: a step predicts
+//! the increments ([`crate::dynamics::step_residual`]), solves for them by Newton's method
+//! ([`crate::dynamics::newton`]), commits them here and books their work in the [`Ledger`]; pay-out grows
+//! the end element and changes the mesh ([`crate::dynamics::pay_out`]). What users read off a state is
+//! [`Observables`].
+// Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
+#![allow(clippy::indexing_slicing)]
+use crate::assembly::assembler::Assembler;
+use crate::assembly::dofs::NODE_DOFS;
+use crate::contact::seabed::SeabedContact;
+use crate::dynamics::history::{History, Snapshot};
+use crate::dynamics::ledger::{Ledger, StepWork};
+use crate::dynamics::nodal::{node_start, NodalProperties};
+use crate::dynamics::observables::Observables;
+use crate::dynamics::pay_out::Growth;
+use crate::dynamics::remesh;
+use crate::dynamics::rod_step::{ElementWork, NodeStart};
+use crate::dynamics::state::DynamicState;
+use crate::dynamics::vessel_waves::VesselWaves;
+use crate::environment::waves::Kinematics;
+use crate::error::{positive, Error, Result};
+use crate::linalg::pool::{self, SERIAL_RUN};
+use crate::model::Model;
+use crate::response::configuration::Response;
+use crate::rod::dynamic_element::{GaussPoint, StressRule};
+use crate::so3::cayley_quaternion;
+use crate::vessel::control::{clamp_integral, shifted};
+use crate::vessel::coupling::{pipe_force_on_vessel, VesselContribution};
+use crate::vessel::wave_motion::station;
+use nalgebra::{Vector3, Vector6};
+
+/// How many times a step may be halved when Newton fails in it.
+pub const MAX_HALVINGS: usize = 4;
+
+/// Settings of the integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicOptions {
+    /// Time step Δt (s).
+    pub time_step: f64,
+    /// Relative residual tolerance of Newton's method.
+    pub tolerance: f64,
+    /// Newton iterations allowed per step.
+    pub max_iterations: usize,
+    /// Stress evaluation: average strain (energy–momentum) or midpoint configuration (plain midpoint).
+    pub stress_rule: StressRule,
+}
+
+impl Default for DynamicOptions {
+    fn default() -> Self {
+        DynamicOptions {
+            time_step: 0.05,
+            tolerance: 1e-10,
+            max_iterations: 25,
+            stress_rule: StressRule::AverageStrain,
+        }
+    }
+}
+
+/// What one step took.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepReport {
+    pub iterations: usize,
+    /// Final residual norm over the free DOFs.
+    pub residual: f64,
+}
+
+/// Advances a model in time.
+pub struct Integrator {
+    pub(super) model: Model,
+    pub(super) options: DynamicOptions,
+    pub(super) assembler: Assembler,
+    pub(super) state: DynamicState,
+    pub(super) nodal: NodalProperties,
+    /// Each node's inertia and damping at the current step's start.
+    pub(super) node_start: Vec<NodeStart>,
+    /// The waves' kinematics at each element's midpoint in the current step (at the predictor), as far as
+    /// computed.
+    pub(super) wave_kinematics: Vec<Kinematics>,
+    /// Unknowns of the current step on all DOFs: [Δφ_I, θ_I].
+    pub(super) increments: Vec<f64>,
+    /// Newton correction on the free DOFs.
+    pub(super) correction: Vec<f64>,
+    /// Σ|terms| per DOF, the scale of the residual.
+    pub(super) magnitude: Vec<f64>,
+    pub(super) next_gauss: Vec<GaussPoint>,
+    /// Elements and nodes the rod's assembly takes in one run (see [`crate::dynamics::rod_step`]).
+    pub(super) serial_run: usize,
+    /// Each element's and each node's energy terms in the last assembly (J).
+    pub(super) element_work: Vec<ElementWork>,
+    pub(super) node_dissipation: Vec<f64>,
+    pub(super) work: StepWork,
+    pub(super) ledger: Ledger,
+    /// Force and moment the rod exerts on each node's support at the last step (N, N·m).
+    pub(super) reactions: Vec<Vector6<f64>>,
+    /// Round-off floor of the residual norm (N): internal forces carry errors of about 1e-16·EA per element,
+    /// a vessel's restoring about 1e-16·G.
+    pub(super) round_off: f64,
+    /// The vessel's part of the last assembly.
+    pub(super) vessel_step: Option<VesselContribution>,
+    /// The rod's force on the vessel node in the last assembly (spatial).
+    pub(super) rod_force_at_vessel: Vector6<f64>,
+    /// The controller's reference pose and rate at the current step's midpoint.
+    pub(super) reference_mid: (Vector6<f64>, Vector6<f64>),
+    /// The lay-tension loop's set-point offset and filtered tension at the end of the current step (m, N).
+    pub(super) offset_next: f64,
+    pub(super) filtered_next: f64,
+    /// Seabed contact, if the model has a seabed.
+    pub(super) contact: Option<SeabedContact>,
+    /// With pay-out: the growing element in the current step.
+    pub(super) growth: Option<Growth>,
+    /// In waves, with a vessel that has RAOs: its wave-frequency motion.
+    pub(super) vessel_waves: Option<VesselWaves>,
+}
+
+/// Round-off floor of the residual norm (N): internal forces carry errors of about 1e-16·EA per element, a
+/// vessel's restoring about 1e-16·G.
+fn round_off(model: &Model) -> f64 {
+    1e-13
+        * (model.rod.section.translational_stiffness.max()
+            * (model.rod.element_count() as f64).sqrt()
+            + model
+                .vessel
+                .as_ref()
+                .map_or(0.0, |v| v.vessel.restoring.abs().max()))
+}
+
+impl Integrator {
+    /// An integrator starting from `state`.
+    pub fn new(model: Model, state: DynamicState, options: DynamicOptions) -> Result<Self> {
+        positive("dt", options.time_step, "s")?;
+        let count = model.rod.node_count();
+        if state.configuration.positions.len() != count
+            || state.gauss.len() != model.rod.element_count()
+        {
+            return Err(Error::input(
+                "state",
+                format!("a state of {} nodes", state.configuration.positions.len()),
+                format!("must belong to this model ({count} nodes)"),
+            ));
+        }
+        if state.accelerations.len() != count {
+            return Err(Error::input(
+                "state",
+                format!("{} accelerations", state.accelerations.len()),
+                format!("must hold one per node ({count})"),
+            ));
+        }
+        if state.slips.len() != count {
+            return Err(Error::input(
+                "state",
+                format!("{} friction slips", state.slips.len()),
+                format!("must hold one per node ({count})"),
+            ));
+        }
+        let mut assembler = Assembler::new(&model);
+        // Before the first step: the reactions of the starting configuration at rest (static ones for a
+        // static state, friction from the state's slips), from the integrator's own assembler.
+        assembler
+            .contact_start
+            .clone_from(&state.configuration.positions);
+        assembler.contact_slips.clone_from(&state.slips);
+        let reactions =
+            Response::with_assembler(&model, &state.configuration, &mut assembler).nodal_reactions;
+        let nodal = NodalProperties::new(&model);
+        let round_off = round_off(&model);
+        let contact = assembler.contact.take();
+        let vessel_waves = VesselWaves::new(&model, state.time)?;
+        Ok(Integrator {
+            vessel_waves,
+            contact,
+            round_off,
+            increments: vec![0.0; NODE_DOFS * count],
+            correction: vec![0.0; assembler.dofs.free],
+            magnitude: vec![0.0; NODE_DOFS * count],
+            next_gauss: state.gauss.clone(),
+            serial_run: SERIAL_RUN,
+            element_work: vec![ElementWork::default(); count - 1],
+            node_dissipation: vec![0.0; count],
+            assembler,
+            nodal,
+            node_start: vec![NodeStart::default(); count],
+            wave_kinematics: Vec::new(),
+            model,
+            options,
+            state,
+            work: StepWork::default(),
+            ledger: Ledger::default(),
+            reactions,
+            vessel_step: None,
+            rod_force_at_vessel: Vector6::zeros(),
+            reference_mid: (Vector6::zeros(), Vector6::zeros()),
+            offset_next: 0.0,
+            filtered_next: 0.0,
+            growth: None,
+        })
+    }
+
+    /// The current state.
+    pub fn state(&self) -> &DynamicState {
+        &self.state
+    }
+
+    /// The settings.
+    pub fn options(&self) -> &DynamicOptions {
+        &self.options
+    }
+
+    /// The model.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// Work supplied and energy dissipated since the start.
+    pub fn ledger(&self) -> &Ledger {
+        &self.ledger
+    }
+
+    /// Restores the ledger, e.g. from a checkpoint.
+    pub fn restore_ledger(&mut self, ledger: Ledger) {
+        self.ledger = ledger;
+    }
+
+    /// Force and moment the rod exerted on each node's support over the last step, in e: the step's mean
+    /// (impulse / Δt), a second-order value at the step's midpoint t_n + Δt/2.
+    pub fn reactions(&self) -> &[Vector6<f64>] {
+        &self.reactions
+    }
+
+    /// What can be read off the current state.
+    pub fn observe(&self) -> Observables<'_> {
+        Observables {
+            model: &self.model,
+            state: &self.state,
+            nodal: &self.nodal,
+            contact: self.contact.as_ref(),
+            rollers: self.assembler.rollers.as_ref(),
+            wave_offset: self.vessel_waves.as_ref().map(|w| &w.now),
+        }
+    }
+
+    /// The current state as a record, reached after `iterations` Newton iterations.
+    pub fn snapshot(&self, iterations: usize) -> Snapshot<'_> {
+        let state = &self.state;
+        let observables = self.observe();
+        let section_forces = observables.section_forces();
+        Snapshot {
+            time: state.time,
+            positions: &state.configuration.positions,
+            rotations: &state.configuration.rotations,
+            velocities: &state.velocities,
+            lay: observables.lay_summary(&section_forces),
+            section_forces,
+            reactions: &self.reactions,
+            energy: observables.energy(),
+            vessel: observables.vessel_values(),
+            touchdown: observables.touchdown(),
+            roller_forces: observables.roller_forces(),
+            supplied_work: self.ledger.supplied_work(),
+            dissipated: self.ledger.dissipated(),
+            length: observables.length(),
+            pay_out_energy: self.ledger.pay_out_energy(),
+            iterations,
+        }
+    }
+
+    /// Advances `steps` time steps, recording into `history` every `record_every` steps.
+    pub fn advance(
+        &mut self,
+        steps: usize,
+        record_every: usize,
+        history: &mut History,
+        counter: &mut usize,
+    ) -> Result<()> {
+        pool::run(self.parallel(), || {
+            for _ in 0..steps {
+                let report = self.step()?;
+                *counter += 1;
+                if *counter % record_every.max(1) == 0 {
+                    history.record(&self.snapshot(report.iterations))?;
+                }
+            }
+            Ok(())
+        })
+    }
+
+    /// Whether the model is large enough for the engine's threads.
+    pub(super) fn parallel(&self) -> bool {
+        pool::worth_it(self.model.rod.element_count())
+    }
+
+    /// Advances one time step Δt. Where Newton fails, the step is split into two halves, up to
+    /// [`MAX_HALVINGS`] times; each sub-step keeps the exact energy balance.
+    pub fn step(&mut self) -> Result<StepReport> {
+        pool::run(self.parallel(), || self.substep(self.options.time_step, 0))
+    }
+
+    fn substep(&mut self, dt: f64, depth: usize) -> Result<StepReport> {
+        match self.try_step(dt) {
+            Err(Error::Convergence { .. }) if depth < MAX_HALVINGS => {
+                let first = self.substep(0.5 * dt, depth + 1)?;
+                let second = self.substep(0.5 * dt, depth + 1)?;
+                Ok(StepReport {
+                    iterations: first.iterations + second.iterations,
+                    residual: second.residual,
+                })
+            }
+            other => other,
+        }
+    }
+
+    /// One step of size `dt`; the state is untouched if Newton fails.
+    fn try_step(&mut self, dt: f64) -> Result<StepReport> {
+        let time_next = self.state.time + dt;
+        let time_mid = self.state.time + 0.5 * dt;
+        let targets = self.model.support_targets(time_next)?;
+        let scales = self
+            .model
+            .point_loads
+            .iter()
+            .map(|load| load.scale_at(time_mid))
+            .collect::<Result<Vec<f64>>>()?;
+        if let Some(controller) = self
+            .model
+            .vessel
+            .as_ref()
+            .and_then(|v| v.controller.as_ref())
+        {
+            let reference = controller.reference.at(time_mid)?;
+            // The lay-tension loop moves the set-point by the top tension measured at the step's start.
+            let (offset, filtered) = self
+                .state
+                .vessel
+                .as_ref()
+                .map_or((0.0, 0.0), |v| (v.setpoint_offset, v.filtered_tension));
+            let (rate, filtered_next) =
+                controller
+                    .tension
+                    .as_ref()
+                    .map_or((0.0, filtered), |tension| {
+                        (
+                            tension.rate(filtered, self.state.time),
+                            tension.filtered(filtered, self.observe().top_tension(), dt),
+                        )
+                    });
+            self.offset_next = offset + rate * dt;
+            self.filtered_next = filtered_next;
+            self.reference_mid = shifted(reference, offset + 0.5 * rate * dt, rate);
+        }
+        if let (Some(waves), Some(attachment)) = (&mut self.vessel_waves, &self.model.vessel) {
+            waves.next = waves
+                .motion
+                .offset(time_next, &station(attachment, time_next)?)?;
+        }
+        self.growth = None;
+        let grown = match Growth::start(&mut self.model, &mut self.nodal, &self.state, dt)? {
+            Some((growth, brought_in)) => {
+                self.growth = Some(growth);
+                brought_in
+            }
+            None => 0.0,
+        };
+        self.node_start.clear();
+        self.node_start.extend(
+            (0..self.model.rod.node_count()).map(|node| node_start(&self.nodal, &self.state, node)),
+        );
+        self.predict(&targets, dt);
+        self.wave_kinematics.clear();
+        let outcome = self.newton(&scales, time_mid, dt);
+        if outcome.is_err() {
+            if let Some(growth) = self.growth.take() {
+                growth.undo(&mut self.model, &mut self.nodal);
+            }
+        }
+        let report = outcome?;
+        let elastic = self.growth.map_or(0.0, |growth| {
+            growth.strain_energy(&self.model, &self.state, &self.next_gauss)
+        });
+        self.commit(dt);
+        self.ledger.book_pay_out(grown + elastic);
+        self.remesh();
+        Ok(report)
+    }
+
+    /// With pay-out: splits or joins the end element when its length calls for it, rebuilds what depends on
+    /// the mesh and books the energy change of the new mesh (a split keeps it to round-off and the
+    /// discretisation's O(h²)).
+    fn remesh(&mut self) {
+        let Some(growth) = self.growth else {
+            return;
+        };
+        let before = self.observe().energy().total();
+        let Some(change) = remesh::remesh(
+            &mut self.model,
+            &mut self.state,
+            &mut self.reactions,
+            growth.speed,
+        ) else {
+            return;
+        };
+        let rollers = self.assembler.rollers.take();
+        let mut assembler = Assembler::new(&self.model);
+        if let (Some(new), Some(old)) = (&mut assembler.rollers, rollers) {
+            new.energy_end = old.energy_end;
+            new.forces = old.forces;
+            new.nearest_elements = old
+                .nearest_elements
+                .iter()
+                .map(|&e| change.renumbered(e))
+                .collect();
+        }
+        self.contact = assembler.contact.take();
+        self.assembler = assembler;
+        self.nodal = NodalProperties::new(&self.model);
+        let count = self.model.rod.node_count();
+        self.increments = vec![0.0; NODE_DOFS * count];
+        self.magnitude = vec![0.0; NODE_DOFS * count];
+        self.correction = vec![0.0; self.assembler.dofs.free];
+        self.next_gauss.clone_from(&self.state.gauss);
+        self.element_work = vec![ElementWork::default(); count - 1];
+        self.node_dissipation = vec![0.0; count];
+        self.round_off = round_off(&self.model);
+        let after = self.observe().energy().total();
+        self.ledger.book_pay_out(after - before);
+    }
+
+    /// Accepts the converged increments: positions, rotations, velocities, Gauss points, reactions, ledger.
+    fn commit(&mut self, dt: f64) {
+        let mut support_work = 0.0;
+        for node in 0..self.model.rod.node_count() {
+            let base = NODE_DOFS * node;
+            let dphi = Vector3::from_column_slice(&self.increments[base..base + 3]);
+            let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
+            let residual = Vector6::from_column_slice(&self.assembler.residual[base..base + 6]);
+            // At a supported DOF the residual is the force of the support on the rod; its work is supplied.
+            for k in 0..NODE_DOFS {
+                if self.assembler.dofs.equation[base + k].is_none() {
+                    support_work += residual[k] * self.increments[base + k];
+                }
+            }
+            self.reactions[node] = -residual;
+            let state = &mut self.state;
+            let rotation_n = state.configuration.rotations[node];
+            state.configuration.positions[node] += dphi;
+            let velocity = 2.0 * dphi / dt - state.velocities[node];
+            state.accelerations[node] = (velocity - state.velocities[node]) / dt;
+            state.velocities[node] = velocity;
+            state.body_angular_velocities[node] =
+                2.0 * (rotation_n.inverse() * theta) / dt - state.body_angular_velocities[node];
+            state.configuration.rotations[node] = cayley_quaternion(&theta) * rotation_n;
+        }
+        self.state.gauss.copy_from_slice(&self.next_gauss);
+        if let Some(contact) = &self.contact {
+            self.state.slips.copy_from_slice(contact.slips());
+        }
+        if let (Some(attachment), Some(motion), Some(step)) = (
+            &self.model.vessel,
+            &mut self.state.vessel,
+            &self.vessel_step,
+        ) {
+            let time_mid = self.state.time + 0.5 * dt;
+            motion.velocity = step.velocity_next;
+            motion.thrust = step.thrust;
+            motion.setpoint_offset = self.offset_next;
+            motion.filtered_tension = self.filtered_next;
+            // The rod's force on the vessel, −(vessel's force on the rod), is the vessel end's reaction.
+            self.reactions[attachment.node] = -self.rod_force_at_vessel;
+            if let Some(controller) = attachment
+                .controller
+                .as_ref()
+                .filter(|c| time_mid >= c.start)
+            {
+                motion.integral =
+                    clamp_integral(controller, &(motion.integral + dt * step.error_mid));
+            }
+            // χ: the pipe's force on the vessel, −(rod's force on the node), in the body frame about CO.
+            motion.pipe_force = pipe_force_on_vessel(
+                attachment,
+                &self.state.configuration.rotations[attachment.node],
+                &self.rod_force_at_vessel,
+                self.vessel_waves.as_ref().map(|w| &w.next),
+            );
+        }
+        if let Some(waves) = &mut self.vessel_waves {
+            waves.now = waves.next;
+        }
+        self.state.time += dt;
+        self.ledger
+            .book_step(self.work.supplied + support_work, self.work.dissipated);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assembly::configuration::Configuration;
+    use crate::environment::current::{Current, CurrentProfile};
+    use crate::environment::sea::Sea;
+    use crate::rod::section::Section;
+    use crate::rod::Rod;
+    use std::sync::Arc;
+
+    /// A steel pipe hanging in a sheared current with drag, rotational damping and a top driven in surge and
+    /// heave, after `steps` steps of 0.05 s.
+    fn moving_pipe(steps: usize) -> Integrator {
+        moving_pipe_of(8, steps)
+    }
+
+    /// The moving pipe with `elements` elements, `steps` steps after its start.
+    fn moving_pipe_of(elements: usize, steps: usize) -> Integrator {
+        let section = Section::pipe(
+            0.3,
+            0.02,
+            7850.0,
+            207e9,
+            0.3,
+            1025.0,
+            [0.1, 1.2],
+            [0.0, 1.0],
+        )
+        .expect("pipe");
+        let section = Section {
+            rotational_damping: Vector3::new(50.0, 50.0, 50.0),
+            ..section
+        };
+        let rod = Rod::straight(
+            Vector3::zeros(),
+            Vector3::new(0.0, 0.0, -100.0),
+            elements,
+            section,
+        )
+        .expect("rod");
+        let current = Current::new(
+            CurrentProfile::Linear {
+                surface: Vector3::new(0.5, -0.8, 0.0),
+            },
+            0.0,
+        )
+        .expect("current");
+        let sea = Sea::new(120.0, 1025.0, Some(current), None).expect("sea");
+        let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
+        model.pin("A", None).expect("pin");
+        model
+            .drive(
+                "B",
+                Arc::new(|t: f64| Ok(Vector3::new(3.0 * (0.8 * t).sin(), 0.0, -100.0))),
+                None,
+                None,
+            )
+            .expect("drive");
+        let state =
+            DynamicState::at_rest(&model, Configuration::reference(&model), 0.0).expect("state");
+        let mut sim = Integrator::new(model, state, DynamicOptions::default()).expect("integrator");
+        for _ in 0..steps {
+            sim.step().expect("step");
+        }
+        sim
+    }
+
+    /// Sets up the next step of `sim` at its predictor; returns Δt and the step's mid-time.
+    fn at_predictor(sim: &mut Integrator) -> (f64, f64) {
+        let dt = sim.options.time_step;
+        let time_mid = sim.state.time + 0.5 * dt;
+        let targets = sim
+            .model
+            .support_targets(sim.state.time + dt)
+            .expect("targets");
+        sim.node_start = (0..sim.model.rod.node_count())
+            .map(|node| node_start(&sim.nodal, &sim.state, node))
+            .collect();
+        sim.predict(&targets, dt);
+        (dt, time_mid)
+    }
+
+    /// The assembled tangent of a step (elements, inertia, damping, drag in a sheared current) equals central
+    /// differences of the assembled residual, column by column, at an iterate away from the predictor.
+    #[test]
+    fn step_tangent_matches_differences_of_the_residual() {
+        let mut sim = moving_pipe(20);
+        let (dt, time_mid) = at_predictor(&mut sim);
+        for (dof, increment) in sim.increments.iter_mut().enumerate() {
+            if sim.assembler.dofs.equation[dof].is_some() {
+                *increment += 1e-3 * (dof as f64).sin();
+            }
+        }
+        sim.assemble(&[], time_mid, dt, true).expect("assembly");
+        let tangent = sim.assembler.values.clone();
+        let mut worst: f64 = 0.0;
+        for column in 0..sim.increments.len() {
+            let Some(col) = sim.assembler.dofs.equation[column] else {
+                continue;
+            };
+            let h = 1e-5;
+            let mut residual_at = |step: f64| {
+                sim.increments[column] += step;
+                sim.assemble(&[], time_mid, dt, false).expect("assembly");
+                sim.increments[column] -= step;
+                sim.assembler.residual.clone()
+            };
+            let (plus, minus) = (residual_at(h), residual_at(-h));
+            for (row, eq) in sim.assembler.dofs.equation.iter().enumerate() {
+                let Some(r) = *eq else { continue };
+                let difference = (plus[row] - minus[row]) / (2.0 * h);
+                let entry = sim
+                    .assembler
+                    .lu
+                    .position(r, col)
+                    .map_or(0.0, |p| tangent[p]);
+                // Central differences err by O(h²) relatively and by round-off of the residual (≈ 1e5 N) over h.
+                worst = worst.max((difference - entry).abs() / (entry.abs() + 1e3));
+            }
+        }
+        assert!(worst < 1e-4, "worst relative error {worst:e}");
+    }
+
+    /// However the rod's assembly is split between threads (runs of 1, 5 and 64 elements against one run),
+    /// its residual, magnitudes, tangent and work come out the same to the bit.
+    #[test]
+    fn parallel_assembly_is_the_serial_one_bit_for_bit() {
+        let mut sim = moving_pipe_of(301, 2);
+        let (dt, time_mid) = at_predictor(&mut sim);
+        let mut assemble = |run: usize| {
+            sim.serial_run = run;
+            pool::run(true, || sim.assemble(&[], time_mid, dt, true)).expect("assembly");
+            (
+                sim.assembler.residual.clone(),
+                sim.magnitude.clone(),
+                sim.assembler.values.clone(),
+                [sim.work.supplied, sim.work.dissipated],
+            )
+        };
+        let serial = assemble(usize::MAX);
+        for run in [1, 5, SERIAL_RUN] {
+            assert!(assemble(run) == serial, "runs of {run}");
+        }
+    }
+}

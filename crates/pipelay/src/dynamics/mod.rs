@@ -1,0 +1,23 @@
+//! Dynamics: the energy–momentum conserving time step of the rod and its vessel, and the record of a run.
+//!
+//! May use: the model and its parts, [`crate::assembly`], [`crate::contact`], [`crate::linalg`] and
+//! [`crate::response`] (for the reactions and lay summary of a state). Nothing below imports it.
+//! - [`state`]: the state of the rod and vessel at one time; [`nodal`]: its lumped inertia;
+//! - [`integrator`]: the time step as a whole (predict, solve, commit); [`step_residual`]: a step's residual
+//!   and tangent, of which [`rod_step`] is the rod's share; [`newton`]: Newton's method on the increments;
+//! - [`vessel_waves`]: the vessel's wave-frequency motion over a step;
+//! - [`pay_out`]: the growing end element within a step; [`remesh`]: the mesh change that follows;
+//! - [`ledger`]: the storage function and the work supplied and dissipated;
+//! - [`observables`]: what users read off a state; [`history`]: the record of a run.
+pub mod history;
+pub mod integrator;
+pub mod ledger;
+pub mod newton;
+pub mod nodal;
+pub mod observables;
+pub mod pay_out;
+pub mod remesh;
+pub mod rod_step;
+pub mod state;
+pub mod step_residual;
+pub mod vessel_waves;

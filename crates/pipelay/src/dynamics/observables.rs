@@ -1,0 +1,183 @@
+//! What can be read off the integrator's current state: the storage function's parts, momenta, section
+//! forces, the touchdown, contact forces, the lay summary and the vessel's values. A read-only view: it
+//! changes nothing and the step does not depend on it except through the values it returns.
+// Indexing cannot go out of bounds here: Node and element indices of the state's own mesh.
+#![allow(clippy::indexing_slicing)]
+use crate::contact::rollers::RollerContact;
+use crate::contact::seabed::SeabedContact;
+use crate::contact::touchdown::Touchdown;
+use crate::dynamics::ledger::Energy;
+use crate::dynamics::nodal::NodalProperties;
+use crate::dynamics::state::DynamicState;
+use crate::model::Model;
+use crate::response::lay_summary::{lay_summary, LaySummary};
+use crate::vessel::coupling::{eta_of, low_frequency_pose};
+use crate::vessel::rigid_body::kinetic_energy;
+use crate::vessel::wave_motion::WaveOffset;
+use nalgebra::{Vector3, Vector6};
+
+/// A view of a state with what its observables need beside it.
+#[derive(Clone, Copy)]
+pub struct Observables<'a> {
+    pub model: &'a Model,
+    pub state: &'a DynamicState,
+    /// The lumped inertia of the state's mesh.
+    pub nodal: &'a NodalProperties,
+    /// Seabed contact after the last step, if the model has a seabed.
+    pub contact: Option<&'a SeabedContact>,
+    /// Roller contact after the last step, if the vessel has rollers.
+    pub rollers: Option<&'a RollerContact>,
+    /// The vessel's wave-frequency offset at the state's time, in waves with RAOs.
+    pub wave_offset: Option<&'a WaveOffset>,
+}
+
+impl<'a> Observables<'a> {
+    /// The pipe's unstretched length (m).
+    pub fn length(&self) -> f64 {
+        self.model.rod.length()
+    }
+
+    /// With a vessel: its η, ν, the thrust τ and the pipe's force χ of the current state.
+    pub fn vessel_values(&self) -> Option<[Vector6<f64>; 4]> {
+        let state = &self.state;
+        let (attachment, motion) = (self.model.vessel.as_ref()?, state.vessel.as_ref()?);
+        let node = attachment.node;
+        let (position, body) = low_frequency_pose(
+            attachment,
+            &state.configuration.positions[node],
+            &state.configuration.rotations[node],
+            self.wave_offset,
+        );
+        let eta = eta_of(&position, &body);
+        Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
+    }
+
+    /// Energy of the current state.
+    pub fn energy(&self) -> Energy {
+        let section = &self.model.rod.section;
+        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let state = &self.state;
+        let kinetic = (0..self.model.rod.node_count())
+            .map(|i| {
+                let w = state.body_angular_velocities[i];
+                0.5 * self.nodal.mass[i] * state.velocities[i].norm_squared()
+                    + 0.5 * w.dot(&self.nodal.inertia[i].component_mul(&w))
+            })
+            .sum();
+        let strain = state
+            .gauss
+            .iter()
+            .zip(&self.model.rod.elements)
+            .map(|(g, reference)| g.energy(reference, &c_t, &c_r))
+            .sum();
+        let (vessel_kinetic, vessel_potential) = match (&self.model.vessel, &state.vessel) {
+            (Some(attachment), Some(motion)) => {
+                let node = attachment.node;
+                let (position, body) = low_frequency_pose(
+                    attachment,
+                    &state.configuration.positions[node],
+                    &state.configuration.rotations[node],
+                    self.wave_offset,
+                );
+                (
+                    kinetic_energy(&attachment.vessel, &motion.velocity),
+                    attachment
+                        .vessel
+                        .restoring_energy(&position, &body, attachment.surface),
+                )
+            }
+            _ => (0.0, 0.0),
+        };
+        Energy {
+            kinetic,
+            strain,
+            gravity: state.configuration.gravity_potential(self.model),
+            vessel_kinetic,
+            vessel_potential,
+            seabed: self.contact.map_or(0.0, |contact| {
+                contact.energy(&state.configuration.positions, &state.slips)
+            }),
+            rollers: self.rollers.map_or(0.0, |r| r.energy_end),
+        }
+    }
+
+    /// Where the pipe leaves the seabed in the current state; `None` without a seabed.
+    pub fn touchdown(&self) -> Option<Touchdown> {
+        self.contact
+            .map(|contact| contact.touchdown(&self.state.configuration.positions))
+    }
+
+    /// The seabed's force on each node over the last step (N, in e); `None` without a seabed.
+    pub fn seabed_forces(&self) -> Option<&'a [Vector3<f64>]> {
+        self.contact.map(|contact| &contact.forces[..])
+    }
+
+    /// The lay summary of the current state, whose section forces are `section_forces`; `None` without a
+    /// vessel.
+    pub fn lay_summary(&self, section_forces: &[Vector6<f64>]) -> Option<LaySummary> {
+        let state = &self.state;
+        lay_summary(
+            self.model,
+            &state.configuration.positions,
+            &state.configuration.rotations,
+            section_forces,
+            self.rollers
+                .map(|r| (&r.forces[..], &r.nearest_elements[..])),
+            self.touchdown().as_ref(),
+        )
+    }
+
+    /// Effective tension of the element at the vessel (N); 0 without a vessel.
+    pub fn top_tension(&self) -> f64 {
+        let Some(attachment) = &self.model.vessel else {
+            return 0.0;
+        };
+        let element = attachment.node.saturating_sub(1);
+        let reference = &self.model.rod.elements[element];
+        let strain = self.state.gauss[element].strain - reference.strain;
+        (self.model.rod.section.c_t() * strain).x
+    }
+
+    /// Each roller's normal force in the current state (N); `None` without rollers.
+    pub fn roller_forces(&self) -> Option<&'a [f64]> {
+        self.rollers.map(|r| &r.forces[..])
+    }
+
+    /// Linear momentum Σ M_I v_I (kg·m/s).
+    pub fn linear_momentum(&self) -> Vector3<f64> {
+        self.state
+            .velocities
+            .iter()
+            .zip(&self.nodal.mass)
+            .map(|(v, m)| v * *m)
+            .sum()
+    }
+
+    /// Angular momentum about the origin Σ (φ_I × M_I v_I + Λ_I J_I W_I) (kg·m²/s).
+    pub fn angular_momentum(&self) -> Vector3<f64> {
+        let state = &self.state;
+        (0..self.model.rod.node_count())
+            .map(|i| {
+                let spin = state.configuration.rotations[i]
+                    * self.nodal.inertia[i].component_mul(&state.body_angular_velocities[i]);
+                state.configuration.positions[i].cross(&(state.velocities[i] * self.nodal.mass[i]))
+                    + spin
+            })
+            .sum()
+    }
+
+    /// Material force and moment [N; M] at the element Gauss points of the current state.
+    pub fn section_forces(&self) -> Vec<Vector6<f64>> {
+        let section = &self.model.rod.section;
+        self.state
+            .gauss
+            .iter()
+            .zip(&self.model.rod.elements)
+            .map(|(g, reference)| {
+                let n = section.c_t() * (g.strain - reference.strain);
+                let m = section.c_r() * (g.curvature - reference.curvature);
+                Vector6::new(n.x, n.y, n.z, m.x, m.y, m.z)
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,116 @@
+//! Pay-out and pay-in within a time step: the end element grows (or shrinks) with the pay-out speed, its
+//! nodes' lumps follow, and the energy this brings in is measured for the ledger. When the element's length
+//! calls for it the integrator changes the mesh ([`crate::dynamics::remesh`]) after the step.
+// Indexing cannot go out of bounds here: the growing element and its two nodes, of the model's own mesh.
+#![allow(clippy::indexing_slicing)]
+use crate::dynamics::nodal::NodalProperties;
+use crate::dynamics::state::DynamicState;
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::rod::dynamic_element::GaussPoint;
+use crate::rod::element::ElementReference;
+
+/// The element that grows with pay-out in the current step.
+#[derive(Debug, Clone, Copy)]
+pub struct Growth {
+    pub element: usize,
+    /// Its reference length at the step's start (m); the model holds the length at the step's end.
+    pub length_start: f64,
+    /// Work of its internal forces over the step (J).
+    pub internal_work: f64,
+    /// The pay-out speed over the step (m/s).
+    pub speed: f64,
+}
+
+impl Growth {
+    /// With pay-out: sets the end element's length in `model` to its value at the step's end (the speed at
+    /// the step's midpoint times Δt added) and its nodes' lumps in `nodal` to match. Returns the growth and the
+    /// energy the change of mass brings in at the step's start `state` (kinetic, and the potential of the
+    /// submerged weight); `None` without pay-out.
+    pub fn start(
+        model: &mut Model,
+        nodal: &mut NodalProperties,
+        state: &DynamicState,
+        dt: f64,
+    ) -> Result<Option<(Growth, f64)>> {
+        let (Some(pay_out), Some((element, _))) = (&model.pay_out, model.growing_element()) else {
+            return Ok(None);
+        };
+        let time = state.time;
+        let speed = pay_out.speed_at(time + 0.5 * dt)?;
+        let length_start = model.rod.elements[element].length;
+        let length_next = length_start + speed * dt;
+        if length_next < 0.05 * pay_out.element_length {
+            let reason = if model.rod.element_count() == 1 {
+                "pay-in has reached the last element: the pipe cannot be paid in further"
+            } else {
+                "pays in more than half an element in one step: |speed|·dt must stay below 0.45 element_length"
+            };
+            return Err(Error::input(
+                "pay_out speed",
+                format!("{speed} m/s at t = {time} s"),
+                reason,
+            ));
+        }
+        let before = element_lump_energy(model, nodal, state, element);
+        model.rod.elements[element].length = length_next;
+        nodal.recompute(model, element);
+        nodal.recompute(model, element + 1);
+        let growth = Growth {
+            element,
+            length_start,
+            internal_work: 0.0,
+            speed,
+        };
+        let brought_in = element_lump_energy(model, nodal, state, element) - before;
+        Ok(Some((growth, brought_in)))
+    }
+
+    /// Restores the end element's length and lumps after a failed step.
+    pub fn undo(&self, model: &mut Model, nodal: &mut NodalProperties) {
+        model.rod.elements[self.element].length = self.length_start;
+        nodal.recompute(model, self.element);
+        nodal.recompute(model, self.element + 1);
+    }
+
+    /// After a converged step from `state` to the Gauss points `next_gauss`: the growing element's
+    /// strain-energy change less the work of its internal forces over the step, the energy its change of
+    /// reference length brought in (J).
+    pub fn strain_energy(
+        &self,
+        model: &Model,
+        state: &DynamicState,
+        next_gauss: &[GaussPoint],
+    ) -> f64 {
+        let section = &model.rod.section;
+        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let reference = model.rod.elements[self.element];
+        let start = ElementReference {
+            length: self.length_start,
+            ..reference
+        };
+        next_gauss[self.element].energy(&reference, &c_t, &c_r)
+            - state.gauss[self.element].energy(&start, &c_t, &c_r)
+            - self.internal_work
+    }
+}
+
+/// Kinetic energy of an element's two nodes and the potential of its submerged weight (J).
+fn element_lump_energy(
+    model: &Model,
+    nodal: &NodalProperties,
+    state: &DynamicState,
+    element: usize,
+) -> f64 {
+    let kinetic = |i: usize| {
+        let w = state.body_angular_velocities[i];
+        0.5 * nodal.mass[i] * state.velocities[i].norm_squared()
+            + 0.5 * w.dot(&nodal.inertia[i].component_mul(&w))
+    };
+    let positions = &state.configuration.positions;
+    kinetic(element) + kinetic(element + 1)
+        - 0.5
+            * model.rod.elements[element].length
+            * model.submerged_weight()
+            * (positions[element].z + positions[element + 1].z)
+}

@@ -1,0 +1,172 @@
+//! The mesh changes of a pipe whose length changes at one end (pay-out and pay-in).
+//!
+//! Between mesh changes the end element grows (or shrinks) with the pay-out speed; the time step handles
+//! that (`rod::dynamic_element::step` with its start length). When the end element passes 1.5ℓ (ℓ the
+//! pay-out element length) it is split into an element of length ℓ next to the pipe and a shorter end
+//! element; on pay-in, when it falls below 0.5ℓ, it is joined with its neighbour.
+//!
+//! A split keeps the state the element describes: the new node's rotation is on the geodesic between the
+//! element's end rotations, both halves keep the element's curvature K and the Gauss rotation interpolated
+//! the same way, and the new node is placed where the two halves carry the same force (n₁ = n₂, a 3×3 solve),
+//! so the tension through the split does not jump. Velocities and the seabed slips are interpolated.
+// Indexing cannot go out of bounds here: The end element and its nodes, indices of the mesh being changed (checked non-empty).
+#![allow(clippy::indexing_slicing)]
+use crate::dynamics::state::DynamicState;
+use crate::model::Model;
+use crate::rod::dynamic_element::GaussPoint;
+use crate::so3::log_quat;
+use nalgebra::{UnitQuaternion, Vector2, Vector3, Vector6};
+
+/// What a mesh change did, for the integrator to follow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshChange {
+    /// A node was inserted at this index.
+    Inserted(usize),
+    /// The node at this index was removed.
+    Removed(usize),
+}
+
+impl MeshChange {
+    /// The index after the change of the element whose index was `element` before it (an element joined
+    /// into its neighbour takes the joined element's index).
+    pub fn renumbered(self, element: usize) -> usize {
+        match self {
+            MeshChange::Inserted(node) if element + 1 >= node => element + 1,
+            MeshChange::Removed(node) if element + 1 >= node => element.saturating_sub(1),
+            _ => element,
+        }
+    }
+}
+
+/// Splits or joins the end element if its length has left [0.5ℓ, 1.5ℓ]; `reactions` follow the nodes.
+/// `speed` is the pay-out speed (m/s), with which the pipe leaves the end relative to it.
+pub fn remesh(
+    model: &mut Model,
+    state: &mut DynamicState,
+    reactions: &mut Vec<Vector6<f64>>,
+    speed: f64,
+) -> Option<MeshChange> {
+    let pay_out = model.pay_out.as_ref()?;
+    let (element, _) = model.growing_element()?;
+    let nominal = pay_out.element_length;
+    let at_start = pay_out.at_start;
+    let length = model.rod.elements[element].length;
+    if length > 1.5 * nominal {
+        // The new element of length ℓ lies next to the pipe; the end element keeps the rest.
+        let fraction = if at_start {
+            (length - nominal) / length
+        } else {
+            nominal / length
+        };
+        let node = split(model, state, element, fraction, at_start, speed);
+        reactions.insert(node, Vector6::zeros());
+        model.renumber_nodes(node, 1);
+        Some(MeshChange::Inserted(node))
+    } else if length < 0.5 * nominal && model.rod.element_count() > 1 {
+        let first = if at_start { 0 } else { element - 1 };
+        join(model, state, first);
+        reactions.remove(first + 1);
+        model.renumber_nodes(first + 1, -1);
+        Some(MeshChange::Removed(first + 1))
+    } else {
+        None
+    }
+}
+
+/// Splits `element` at `fraction` of its length from its first node; returns the new node's index. The new
+/// node is a material point: its velocity is interpolated between the inner node's and that of the pipe
+/// leaving the end (the end's velocity plus `speed` along the element, away from the end).
+fn split(
+    model: &mut Model,
+    state: &mut DynamicState,
+    element: usize,
+    fraction: f64,
+    at_start: bool,
+    speed: f64,
+) -> usize {
+    let (a, b) = (element, element + 1);
+    let section = &model.rod.section;
+    let parent = model.rod.elements[element];
+    let gauss = state.gauss[element];
+    let config = &state.configuration;
+    let (ra, rb) = (config.rotations[a], config.rotations[b]);
+    // Ψ: the material relative rotation of the element's ends; the rotation field is R_a exp(sΨ).
+    let relative = log_quat(&(ra.inverse() * rb));
+    let rotation = ra * UnitQuaternion::from_scaled_axis(relative * fraction);
+    // Both halves keep the element's Gauss point: its rotation Λ, strain Γ and curvature K (the energy–momentum
+    // step carries them as state; they are per length). With the node on the chord at `fraction`, each half's
+    // strain Λᵀc_i/l_i − E1 is then the element's exactly, bent or not.
+    let (first_length, second_length) =
+        (fraction * parent.length, (1.0 - fraction) * parent.length);
+    let (xa, xb) = (config.positions[a], config.positions[b]);
+    // Moved off the chord by δ, the halves' forces differ by Λ C Λᵀ δ (1/l₁ + 1/l₂): the node carries its share
+    // of the submerged weight when n₁ − n₂ = ½(l₁ + l₂) w e3 (the weight acts along e3).
+    let stiffness = gauss.rotation
+        * section.c_t()
+        * gauss.rotation.transpose()
+        * (1.0 / first_length + 1.0 / second_length);
+    let weight = Vector3::z() * (0.5 * parent.length * model.submerged_weight());
+    let offset = stiffness.lu().solve(&weight).unwrap_or_else(Vector3::zeros);
+    let position = xa + (xb - xa) * fraction + offset;
+    // Both halves take the element's Gauss point as it is. The bending moment of a sheared rod varies along it
+    // (m′ = −φ′ × n), which a one-point element cannot show: the new node is left with the moment ½ l n × φ′
+    // unbalanced, released as a small vibration. Giving each half the moment at its own midpoint instead
+    // balanced the node but added ½ Σ l_i Δm_i²/EI of strain energy at each split, which fed back through the
+    // shear force and pumped a long J-lay run unstable; this embedding changes no energy at all.
+    let half = |chord: Vector3<f64>, l: f64| GaussPoint {
+        rotation: gauss.rotation,
+        strain: gauss.rotation.transpose() * chord / l - Vector3::x(),
+        curvature: gauss.curvature,
+    };
+    let first = half(position - xa, first_length);
+    let second = half(xb - position, second_length);
+    let mix3 = |u: &Vector3<f64>, v: &Vector3<f64>| u * (1.0 - fraction) + v * fraction;
+    let spin = mix3(
+        &(ra * state.body_angular_velocities[a]),
+        &(rb * state.body_angular_velocities[b]),
+    );
+    // Paid-out pipe moves from the end into the pipe: along a → b at end A, b → a at end B.
+    let along = (xb - xa).normalize() * speed;
+    let velocity = if at_start {
+        mix3(&(state.velocities[a] + along), &state.velocities[b])
+    } else {
+        mix3(&state.velocities[a], &(state.velocities[b] - along))
+    };
+    let slip: Vector2<f64> = state.slips[a] * (1.0 - fraction) + state.slips[b] * fraction;
+
+    state.configuration.positions.insert(b, position);
+    state.configuration.rotations.insert(b, rotation);
+    state.velocities.insert(b, velocity);
+    let acceleration = mix3(&state.accelerations[a], &state.accelerations[b]);
+    state.accelerations.insert(b, acceleration);
+    state
+        .body_angular_velocities
+        .insert(b, rotation.inverse() * spin);
+    state.slips.insert(b, slip);
+    state.gauss[element] = first;
+    state.gauss.insert(element + 1, second);
+    model.rod.split_element(element, fraction);
+    b
+}
+
+/// Joins elements `first` and `first + 1` by removing the node between them; the joined element's Gauss
+/// point is that of its end nodes (the objective element's midpoint triad and strains).
+fn join(model: &mut Model, state: &mut DynamicState, first: usize) {
+    model.rod.join_elements(first);
+    let removed = first + 1;
+    let config = &mut state.configuration;
+    config.positions.remove(removed);
+    config.rotations.remove(removed);
+    state.velocities.remove(removed);
+    state.accelerations.remove(removed);
+    state.body_angular_velocities.remove(removed);
+    state.slips.remove(removed);
+    state.gauss.remove(removed);
+    state.gauss[first] = GaussPoint::from_configuration(
+        &config.positions[first],
+        &config.positions[first + 1],
+        &config.rotations[first],
+        &config.rotations[first + 1],
+        &model.rod.elements[first],
+    );
+}

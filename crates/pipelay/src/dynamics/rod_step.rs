@@ -1,0 +1,372 @@
+//! The rod's share of an energy–momentum step: each element's internal forces, submerged weight, waves'
+//! inertia load and Morison drag, and each node's inertia and rotational damping, with their tangents.
+//!
+//! **In parallel, and the same bits as in series.** The elements are split in halves recursively
+//! ([`pool::join`]) down to runs of [`pool::SERIAL_RUN`]; each half writes the rows and columns of its own nodes
+//! only ([`RodSink`]), and the element at a split (whose two nodes fall in different halves) is added after
+//! both halves. Every element first sums its terms locally and each residual, magnitude or tangent entry
+//! then receives at most two element contributions from zero (0 + a + b = 0 + b + a exactly), so the result
+//! does not depend on how the work was split or on the number of threads. The step's work is summed over the
+//! elements in order, afterwards. Nodes write their own entries alone.
+// Indexing cannot go out of bounds here: Node and element indices of the mesh (slices sized to it).
+#![allow(clippy::indexing_slicing)]
+use crate::assembly::dofs::NODE_DOFS;
+use crate::assembly::scatter::RodSink;
+use crate::environment::drag::{morison_drag, morison_force};
+use crate::environment::waves::Kinematics;
+use crate::linalg::pool;
+use crate::model::Model;
+use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
+use crate::rod::element::{ElementMatrix, ElementVector};
+use crate::so3::{cayley, cayley_tangent, skew};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use std::ops::Range;
+
+/// What a node's inertia and damping terms need from the step's start, computed once per step: the spatial
+/// inertia I_n = Λ_n J Λ_nᵀ, the spatial angular momentum π_n = Λ_n J W_n and the damping c = Λ_n D Λ_nᵀ.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NodeStart {
+    pub inertia: Matrix3<f64>,
+    pub momentum: Vector3<f64>,
+    pub damping: Matrix3<f64>,
+}
+
+/// Energy terms of one element in a step (J).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ElementWork {
+    /// Work supplied by the waves' inertia load and the flow's drag.
+    pub supplied: f64,
+    /// Energy the drag dissipates.
+    pub dissipated: f64,
+    /// Work of the internal forces F·Δ (for the element that grows with pay-out).
+    pub internal: f64,
+}
+
+/// The section's and the sea's constants the elements use.
+#[derive(Debug, Clone, Copy)]
+pub struct RodConstants {
+    c_t: Matrix3<f64>,
+    c_r: Matrix3<f64>,
+    /// Submerged weight per length (N/m).
+    weight: f64,
+    /// Morison drag coefficients ½ρ C_d d, axial and normal.
+    drag: (f64, f64),
+}
+
+impl RodConstants {
+    pub fn of(model: &Model) -> Self {
+        let section = &model.rod.section;
+        RodConstants {
+            c_t: section.c_t(),
+            c_r: section.c_r(),
+            weight: model.submerged_weight(),
+            drag: model.drag_coefficients(),
+        }
+    }
+}
+
+/// The step's inputs the rod's terms read.
+pub struct RodStep<'a> {
+    pub model: &'a Model,
+    pub constants: RodConstants,
+    /// Positions, velocities and Gauss points at the step's start.
+    pub positions: &'a [Vector3<f64>],
+    pub velocities: &'a [Vector3<f64>],
+    pub gauss: &'a [GaussPoint],
+    /// Nodal translational masses (kg) and what the rotational terms need.
+    pub mass: &'a [f64],
+    pub node_start: &'a [NodeStart],
+    /// The step's unknowns on all DOFs [Δφ_I, θ_I].
+    pub increments: &'a [f64],
+    /// The waves' kinematics at each element's midpoint (empty without waves).
+    pub waves: &'a [Kinematics],
+    /// With pay-out: the growing element and its length at the step's start (m).
+    pub growth: Option<(usize, f64)>,
+    pub stress_rule: StressRule,
+    /// Elements and nodes assembled in one run ([`pool::SERIAL_RUN`]; the result does not depend on it).
+    pub serial_run: usize,
+    /// Time step and the step's mid-time (s).
+    pub dt: f64,
+    pub time_mid: f64,
+}
+
+/// One element's terms: forces on [x1, θ1, x2, θ2], their sizes and the Gauss point at n+1.
+struct ElementShare {
+    forces: ElementVector,
+    magnitude: ElementVector,
+    next: GaussPoint,
+    work: ElementWork,
+}
+
+/// Per element, what a step writes besides the residual and tangent.
+pub struct ElementOutputs<'a> {
+    pub next_gauss: &'a mut [GaussPoint],
+    pub work: &'a mut [ElementWork],
+}
+
+impl RodStep<'_> {
+    /// Adds every element's terms to `sink` (the whole rod) and writes `outputs`.
+    pub fn add_elements(&self, sink: &mut RodSink, outputs: ElementOutputs, with_tangent: bool) {
+        let elements = self.model.rod.element_count();
+        self.add_element_run(0..elements, sink, outputs, with_tangent);
+    }
+
+    /// Elements `range` into `sink`, which holds the nodes from `range.start` to `range.end`; `outputs` holds
+    /// the range's elements.
+    fn add_element_run(
+        &self,
+        range: Range<usize>,
+        sink: &mut RodSink,
+        outputs: ElementOutputs,
+        with_tangent: bool,
+    ) {
+        // The element tangent of the run, written whole by each element that asks for it.
+        let mut tangent = ElementMatrix::zeros();
+        if range.len() <= self.serial_run.max(1) {
+            for (e, (next, work)) in range
+                .clone()
+                .zip(outputs.next_gauss.iter_mut().zip(outputs.work.iter_mut()))
+            {
+                let share = self.element(e, with_tangent.then_some(&mut tangent));
+                sink.add_element(e, &share.forces, &share.magnitude, &tangent);
+                *next = share.next;
+                *work = share.work;
+            }
+            return;
+        }
+        // Elements before the split, the split element, elements after it.
+        let split = range.start + range.len() / 2;
+        let local = split - range.start;
+        let (next_left, next_rest) = outputs.next_gauss.split_at_mut(local);
+        let (next_split, next_right) = next_rest.split_at_mut(1);
+        let (work_left, work_rest) = outputs.work.split_at_mut(local);
+        let (work_split, work_right) = work_rest.split_at_mut(1);
+        let share = {
+            let (mut left, mut right) = sink.split_at_node(split + 1);
+            let left_outputs = ElementOutputs {
+                next_gauss: next_left,
+                work: work_left,
+            };
+            let right_outputs = ElementOutputs {
+                next_gauss: next_right,
+                work: work_right,
+            };
+            let (_, share) = pool::join(
+                true,
+                || self.add_element_run(range.start..split, &mut left, left_outputs, with_tangent),
+                || {
+                    let share = self.element(split, with_tangent.then_some(&mut tangent));
+                    self.add_element_run(
+                        split + 1..range.end,
+                        &mut right,
+                        right_outputs,
+                        with_tangent,
+                    );
+                    share
+                },
+            );
+            share
+        };
+        sink.add_element(split, &share.forces, &share.magnitude, &tangent);
+        next_split[0] = share.next;
+        work_split[0] = share.work;
+    }
+
+    /// Element `e`'s terms, and with `tangent` its tangent (all 144 entries written).
+    fn element(&self, e: usize, mut tangent: Option<&mut ElementMatrix>) -> ElementShare {
+        let model = self.model;
+        let reference = &model.rod.elements[e];
+        let section = &model.rod.section;
+        let RodConstants {
+            c_t,
+            c_r,
+            weight,
+            drag: (k_axial, k_normal),
+        } = self.constants;
+        let dt = self.dt;
+        let base = NODE_DOFS * e;
+        let increments = ElementVector::from_column_slice(&self.increments[base..base + 12]);
+        let positions = self.positions;
+        let chord = positions[e + 1] - positions[e];
+        let length_start = self
+            .growth
+            .filter(|&(element, _)| element == e)
+            .map_or(reference.length, |(_, length)| length);
+        let step = element_step(
+            &chord,
+            &increments,
+            &self.gauss[e],
+            length_start,
+            reference,
+            &c_t,
+            &c_r,
+            self.stress_rule,
+            tangent.as_deref_mut(),
+        );
+        let mut work = ElementWork {
+            internal: step.forces.dot(&increments),
+            ..ElementWork::default()
+        };
+        let mut forces = step.forces;
+        let mut magnitude = forces.abs();
+        // Submerged weight, a dead load: −½L0 w e3 in the residual of each node.
+        let nodal_weight = 0.5 * reference.length * weight;
+        forces[2] -= nodal_weight;
+        forces[8] -= nodal_weight;
+        magnitude[2] += nodal_weight.abs();
+        magnitude[8] += nodal_weight.abs();
+        let dphi1 = increments.fixed_rows::<3>(0).into_owned();
+        let dphi2 = increments.fixed_rows::<3>(6).into_owned();
+        // Half of a force on the element's midpoint to each node.
+        let mut share_force = |force: &Vector3<f64>| {
+            for a in 0..2 {
+                for i in 0..3 {
+                    forces[NODE_DOFS * a + i] -= 0.5 * force[i];
+                    magnitude[NODE_DOFS * a + i] += 0.5 * force[i].abs();
+                }
+            }
+        };
+        // The waves at the element's midpoint, and their Froude–Krylov and added-mass load
+        // (1 + C_a) ρ A u̇ (isotropic, as the added mass), whose work is supplied. They are taken at the
+        // predictor's midpoint, once per step: the sum over the sea's components costs more than the rest of
+        // the element, and the position error is the predictor's, O(Δt³).
+        let waves = match (self.waves.get(e), &model.sea) {
+            (Some(kinematics), Some(sea)) => {
+                let inertia = (1.0 + section.added_mass[1])
+                    * sea.density
+                    * section.displaced_area
+                    * reference.length
+                    * kinematics.acceleration;
+                work.supplied += 0.5 * inertia.dot(&(dphi1 + dphi2));
+                share_force(&inertia);
+                Some(kinematics)
+            }
+            _ => None,
+        };
+        if let (Some(sea), true) = (&model.sea, k_axial + k_normal > 0.0) {
+            let tangent_mid = (chord + 0.5 * (dphi2 - dphi1)) / reference.length;
+            let stretch = tangent_mid.norm();
+            let t = tangent_mid / stretch;
+            let length = reference.length * stretch;
+            let z_mid = 0.5 * (positions[e].z + positions[e + 1].z) + 0.25 * (dphi1.z + dphi2.z);
+            let (current, current_shear) = sea.current_at(z_mid, self.time_mid);
+            let mut flow = current;
+            if let Some(kinematics) = waves {
+                flow += kinematics.velocity;
+            }
+            let velocity = 0.5 * (dphi1 + dphi2) / dt;
+            let relative = flow - velocity;
+            // With a tangent, the drag's derivatives too (they include the force).
+            let drag = tangent
+                .is_some()
+                .then(|| morison_drag(&relative, &t, k_axial, k_normal));
+            let drag_force = drag.as_ref().map_or_else(
+                || morison_force(&relative, &t, k_axial, k_normal),
+                |drag| drag.force,
+            );
+            let force = length * drag_force;
+            work.supplied += dt * force.dot(&flow);
+            work.dissipated += dt * length * drag_force.dot(&relative);
+            share_force(&force);
+            // dF/dΔφ_b for b = 1, 2 (s_b = ∓1): through ℓ and t (via φ′_{n+½}) and the relative flow.
+            if let (Some(tangent), Some(drag)) = (tangent, drag) {
+                let projector = Matrix3::identity() - t * t.transpose();
+                let d_chord = 0.5 * (drag.force * t.transpose() + drag.d_tangent * projector);
+                let d_flow = length * drag.d_flow;
+                let d_velocity = -0.5 / dt * d_flow;
+                // Through the midpoint's depth, where the current is sheared: ∂U/∂x = U′(z) e3ᵀ at the
+                // midpoint (the waves are held over the step).
+                let (d1, d2) = if current_shear == Vector3::zeros() {
+                    (-d_chord + d_velocity, d_chord + d_velocity)
+                } else {
+                    let flow_gradient = current_shear * Vector3::z().transpose();
+                    let d_depth = 0.25 * d_flow * flow_gradient;
+                    (
+                        -d_chord + d_depth + d_velocity,
+                        d_chord + d_depth + d_velocity,
+                    )
+                };
+                for a in 0..2 {
+                    let mut by_phi1 = tangent.fixed_view_mut::<3, 3>(NODE_DOFS * a, 0);
+                    by_phi1 -= 0.5 * d1;
+                    let mut by_phi2 = tangent.fixed_view_mut::<3, 3>(NODE_DOFS * a, NODE_DOFS);
+                    by_phi2 -= 0.5 * d2;
+                }
+            }
+        }
+        ElementShare {
+            forces,
+            magnitude,
+            next: step.next,
+            work,
+        }
+    }
+
+    /// Adds every node's inertia and rotational damping to `sink` (the whole rod); writes each node's
+    /// dissipation into `dissipated`.
+    pub fn add_nodes(&self, sink: &mut RodSink, dissipated: &mut [f64], with_tangent: bool) {
+        self.add_node_run(0..dissipated.len(), sink, dissipated, with_tangent);
+    }
+
+    fn add_node_run(
+        &self,
+        range: Range<usize>,
+        sink: &mut RodSink,
+        dissipated: &mut [f64],
+        with_tangent: bool,
+    ) {
+        if range.len() <= self.serial_run.max(1) {
+            for (node, dissipated) in range.zip(dissipated.iter_mut()) {
+                *dissipated = self.node(node, sink, with_tangent);
+            }
+            return;
+        }
+        let split = range.start + range.len() / 2;
+        let (mut left, mut right) = sink.split_at_node(split);
+        let (dissipated_left, dissipated_right) = dissipated.split_at_mut(split - range.start);
+        pool::join(
+            true,
+            || self.add_node_run(range.start..split, &mut left, dissipated_left, with_tangent),
+            || self.add_node_run(split..range.end, &mut right, dissipated_right, with_tangent),
+        );
+    }
+
+    /// Adds node `node`'s inertia and damping terms to `sink`; returns the energy its damping dissipates (J).
+    fn node(&self, node: usize, sink: &mut RodSink, with_tangent: bool) -> f64 {
+        let dt = self.dt;
+        let base = NODE_DOFS * node;
+        let dphi = Vector3::from_column_slice(&self.increments[base..base + 3]);
+        let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
+        // Translational inertia: M(v_{n+1} − v_n)/Δt with v_{n+1} = 2Δφ/Δt − v_n.
+        let mass = self.mass[node];
+        let inertia_force = mass * (2.0 * dphi / dt - 2.0 * self.velocities[node]) / dt;
+        // Rotational inertia in spatial momentum: (π_{n+1} − π_n)/Δt, π_{n+1} = cay(θ)[(2/Δt)I_nθ − π_n].
+        let NodeStart {
+            inertia: inertia_n,
+            momentum: momentum_n,
+            damping,
+        } = self.node_start[node];
+        let q = cayley(&theta);
+        let momentum_next = q * (2.0 / dt * inertia_n * theta - momentum_n);
+        // Rotational damping D_R: m = −cθ/Δt, c = Λ_n D Λ_nᵀ.
+        let moment = (momentum_next - momentum_n) / dt + damping * theta / dt;
+        let mut forces = Vector6::zeros();
+        forces.fixed_rows_mut::<3>(0).copy_from(&inertia_force);
+        forces.fixed_rows_mut::<3>(3).copy_from(&moment);
+        let tangent = with_tangent.then(|| {
+            let mut block = Matrix6::zeros();
+            let rotation_block =
+                (2.0 / dt * q * inertia_n - skew(&momentum_next) * cayley_tangent(&theta)) / dt
+                    + damping / dt;
+            block
+                .fixed_view_mut::<3, 3>(0, 0)
+                .copy_from(&(Matrix3::identity() * (2.0 * mass / (dt * dt))));
+            block
+                .fixed_view_mut::<3, 3>(3, 3)
+                .copy_from(&rotation_block);
+            block
+        });
+        sink.add_node(node, &forces, &forces.abs(), tangent.as_ref());
+        theta.dot(&(damping * theta)) / dt
+    }
+}

@@ -1,0 +1,131 @@
+//! The state of the rod (and its vessel) at one time: what a step starts from and produces, and what a
+//! checkpoint stores.
+// Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
+#![allow(clippy::indexing_slicing)]
+use crate::assembly::configuration::Configuration;
+use crate::error::Result;
+use crate::model::Model;
+use crate::response::configuration::Response;
+use crate::rod::dynamic_element::GaussPoint;
+use nalgebra::{Vector2, Vector3, Vector6};
+
+/// The state of the rod at one time.
+#[derive(Debug, Clone)]
+pub struct DynamicState {
+    /// Time t (s).
+    pub time: f64,
+    pub configuration: Configuration,
+    /// Nodal velocities v_I (m/s).
+    pub velocities: Vec<Vector3<f64>>,
+    /// Convected (body-frame) angular velocities W_I (rad/s): Λ̇ = ΛŴ.
+    pub body_angular_velocities: Vec<Vector3<f64>>,
+    /// Nodal accelerations over the last step, (v_n − v_n−1)/Δt (m/s²; zero at a start), from which the next
+    /// step's predictor extrapolates.
+    pub accelerations: Vec<Vector3<f64>>,
+    /// Gauss-point rotations and strains.
+    pub gauss: Vec<GaussPoint>,
+    /// The attached vessel's velocity and controller state, if any.
+    pub vessel: Option<VesselMotion>,
+    /// Elastic seabed-friction slip (axial, lateral) of each node (m); zero without a seabed.
+    pub slips: Vec<Vector2<f64>>,
+}
+
+/// Velocity and controller state of an attached vessel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VesselMotion {
+    /// ν = [u, v, w, p, q, r] (body frame).
+    pub velocity: Vector6<f64>,
+    /// ∫η̃ dt of the PID.
+    pub integral: Vector6<f64>,
+    /// Thrust that holds the vessel until the controller starts (body frame): the static holding thrust of
+    /// the starting configuration.
+    pub hold_thrust: Vector6<f64>,
+    /// Thrust applied over the last step (body frame).
+    pub thrust: Vector6<f64>,
+    /// The pipe's force and moment on the vessel over the last step, χ (body frame).
+    pub pipe_force: Vector6<f64>,
+    /// How far the lay-tension loop has moved the set-point along the reference's heading (m).
+    pub setpoint_offset: f64,
+    /// The lay-tension loop's filtered top tension (N).
+    pub filtered_tension: f64,
+}
+
+impl DynamicState {
+    /// A state at rest in `configuration` at time `time`; driven nodes move with their drive's velocity.
+    pub fn at_rest(model: &Model, configuration: Configuration, time: f64) -> Result<Self> {
+        let gauss = model
+            .rod
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(e, reference)| {
+                GaussPoint::from_configuration(
+                    &configuration.positions[e],
+                    &configuration.positions[e + 1],
+                    &configuration.rotations[e],
+                    &configuration.rotations[e + 1],
+                    reference,
+                )
+            })
+            .collect();
+        let mut velocities = vec![Vector3::zeros(); model.rod.node_count()];
+        for support in &model.supports {
+            velocities[support.node] = support.velocity(time)?;
+        }
+        let vessel = model.vessel.as_ref().map(|_| {
+            let response = Response::new(model, &configuration);
+            let top = response
+                .section_forces
+                .get(
+                    model
+                        .vessel
+                        .as_ref()
+                        .map_or(0, |v| v.node.saturating_sub(1)),
+                )
+                .map_or(0.0, |f| f.x);
+            let held = response.vessel;
+            let (hold_thrust, pipe_force) = held
+                .map_or((Vector6::zeros(), Vector6::zeros()), |v| {
+                    (v.thrust, v.pipe_force)
+                });
+            VesselMotion {
+                velocity: Vector6::zeros(),
+                integral: Vector6::zeros(),
+                hold_thrust,
+                thrust: hold_thrust,
+                pipe_force,
+                setpoint_offset: 0.0,
+                filtered_tension: top,
+            }
+        });
+        Ok(DynamicState {
+            time,
+            slips: vec![Vector2::zeros(); model.rod.node_count()],
+            body_angular_velocities: vec![Vector3::zeros(); model.rod.node_count()],
+            accelerations: vec![Vector3::zeros(); model.rod.node_count()],
+            configuration,
+            velocities,
+            gauss,
+            vessel,
+        })
+    }
+
+    /// The same state with the seabed friction's elastic slips `slips` (one per node; e.g. those of a static
+    /// solution).
+    pub fn with_slips(mut self, slips: &[Vector2<f64>]) -> Self {
+        if slips.len() == self.slips.len() {
+            self.slips.copy_from_slice(slips);
+        }
+        self
+    }
+
+    /// Spatial angular velocities w_I = Λ_I W_I (rad/s).
+    pub fn angular_velocities(&self) -> Vec<Vector3<f64>> {
+        self.configuration
+            .rotations
+            .iter()
+            .zip(&self.body_angular_velocities)
+            .map(|(q, w)| q * w)
+            .collect()
+    }
+}

@@ -1,0 +1,157 @@
+//! What users read off a configuration: section forces, tension, support reactions and energy.
+// Indexing cannot go out of bounds here: Node and element indices of the configuration evaluated (the model's mesh).
+#![allow(clippy::indexing_slicing)]
+use crate::assembly::assembler::Assembler;
+use crate::assembly::configuration::Configuration;
+use crate::assembly::dofs::NODE_DOFS;
+use crate::contact::touchdown::Touchdown;
+use crate::model::Model;
+use crate::rod::element::evaluate;
+use crate::vessel::coupling::{eta_of, pipe_force_on_vessel, vessel_pose};
+use nalgebra::{Vector2, Vector3, Vector6};
+
+/// Derived quantities of a configuration at full load.
+#[derive(Debug, Clone)]
+pub struct Response {
+    /// Material force N and moment M at each element midpoint: [N1, N2, N3, M1, M2, M3].
+    pub section_forces: Vec<Vector6<f64>>,
+    /// Force and moment the rod exerts on each node's support (or vessel), in e: −(f_int − f_ext) at that node.
+    pub nodal_reactions: Vec<Vector6<f64>>,
+    /// Strain energy (J).
+    pub strain_energy: f64,
+    /// Potential of the submerged weight (J), zero at z = 0.
+    pub gravity_energy: f64,
+    /// With a vessel: its pose η, the holding thrust τ and the pipe's force on it χ (body frame), and its
+    /// restoring energy (J).
+    pub vessel: Option<VesselResponse>,
+    /// With a seabed: its contact.
+    pub seabed: Option<SeabedResponse>,
+    /// With rollers: their contact.
+    pub rollers: Option<RollerResponse>,
+}
+
+/// Roller contact of a configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RollerResponse {
+    /// Each roller's normal force (N, ≥ 0).
+    pub forces: Vec<f64>,
+    /// The element nearest each roller.
+    pub elements: Vec<usize>,
+    /// Energy stored in the contacts (J).
+    pub energy: f64,
+}
+
+/// Seabed contact of a configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeabedResponse {
+    /// The seabed's force on each node (N, in e).
+    pub forces: Vec<Vector3<f64>>,
+    /// Energy stored in the contact: normal springs and friction's elastic slip (J).
+    pub energy: f64,
+    pub touchdown: Touchdown,
+    /// Elastic friction slip per node (axial, lateral) (m): the state friction starts a simulation from.
+    pub slips: Vec<Vector2<f64>>,
+}
+
+/// Static quantities of an attached vessel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VesselResponse {
+    pub eta: Vector6<f64>,
+    pub thrust: Vector6<f64>,
+    pub pipe_force: Vector6<f64>,
+    pub restoring_energy: f64,
+}
+
+impl Response {
+    /// Evaluates `config` of `model` at full load.
+    pub fn new(model: &Model, config: &Configuration) -> Self {
+        Self::with_assembler(model, config, &mut Assembler::new(model))
+    }
+
+    /// Same, reusing an assembler built for `model`.
+    pub fn with_assembler(
+        model: &Model,
+        config: &Configuration,
+        assembler: &mut Assembler,
+    ) -> Self {
+        let section = &model.rod.section;
+        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let section_forces = model
+            .rod
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(e, reference)| {
+                let r = evaluate(
+                    &config.positions[e],
+                    &config.positions[e + 1],
+                    &config.rotations[e],
+                    &config.rotations[e + 1],
+                    reference,
+                    &c_t,
+                    &c_r,
+                    None,
+                );
+                Vector6::new(
+                    r.material_force.x,
+                    r.material_force.y,
+                    r.material_force.z,
+                    r.material_moment.x,
+                    r.material_moment.y,
+                    r.material_moment.z,
+                )
+            })
+            .collect();
+        let summary = assembler.assemble(model, config, 1.0, false, None);
+        let mut nodal_reactions: Vec<Vector6<f64>> = assembler
+            .residual
+            .chunks_exact(NODE_DOFS)
+            .map(|r| -Vector6::from_column_slice(r))
+            .collect();
+        // At a vessel's node the "support" is the vessel: the rod pushes on it with −(vessel's force on the rod).
+        if let Some(attachment) = &model.vessel {
+            nodal_reactions[attachment.node] = -assembler.vessel_force;
+        }
+        let vessel = model.vessel.as_ref().map(|attachment| {
+            let node = attachment.node;
+            let (position, body) =
+                vessel_pose(attachment, &config.positions[node], &config.rotations[node]);
+            let pipe_force = pipe_force_on_vessel(
+                attachment,
+                &config.rotations[node],
+                &assembler.vessel_force,
+                None,
+            );
+            VesselResponse {
+                eta: eta_of(&position, &body),
+                thrust: assembler.vessel_thrust,
+                pipe_force,
+                restoring_energy: attachment.vessel.restoring_energy(
+                    &position,
+                    &body,
+                    attachment.surface,
+                ),
+            }
+        });
+        let seabed = assembler.contact.as_ref().map(|contact| SeabedResponse {
+            forces: contact.forces.clone(),
+            energy: contact.energy_end,
+            touchdown: contact.touchdown(&config.positions),
+            slips: contact.slip_end.clone(),
+        });
+        let rollers = assembler.rollers.as_ref().map(|r| RollerResponse {
+            forces: r.forces.clone(),
+            elements: r.nearest_elements.clone(),
+            energy: r.energy_end,
+        });
+        Response {
+            rollers,
+            seabed,
+            vessel,
+            section_forces,
+            nodal_reactions,
+            strain_energy: summary.strain_energy,
+            gravity_energy: config.gravity_potential(model),
+        }
+    }
+}

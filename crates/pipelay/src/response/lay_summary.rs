@@ -1,0 +1,185 @@
+//! What a lay engineer reads off a configuration held by lay equipment: top tension, departure, lift-off,
+//! layback, touchdown, and the largest strain and moment in the overbend and the sagbend.
+//!
+//! The pipe leaves the equipment at the **lift-off point**: the last roller in contact counted along the pipe
+//! from the hold point (tensioner, tower exit), or the hold point itself without rollers in contact. Going
+//! down from the hold point the pipe steepens over the **overbend** and flattens again over the **sagbend**
+//! to the touchdown (end A without a seabed contact); they meet at the inflection point, where the pipe is
+//! steepest.
+// Indexing cannot go out of bounds here: Node and element indices of the state summarised (the vessel's node is a node of its mesh).
+#![allow(clippy::indexing_slicing)]
+use crate::contact::touchdown::Touchdown;
+use crate::model::Model;
+use nalgebra::{UnitQuaternion, Vector3, Vector6};
+
+/// The lay summary of one configuration (SI units; angles in rad).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LaySummary {
+    /// Effective tension of the element at the hold point (N).
+    pub top_tension: f64,
+    /// Angle of the pipe below the horizontal where it leaves the equipment (rad).
+    pub departure_angle: f64,
+    /// Index of the lift-off roller (the last in contact), `None` if the pipe touches no roller.
+    pub liftoff_roller: Option<usize>,
+    /// Arc length of the lift-off point from end A along the reference (m).
+    pub liftoff_arc_length: f64,
+    /// Arc length of the inflection point (the steepest, between overbend and sagbend) from end A (m).
+    pub inflection_arc_length: f64,
+    /// Horizontal distance from the hold point to the touchdown point (m); NaN without touchdown.
+    pub layback: f64,
+    /// Touchdown's arc length from end A (m); NaN without touchdown.
+    pub touchdown_arc_length: f64,
+    /// Largest strain in the overbend and in the sagbend (−).
+    pub overbend_strain: f64,
+    pub sagbend_strain: f64,
+    /// Largest bending moment in the sagbend (N·m).
+    pub sagbend_moment: f64,
+}
+
+/// Where the rollers' top points are in a configuration (in e, m); empty without rollers.
+pub fn roller_tops(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+) -> Vec<Vector3<f64>> {
+    let Some(attachment) = model.vessel.as_ref() else {
+        return Vec::new();
+    };
+    let node = attachment.node;
+    let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
+    attachment
+        .rollers()
+        .iter()
+        .map(|r| positions[node] + body * (r.centre + r.radius * r.normal - attachment.hang_off()))
+        .collect()
+}
+
+/// Names of [`LaySummary::values`], in order (`liftoff_roller` as a number, NaN: none).
+pub const LAY_FIELDS: [&str; 10] = [
+    "top_tension",
+    "departure_angle",
+    "liftoff_roller",
+    "liftoff_arc_length",
+    "inflection_arc_length",
+    "layback",
+    "touchdown_arc_length",
+    "overbend_strain",
+    "sagbend_strain",
+    "sagbend_moment",
+];
+
+impl LaySummary {
+    /// The fields as numbers, in the order of [`LAY_FIELDS`].
+    pub fn values(&self) -> [f64; 10] {
+        [
+            self.top_tension,
+            self.departure_angle,
+            self.liftoff_roller.map_or(f64::NAN, |k| k as f64),
+            self.liftoff_arc_length,
+            self.inflection_arc_length,
+            self.layback,
+            self.touchdown_arc_length,
+            self.overbend_strain,
+            self.sagbend_strain,
+            self.sagbend_moment,
+        ]
+    }
+}
+
+/// The summary of a configuration of `model` (which must hold its end with a vessel; `None` otherwise):
+/// `roller_forces` and `roller_elements` (the element nearest each roller) as the roller contact reports
+/// them, `touchdown` from the seabed contact.
+pub fn lay_summary(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+    section_forces: &[Vector6<f64>],
+    rollers: Option<(&[f64], &[usize])>,
+    touchdown: Option<&Touchdown>,
+) -> Option<LaySummary> {
+    let attachment = model.vessel.as_ref()?;
+    let node = attachment.node;
+    let elements = model.rod.element_count();
+    let top_element = if node == 0 { 0 } else { elements - 1 };
+    let arc_of_node = model.rod.arc_lengths();
+    // The lift-off element: of the rollers in contact, the one farthest from the hold point along the pipe.
+    let liftoff = rollers.and_then(|(forces, elements)| {
+        forces
+            .iter()
+            .zip(elements)
+            .enumerate()
+            .filter(|(_, (f, _))| **f > 0.0)
+            .map(|(k, (_, e))| (k, *e))
+            .min_by_key(|(_, e)| if node == 0 { usize::MAX - e } else { *e })
+    });
+    let (liftoff_roller, liftoff_node) = match liftoff {
+        Some((k, e)) => (Some(k), if node == 0 { e + 1 } else { e }),
+        None => (None, node),
+    };
+    // The pipe's angle below the horizontal at each node, going down from the hold point.
+    let slope = |i: usize| {
+        let tangent = rotations[i] * Vector3::x();
+        let down = if node == 0 { tangent } else { -tangent };
+        down.z.atan2(down.xy().norm())
+    };
+    let departure_angle = slope(liftoff_node);
+    let (touchdown_arc, touchdown_point) = touchdown
+        .and_then(|t| t.point)
+        .map_or((f64::NAN, None), |(arc, p)| (arc, Some(p)));
+    // The inflection: the steepest node between the touchdown and the hold point.
+    let suspended = |i: usize| {
+        !touchdown_arc.is_finite()
+            || if node == 0 {
+                arc_of_node[i] <= touchdown_arc
+            } else {
+                arc_of_node[i] >= touchdown_arc
+            }
+    };
+    let inflection = (0..positions.len())
+        .filter(|&i| suspended(i))
+        .max_by(|&a, &b| slope(a).total_cmp(&slope(b)))
+        .unwrap_or(node);
+    let inflection_arc = arc_of_node[inflection];
+    let layback = touchdown_point.map_or(f64::NAN, |p| (positions[node] - p).xy().norm());
+    let section = &model.rod.section;
+    let liftoff_arc = arc_of_node[liftoff_node];
+    let split = inflection_arc;
+    let (mut overbend_strain, mut sagbend_strain, mut sagbend_moment) =
+        (f64::NEG_INFINITY, f64::NEG_INFINITY, 0.0_f64);
+    for (e, forces) in section_forces.iter().enumerate() {
+        let middle = 0.5 * (arc_of_node[e] + arc_of_node[e + 1]);
+        let strain = section.strain(forces);
+        let toward_hold = if node == 0 {
+            middle <= split
+        } else {
+            middle >= split
+        };
+        if toward_hold {
+            overbend_strain = overbend_strain.max(strain);
+        } else {
+            let beyond_touchdown = touchdown_arc.is_finite()
+                && if node == 0 {
+                    middle > touchdown_arc
+                } else {
+                    middle < touchdown_arc
+                };
+            if !beyond_touchdown {
+                sagbend_strain = sagbend_strain.max(strain);
+                sagbend_moment = sagbend_moment.max(forces.fixed_rows::<2>(4).norm());
+            }
+        }
+    }
+    let nan_if_empty = |v: f64| if v.is_finite() { v } else { f64::NAN };
+    Some(LaySummary {
+        top_tension: section_forces[top_element][0],
+        departure_angle,
+        liftoff_roller,
+        liftoff_arc_length: liftoff_arc,
+        inflection_arc_length: inflection_arc,
+        layback,
+        touchdown_arc_length: touchdown_arc,
+        overbend_strain: nan_if_empty(overbend_strain),
+        sagbend_strain: nan_if_empty(sagbend_strain),
+        sagbend_moment,
+    })
+}
