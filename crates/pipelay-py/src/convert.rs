@@ -1,7 +1,7 @@
 //! Conversions between Python values (numbers, sequences, numpy arrays) and engine types.
 use crate::errors::input;
 use nalgebra::{Matrix3, Vector3};
-use numpy::{PyArray1, PyArray2, PyArray3};
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 
 /// A float array of any shape from `value`, flattened, with its shape.
@@ -163,4 +163,11 @@ pub fn matrices_to_numpy<'py>(
 /// 1-D numpy array.
 pub fn to_numpy<'py>(py: Python<'py>, values: &[f64]) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, values)
+}
+
+/// Array of `shape` from flat row-major data.
+pub fn shaped<'py>(py: Python<'py>, data: &[f64], shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_slice(py, data)
+        .reshape(shape.to_vec())?
+        .into_any())
 }

@@ -5,6 +5,7 @@ mod errors;
 mod lay;
 mod model;
 mod raos;
+mod results;
 mod seabed;
 mod simulation;
 mod state;
@@ -33,7 +34,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<model::Model>()?;
     m.add_class::<state::State>()?;
     m.add_class::<simulation::Simulation>()?;
-    m.add_class::<simulation::Results>()?;
+    m.add_class::<results::Results>()?;
     m.add_class::<vessel::Vessel>()?;
     m.add_class::<raos::Raos>()?;
     m.add_class::<vessel::PyPid>()?;

@@ -1,0 +1,331 @@
+//! Python class Results: the time series a simulation recorded, and their rebuilding from arrays read back
+//! from a file.
+use crate::convert::{flat, shaped};
+use crate::errors::input;
+use numpy::{PyArray1, PyArrayMethods};
+use pipelay::dynamics::history::History;
+use pipelay::response::lay_summary::LAY_FIELDS;
+use pyo3::prelude::*;
+
+use pyo3::types::PyDict;
+/// Time series of a run (SI units, frame e); arrays are copies you own.
+#[pyclass(module = "pipelay", name = "Results", frozen)]
+pub struct Results {
+    history: History,
+    last_node: usize,
+}
+
+impl Results {
+    /// Results from a finished history.
+    pub fn from_history(history: History) -> Self {
+        let last_node = history.nodes.saturating_sub(1);
+        Results { history, last_node }
+    }
+
+    fn series<'py>(&self, py: Python<'py>, data: &[f64]) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if data.is_empty() {
+            return Ok(None);
+        }
+        shaped(py, data, &[self.history.len(), 6]).map(Some)
+    }
+}
+
+#[pymethods]
+impl Results {
+    /// Times (T,) (s).
+    #[getter]
+    fn time<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.time)
+    }
+    /// Node positions (T, n + 1, 3) (m).
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.positions,
+            &[self.history.len(), self.last_node + 1, 3],
+        )
+    }
+    /// Nodal rotations R_t^e (T, n + 1, 3, 3).
+    #[getter]
+    fn rotations<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.rotations,
+            &[self.history.len(), self.last_node + 1, 3, 3],
+        )
+    }
+    /// Node velocities (T, n + 1, 3) (m/s).
+    #[getter]
+    fn velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.velocities,
+            &[self.history.len(), self.last_node + 1, 3],
+        )
+    }
+    /// Material force (N) and moment (N·m) at element midpoints (T, n, 6).
+    #[getter]
+    fn section_forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.section_forces,
+            &[self.history.len(), self.last_node, 6],
+        )
+    }
+    /// Axial force at element midpoints (T, n) (N).
+    #[getter]
+    fn tension<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let tension: Vec<f64> = self
+            .history
+            .section_forces
+            .chunks_exact(6)
+            .map(|f| f[0])
+            .collect();
+        shaped(py, &tension, &[self.history.len(), self.last_node])
+    }
+    /// Force (N) and moment (N·m) the rod exerts on the support at end "A" or "B" (T, 6), in e. Each record is
+    /// the mean over the step that ended at that time (second-order accurate at the step's midpoint
+    /// t − Δt/2); the first record is the reaction of the starting state. At an end held by a vessel: the
+    /// rod's force and moment on the vessel, in e (`chi` is the same in the body frame).
+    fn reaction<'py>(&self, py: Python<'py>, end: &str) -> PyResult<Bound<'py, PyAny>> {
+        let data = match end {
+            "A" => &self.history.reaction_a,
+            "B" => &self.history.reaction_b,
+            other => {
+                return Err(input(
+                    "end",
+                    format!("{other:?}"),
+                    "must be \"A\" (node 0) or \"B\" (node n)",
+                ))
+            }
+        };
+        shaped(py, data, &[self.history.len(), 6])
+    }
+    /// Touchdown positions (T, 3) (m, in e), NaN rows where the pipe does not touch the seabed; None without a
+    /// seabed.
+    #[getter]
+    fn touchdown<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if self.history.touchdown_arc_length.is_empty() {
+            return Ok(None);
+        }
+        shaped(py, &self.history.touchdown, &[self.history.len(), 3]).map(Some)
+    }
+    /// Touchdown arc length along the reference from end A (T,) (m), NaN where the pipe does not touch; None
+    /// without a seabed.
+    #[getter]
+    fn touchdown_arc_length<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        (!self.history.touchdown_arc_length.is_empty())
+            .then(|| PyArray1::from_slice(py, &self.history.touchdown_arc_length))
+    }
+    /// Reference length of pipe on the seabed (T,) (m); None without a seabed.
+    #[getter]
+    fn laid_length<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        (!self.history.laid_length.is_empty())
+            .then(|| PyArray1::from_slice(py, &self.history.laid_length))
+    }
+    /// Energy parts (T,) each (J): keys as State.energy().
+    #[getter]
+    fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let h = &self.history;
+        let total: Vec<f64> = (0..h.len()).map(|i| h.total_energy(i)).collect();
+        let dict = PyDict::new(py);
+        dict.set_item("pipe_kinetic", PyArray1::from_slice(py, &h.kinetic))?;
+        dict.set_item("pipe_strain", PyArray1::from_slice(py, &h.strain))?;
+        dict.set_item("pipe_gravity", PyArray1::from_slice(py, &h.gravity))?;
+        dict.set_item(
+            "vessel_kinetic",
+            PyArray1::from_slice(py, &h.vessel_kinetic),
+        )?;
+        dict.set_item(
+            "vessel_potential",
+            PyArray1::from_slice(py, &h.vessel_potential),
+        )?;
+        dict.set_item("seabed", PyArray1::from_slice(py, &h.seabed))?;
+        dict.set_item("rollers", PyArray1::from_slice(py, &h.rollers))?;
+        dict.set_item("total", PyArray1::from_slice(py, &total))?;
+        Ok(dict)
+    }
+    /// Work done on the system since the start of the run (T,) (J): point loads, driven supports, the
+    /// current's share of the drag and the energy pay-out brought in.
+    #[getter]
+    fn supplied_work<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.supplied_work)
+    }
+    /// The pipe's unstretched length at each record (T,) (m): it changes with pay-out.
+    #[getter]
+    fn length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.length)
+    }
+    /// Energy pay-out brought in since the start of the run (T,) (J), part of `supplied_work`: the work of the
+    /// tensioner (or driven end) on the pipe it lets out, the energy the added pipe carries, and the energy
+    /// change of mesh changes.
+    #[getter]
+    fn pay_out_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.pay_out_energy)
+    }
+    /// Energy dissipated since the start of the run (T,) (J): never decreasing.
+    #[getter]
+    fn dissipated<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.dissipated)
+    }
+    /// Newton iterations of the step leading to each record (T,).
+    #[getter]
+    fn iterations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let its: Vec<f64> = self.history.iterations.iter().map(|&i| i as f64).collect();
+        PyArray1::from_slice(py, &its)
+    }
+    /// Normal force of each roller (T, k) (N); None without rollers.
+    #[getter]
+    fn roller_reactions<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let h = &self.history;
+        if h.rollers_count == 0 {
+            return Ok(None);
+        }
+        let array = PyArray1::from_slice(py, &h.roller_reactions);
+        Ok(Some(array.reshape([h.len(), h.rollers_count])?.into_any()))
+    }
+    /// The lay summary over time: a dict of (T,) arrays with the keys of State.lay_summary()
+    /// (liftoff_roller as a number, NaN: none); None without a vessel.
+    fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let h = &self.history;
+        if h.lay.is_empty() {
+            return Ok(None);
+        }
+        let dict = PyDict::new(py);
+        let width = LAY_FIELDS.len();
+        for (k, name) in LAY_FIELDS.iter().enumerate() {
+            let series: Vec<f64> = h.lay.iter().skip(k).step_by(width).copied().collect();
+            dict.set_item(name, PyArray1::from_slice(py, &series))?;
+        }
+        Ok(Some(dict))
+    }
+    /// Vessel pose η (T, 6) in e (m, rad): None without a vessel.
+    #[getter]
+    fn eta<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.eta)
+    }
+    /// Vessel velocity ν (T, 6), body frame: None without a vessel.
+    #[getter]
+    fn nu<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.nu)
+    }
+    /// Thrust actually applied τ (T, 6), body frame (N, N·m): None without a vessel.
+    #[getter]
+    fn tau<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.tau)
+    }
+    /// The pipe's force and moment on the vessel χ (T, 6), body frame: None without a vessel.
+    #[getter]
+    fn chi<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.chi)
+    }
+    /// Passivity margin max over t of E(t) − E(0) − ∫νᵀτ (J), with ∫νᵀτ the work of the thrust (here: all
+    /// supplied work). Never above solver tolerance for a passive system.
+    fn passivity_margin(&self) -> f64 {
+        let h = &self.history;
+        (0..h.len())
+            .map(|i| h.total_energy(i) - h.total_energy(0) - h.supplied_work[i])
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    fn __len__(&self) -> usize {
+        self.history.len()
+    }
+
+    /// Results rebuilt from arrays (as written by `to_netcdf`): `nodes` (n + 1) and a mapping of the names
+    /// time, positions, rotations, velocities, section_forces, reaction_A, reaction_B, pipe_kinetic,
+    /// pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, supplied_work, dissipated, iterations and,
+    /// with a vessel, eta, nu, tau, chi. Used by `pl.load`.
+    #[staticmethod]
+    fn _from_arrays(nodes: usize, arrays: &Bound<'_, PyDict>) -> PyResult<Results> {
+        let get = |key: &str| -> PyResult<Vec<f64>> {
+            match arrays.get_item(key)? {
+                Some(value) => flat(&value, key),
+                None => Err(input(key, "missing", "must be present in the results")),
+            }
+        };
+        let optional = |key: &str| -> PyResult<Vec<f64>> {
+            match arrays.get_item(key)? {
+                Some(value) => flat(&value, key),
+                None => Ok(Vec::new()),
+            }
+        };
+        let mut h = History::empty(nodes);
+        h.time = get("time")?;
+        h.positions = get("positions")?;
+        h.rotations = get("rotations")?;
+        h.velocities = get("velocities")?;
+        h.section_forces = get("section_forces")?;
+        h.reaction_a = get("reaction_A")?;
+        h.reaction_b = get("reaction_B")?;
+        h.kinetic = get("pipe_kinetic")?;
+        h.strain = get("pipe_strain")?;
+        h.gravity = get("pipe_gravity")?;
+        h.vessel_kinetic = get("vessel_kinetic")?;
+        h.vessel_potential = get("vessel_potential")?;
+        h.supplied_work = get("supplied_work")?;
+        h.dissipated = get("dissipated")?;
+        h.iterations = get("iterations")?.iter().map(|&i| i as usize).collect();
+        // Results written before pay-out existed have neither: the length is then unknown (NaN).
+        h.length = optional("length")?;
+        if h.length.is_empty() {
+            h.length = vec![f64::NAN; h.time.len()];
+        }
+        h.pay_out_energy = optional("pay_out_energy")?;
+        if h.pay_out_energy.is_empty() {
+            h.pay_out_energy = vec![0.0; h.time.len()];
+        }
+        h.seabed = optional("seabed_energy")?;
+        if h.seabed.is_empty() {
+            h.seabed = vec![0.0; h.time.len()];
+        }
+        h.rollers = optional("roller_energy")?;
+        if h.rollers.is_empty() {
+            h.rollers = vec![0.0; h.time.len()];
+        }
+        h.roller_reactions = optional("roller_reactions")?;
+        h.rollers_count = h.roller_reactions.len() / h.time.len().max(1);
+        // Without a seabed no touchdown_arc_length is written: the lay summary's is NaN throughout.
+        let lay: Vec<Vec<f64>> = LAY_FIELDS
+            .iter()
+            .map(|name| match optional(name) {
+                Ok(series) if series.is_empty() && *name == "touchdown_arc_length" => {
+                    Ok(vec![f64::NAN; h.time.len()])
+                }
+                other => other,
+            })
+            .collect::<PyResult<_>>()?;
+        if lay.iter().all(|series| series.len() == h.time.len()) {
+            h.lay = (0..h.time.len())
+                .flat_map(|i| lay.iter().map(move |series| series[i]))
+                .collect();
+        }
+        h.touchdown = optional("touchdown")?;
+        h.touchdown_arc_length = optional("touchdown_arc_length")?;
+        h.laid_length = optional("laid_length")?;
+        h.eta = optional("eta")?;
+        h.nu = optional("nu")?;
+        h.tau = optional("tau")?;
+        h.chi = optional("chi")?;
+        h.check()
+            .map_err(|message| input("results", message, "arrays must have matching lengths"))?;
+        Ok(Results::from_history(h))
+    }
+
+    /// Number of nodes n + 1.
+    #[getter]
+    fn nodes(&self) -> usize {
+        self.last_node + 1
+    }
+
+    fn __repr__(&self) -> String {
+        let t = &self.history.time;
+        format!(
+            "Results(records={}, t=[{}, {}] s)",
+            t.len(),
+            t.first().copied().unwrap_or(0.0),
+            t.last().copied().unwrap_or(0.0)
+        )
+    }
+}
