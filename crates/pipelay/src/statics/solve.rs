@@ -13,9 +13,9 @@ use crate::error::{Error, Result};
 use crate::linalg::factorisation::Factorisation;
 use crate::model::{Model, SupportTarget};
 use crate::response::configuration::Response;
-use crate::so3::{exp_quat, log_quat, minimal_rotation, quat_from_matrix};
-use crate::statics::catenary::Catenary;
-use crate::statics::laid_catenary::LaidCatenary;
+use crate::so3::{exp_quat, quat_from_matrix};
+use crate::statics::start::catenary_guess;
+use crate::statics::supports::support_increment;
 use nalgebra::Vector3;
 
 /// Where Newton starts.
@@ -103,25 +103,6 @@ const MAX_ELEMENT_ROTATION: f64 = 2.5;
 
 /// Newton iteration after which a residual larger than the first one counts as divergence.
 const DIVERGENCE_CHECK: usize = 8;
-
-/// Sets the prescribed DOFs to their values at support motion μ: x = X + μ(p − X), R = exp(μ log(R_p R_Xᵀ)) R_X.
-fn apply_supports(
-    model: &Model,
-    targets: &[SupportTarget],
-    config: &mut Configuration,
-    load_factor: f64,
-) {
-    for support in targets {
-        let node = support.node;
-        let reference = model.rod.nodes[node];
-        config.positions[node] = reference + (support.position - reference) * load_factor;
-        if let Some(target) = support.rotation {
-            let frame = model.rod.frames[node];
-            let rotation = log_quat(&(target * frame.inverse()));
-            config.rotations[node] = exp_quat(&(rotation * load_factor)) * frame;
-        }
-    }
-}
 
 /// Newton at load factor λ. With `support_increment`, the first iteration is the linearised Dirichlet
 /// predictor: it moves the supports by their increments and the free DOFs by −K_ff⁻¹(r_f + K_fc Δu_c),
@@ -317,150 +298,6 @@ fn apply_increment(config: &mut Configuration, increment: &[f64]) {
             config.rotations[node] = exp_quat(&spin) * config.rotations[node];
         }
     }
-}
-
-/// Increments that take the supports of `config` to their values at support motion μ (all DOFs, zero where free).
-fn support_increment(
-    model: &Model,
-    targets: &[SupportTarget],
-    config: &Configuration,
-    support_motion: f64,
-) -> Vec<f64> {
-    let mut target = config.clone();
-    apply_supports(model, targets, &mut target, support_motion);
-    let mut increment = vec![0.0; NODE_DOFS * model.rod.node_count()];
-    for support in targets {
-        let node = support.node;
-        let du = &mut increment[NODE_DOFS * node..NODE_DOFS * (node + 1)];
-        du[..3].copy_from_slice((target.positions[node] - config.positions[node]).as_slice());
-        if support.rotation.is_some() {
-            let spin = log_quat(&(target.rotations[node] * config.rotations[node].inverse()));
-            du[3..].copy_from_slice(spin.as_slice());
-        }
-    }
-    increment
-}
-
-/// A curve's position and unit tangent at an unstretched arc length.
-type CurveShape = dyn Fn(f64) -> (Vector3<f64>, Vector3<f64>);
-
-/// The catenary initial guess: nodes placed along Irvine's elastic catenary (resting on the seabed from A
-/// when A lies on it and the line is long enough, [`LaidCatenary`]) through the two held ends
-/// at their reference arc lengths, frames turned by the smallest rotation onto its tangent. A buoyant
-/// line (negative submerged weight) is the mirror image, in z, of a heavy one.
-fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Configuration> {
-    let last = model.rod.element_count();
-    let held = |node: usize| targets.iter().find(|s| s.node == node);
-    let (a, b) = (held(0)?, held(last)?);
-    let weight = model.submerged_weight();
-    if targets.len() != 2 || weight == 0.0 {
-        return None;
-    }
-    let mirror = |v: Vector3<f64>| {
-        if weight > 0.0 {
-            v
-        } else {
-            Vector3::new(v.x, v.y, -v.z)
-        }
-    };
-    let ea = model.rod.section.translational_stiffness.x;
-    let a = mirror(a.position);
-    // The line hanging from A to `top` (mirrored) with `length` of pipe: a heavy line whose end A lies on the
-    // seabed rests on it up to a touchdown point.
-    let hanging = |top: Vector3<f64>, length: f64| -> Option<Box<CurveShape>> {
-        let laid = model
-            .seabed()
-            .filter(|seabed| {
-                weight > 0.0 && seabed.bathymetry.penetration(&a).value > -1e-3 * (top - a).norm()
-            })
-            .and_then(|seabed| LaidCatenary::solve(a, top, length, weight, ea, seabed.friction[0]));
-        match laid {
-            Some(laid) => Some(Box::new(move |s| (laid.position(s), laid.tangent(s)))),
-            None => {
-                let catenary = Catenary::solve(a, top, length, weight.abs(), ea).ok()?;
-                Some(Box::new(move |s| {
-                    (catenary.position(s), catenary.tangent(s))
-                }))
-            }
-        }
-    };
-    // Over a vessel's rollers the guess follows the roller path from the hold point and leaves it where the
-    // hanging line from A meets the path most nearly tangentially.
-    let mut path = roller_path(model, b);
-    let (length, shape) = if path.len() > 1 {
-        let total = model.rod.length();
-        let best = (1..path.len())
-            .filter_map(|k| {
-                let length = total - path[k].0;
-                let shape = hanging(mirror(path[k].1), length)?;
-                let along = mirror(path[k - 1].1 - path[k].1).normalize();
-                let mismatch = (shape(length).1 - along).norm();
-                Some((mismatch, k, length, shape))
-            })
-            .min_by(|x, y| x.0.total_cmp(&y.0))?;
-        path.truncate(best.1 + 1);
-        (best.2, best.3)
-    } else {
-        let length = model.rod.length();
-        (length, hanging(mirror(b.position), length)?)
-    };
-    let mut config = Configuration::reference(model);
-    let mut arc = 0.0;
-    for node in 0..=last {
-        if node > 0 {
-            arc += model.rod.elements[node - 1].length;
-        }
-        let (position, tangent) = if arc > length && path.len() > 1 {
-            along_path(&path, model.rod.length() - arc)
-        } else {
-            shape(arc.min(length))
-        };
-        config.positions[node] = mirror(position);
-        // Where the guess dips into an uneven seabed, it rests on its surface instead.
-        if let Some(seabed) = model.seabed().filter(|_| weight > 0.0) {
-            let p = &mut config.positions[node];
-            p.z = p.z.min(seabed.bathymetry.elevation(p.x, p.y));
-        }
-        let frame = config.rotations[node].to_rotation_matrix().into_inner();
-        let turn = minimal_rotation(&frame.column(0).into_owned(), &mirror(tangent));
-        config.rotations[node] = quat_from_matrix(&(turn * frame));
-    }
-    apply_supports(model, targets, &mut config, 1.0);
-    Some(config)
-}
-
-/// The roller path of a vessel holding end B at `held`: (distance from the hold point, point in e) from the
-/// hold point over the roller tops raised by the pipe's radius, in the rollers' order; empty without rollers.
-fn roller_path(model: &Model, held: &SupportTarget) -> Vec<(f64, Vector3<f64>)> {
-    let Some(attachment) = model.vessel.as_ref().filter(|v| !v.rollers().is_empty()) else {
-        return Vec::new();
-    };
-    let Some(rotation) = held.rotation else {
-        return Vec::new();
-    };
-    let body = rotation.to_rotation_matrix().into_inner() * attachment.angle;
-    let hang_off = attachment.hang_off();
-    let radius = 0.5 * model.rod.section.outer_diameter;
-    let mut path = vec![(0.0, held.position)];
-    for roller in attachment.rollers() {
-        let top = roller.centre + (roller.radius + radius) * roller.normal;
-        let point = held.position + body * (top - hang_off);
-        let previous = path[path.len() - 1];
-        path.push((previous.0 + (point - previous.1).norm(), point));
-    }
-    path
-}
-
-/// Position and tangent (toward the hold point, i.e. toward end B) at distance `s` along a roller path.
-fn along_path(path: &[(f64, Vector3<f64>)], s: f64) -> (Vector3<f64>, Vector3<f64>) {
-    let k = path
-        .windows(2)
-        .position(|w| s <= w[1].0)
-        .unwrap_or(path.len().saturating_sub(2));
-    let (start, end) = (path[k], path[k + 1]);
-    let span = (end.0 - start.0).max(f64::MIN_POSITIVE);
-    let t = ((s - start.0) / span).clamp(0.0, 1.0);
-    (start.1 + t * (end.1 - start.1), (start.1 - end.1) / span)
 }
 
 /// Smallest factor on the bending stiffness that the continuation from a cable starts at.
