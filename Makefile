@@ -28,8 +28,8 @@ test: $(STAMP)
 lint: $(STAMP)
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets --release -- -D warnings
-	$(BIN)/ruff check python tests examples benches scripts
-	$(BIN)/ruff format --check python tests examples benches scripts
+	$(BIN)/ruff check python tests examples benches scripts docs/hooks
+	$(BIN)/ruff format --check python tests examples benches scripts docs/hooks
 	$(BIN)/python -m mypy.stubtest pipelay._core --ignore-disjoint-bases
 
 docs: $(STAMP)

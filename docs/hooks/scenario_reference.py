@@ -106,16 +106,6 @@ class TableInfo:
     array: bool
     variants: list[Variant]
     anchor: str = ""
-    rows: dict[int, list[Row]] = field(default_factory=dict)
-
-
-@dataclass
-class Row:
-    key: str
-    takes: str
-    unit: str
-    default: str
-    meaning: str
 
 
 def _unwrap(annotation: Any) -> tuple[Any, list[Any]]:
@@ -363,9 +353,8 @@ def render(root: type[BaseModel] | None = None, report: Report | None = None) ->
             out.append(f"One of: {tags}.\n")
         for variant in table.variants:
             if several:
-                label = f'kind = "{variant.tag}"' if variant.by_kind else str(variant.tag)
-                out.append(f"### {_heading(table)}: `{label}`" if variant.by_kind else f"### {_heading(table)}: {label}")
-                out.append("")
+                label = f'`kind = "{variant.tag}"`' if variant.by_kind else str(variant.tag)
+                out.append(f"### {_heading(table)}: {label}\n")
             if variant.model is not root and _doc(variant.model):
                 out.append(_doc(variant.model) + "\n")
             out.append("| key | takes | unit | default | meaning |")
