@@ -1,5 +1,6 @@
 # The README's two commands: `make run` (set up, run the main job) and `make test` (set up, run every test).
 # Setup is a virtual environment in .venv with pipelay built by maturin (release) and its dependencies.
+# `make docs` builds the documentation site into site/ (MkDocs, strict: a broken link or reference fails).
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
@@ -8,12 +9,12 @@ OUT ?= output
 SOURCES := $(shell find crates python -name '*.rs' -o -name '*.py' -o -name '*.pyi' -o -name Cargo.toml) \
 	Cargo.toml Cargo.lock pyproject.toml
 
-.PHONY: run test lint bench
+.PHONY: run test lint bench docs
 
 $(STAMP): $(SOURCES)
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet --disable-pip-version-check "maturin>=1.7,<2"
-	VIRTUAL_ENV=$(abspath $(VENV)) $(BIN)/maturin develop --release --extras test
+	VIRTUAL_ENV=$(abspath $(VENV)) $(BIN)/maturin develop --release --extras test,docs
 	touch $@
 
 run: $(STAMP)
@@ -27,9 +28,12 @@ test: $(STAMP)
 lint: $(STAMP)
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets --release -- -D warnings
-	$(BIN)/ruff check python tests examples benches scripts
-	$(BIN)/ruff format --check python tests examples benches scripts
+	$(BIN)/ruff check python tests examples benches scripts docs/hooks
+	$(BIN)/ruff format --check python tests examples benches scripts docs/hooks
 	$(BIN)/python -m mypy.stubtest pipelay._core --ignore-disjoint-bases
+
+docs: $(STAMP)
+	$(BIN)/mkdocs build --strict
 
 bench: $(STAMP)
 	$(BIN)/python benches/static_hanging.py
