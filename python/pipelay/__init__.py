@@ -5,7 +5,9 @@ direction and e3 pointing down (gravity is +g·e3); the sea surface is the plane
 Rod end "A" is node 0 (seabed end), "B" is node n (top end).
 """
 
-from pipelay import checks, lay, streaming
+import sys
+
+from pipelay import checks, lay
 from pipelay._core import (
     PID,
     Bathymetry,
@@ -32,7 +34,7 @@ from pipelay._core import (
     Waves,
 )
 from pipelay.lay import find_lay_position
-from pipelay.results import load, resume
+from pipelay.results import load, resume, streaming
 from pipelay.sweep import sweep
 
 
@@ -43,6 +45,13 @@ def _simulation(self: Model, state: State | None = None, dt: float = 0.05) -> Si
 
 
 Model.simulation = _simulation  # type: ignore[attr-defined]
+
+# The modules' old import paths, kept for compatibility: each is the module itself under its old name (not a
+# copy), so setting an attribute through either name sets it for both. The files at the old paths re-export
+# the same names for type checkers and readers; Python takes these instead.
+for _old, _module in {"streaming": streaming}.items():
+    sys.modules[f"pipelay.{_old}"] = _module
+del _old, _module
 
 __all__ = [
     "PID",

@@ -54,7 +54,8 @@ import numpy as np
 
 from pipelay import scenario as scenario_format
 from pipelay._core import ConvergenceError, InputError, Model, Results, Simulation
-from pipelay.results import _atomic_write, load, resume
+from pipelay.results import load, resume
+from pipelay.results.atomic import _atomic_write
 from pipelay.scenario import (
     Scenario,
     _reference,
