@@ -58,12 +58,12 @@ from pipelay.results import load, resume
 from pipelay.results.atomic import _atomic_write
 from pipelay.scenario import (
     Scenario,
-    _reference,
     apply_overrides,
     load_scenario,
     parse_scenario,
     validate_overrides,
 )
+from pipelay.scenario.schema import _reference
 from pipelay.statistics import extremes
 
 __all__ = ["STATISTICS", "Sweep", "case_statistics", "run", "run_case", "start", "sweep"]
