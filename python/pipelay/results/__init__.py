@@ -1,5 +1,5 @@
-"""Results as labelled arrays and files: netCDF (written atomically, read back exactly), runs streamed to a file
-as they go, and checkpoints that let a long run be resumed exactly.
+"""Results as labelled arrays and files: netCDF (written atomically, read back exactly), runs streamed to a
+file as they go, and checkpoints that let a long run be resumed exactly.
 
 * `pipelay.results.netcdf`: the file layout (`LAYOUT`, `GROUPS`), `to_xarray`, `to_netcdf` and `load`;
 * `pipelay.results.streaming`: ``Simulation.run(t_end, output=path)``, a run streamed to a netCDF file;

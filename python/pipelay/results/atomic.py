@@ -1,5 +1,5 @@
-"""Writing a file atomically: the whole file or none, for every file pipelay writes whole (results, checkpoints,
-a sweep's case records and summary).
+"""Writing a file atomically: the whole file or none, for every file pipelay writes whole (results,
+checkpoints, a sweep's case records and summary).
 
 Imports nothing of pipelay.
 """

@@ -1,14 +1,15 @@
 """Results as labelled arrays and netCDF files: the file layout (`LAYOUT`, `GROUPS`), xarray datasets
-(`to_xarray`), netCDF written atomically (`to_netcdf`) and exact reloading (`load`). Importing it makes the first
-two the methods ``Results.to_xarray`` and ``Results.to_netcdf``.
+(`to_xarray`), netCDF written atomically (`to_netcdf`) and exact reloading (`load`). Importing it makes the
+first two the methods ``Results.to_xarray`` and ``Results.to_netcdf``.
 
-The netCDF layout (`Results.to_xarray`): dimensions ``time``, ``node`` (n + 1), ``element`` (n), ``axis`` (x, y,
-z of frame e), ``column`` (of a rotation matrix) and ``dof`` (6 components: force/moment or η/ν entries);
-every variable carries ``units`` and ``long_name`` attributes. With pay-out the mesh grows during a run: ``node``
-and ``element`` count the most any record had, and the node and element values a record did not have are NaN
-(the last valid node of a record is end B). A run streamed to a file (``Simulation.run(..., output=path)``,
-pipelay.results.streaming) writes the same layout with ``time``, ``node`` and ``element`` unlimited, holding the
-variables of the groups it recorded (``GROUPS``) and a global attribute ``recorded_groups``.
+The netCDF layout (`Results.to_xarray`): dimensions ``time``, ``node`` (n + 1), ``element`` (n), ``axis``
+(x, y, z of frame e), ``column`` (of a rotation matrix) and ``dof`` (6 components: force/moment or η/ν
+entries); every variable carries ``units`` and ``long_name`` attributes. With pay-out the mesh grows during a
+run: ``node`` and ``element`` count the most any record had, and the node and element values a record did not
+have are NaN (the last valid node of a record is end B). A run streamed to a file
+(``Simulation.run(..., output=path)``, pipelay.results.streaming) writes the same layout with ``time``,
+``node`` and ``element`` unlimited, holding the variables of the groups it recorded (``GROUPS``) and a global
+attribute ``recorded_groups``.
 
 Imports of pipelay: the engine (`pipelay._core`) and `pipelay.results.atomic`.
 """

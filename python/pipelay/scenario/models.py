@@ -1,7 +1,7 @@
-"""The scenario format as pydantic models: one model per table (and per kind of a table whose keys depend on
-`kind`), its fields the keyword arguments of the API call the table maps onto, up to the whole file
-(`ScenarioFile`). `pipelay.scenario`'s docstring is the human reference of every key; each field's type carries
-the `Value` (`pipelay.scenario.values`) it is checked with, and a rule that spans keys raises
+"""The scenario format as pydantic models: one model per table (and per kind of a table whose keys depend
+on `kind`), its fields the keyword arguments of the API call the table maps onto, up to the whole file
+(`ScenarioFile`). `pipelay.scenario`'s docstring is the human reference of every key; each field's type
+carries the `Value` (`pipelay.scenario.values`) it is checked with, and a rule that spans keys raises
 `rule(message, key)` from a validator.
 
 This module has the models of the pipe, its supports and loads, the sea, the solver and the outputs, and the
@@ -407,7 +407,7 @@ class ScenarioFile(Table):
     rod: Rod
     sea: Sea | None = None
     supports: Supports | None = None
-    point_loads: list[PointLoad] = []  # noqa: RUF012 (pydantic copies a field's default; Table is a BaseModel)
+    point_loads: list[PointLoad] = []  # noqa: RUF012 (a Table is a BaseModel: pydantic copies defaults)
     vessel: Vessel | None = None
     controller: Controller | None = None
     pay_out: PayOut | None = None

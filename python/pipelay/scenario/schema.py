@@ -1,6 +1,6 @@
-"""The shape of the scenario format: every table's keys (`KEYS`) and each model's table (`TABLES`), read from the
-models' type tree, and the JSON Schema of scenario files (`json_schema`), documented from the reference in
-`pipelay.scenario`'s docstring.
+"""The shape of the scenario format: every table's keys (`KEYS`) and each model's table (`TABLES`), read from
+the models' type tree, and the JSON Schema of scenario files (`json_schema`), documented from the reference
+in `pipelay.scenario`'s docstring.
 
 Imports of pipelay: `pipelay.scenario.values` and `pipelay.scenario.models`; `pipelay.scenario` itself (its
 docstring, the reference) only when a schema is made.
@@ -184,8 +184,8 @@ def _without_null(schema: Any) -> Any:
 
 def json_schema() -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of scenario files, from the format's pydantic models, with the meaning,
-    unit and default of each key from the reference in `pipelay.scenario`'s docstring, for editors to complete and check scenario
-    files (e.g. taplo / Even Better TOML).
+    unit and default of each key from the reference in `pipelay.scenario`'s docstring, for editors to complete
+    and check scenario files (e.g. taplo / Even Better TOML).
 
     It checks what a schema can: key names, types, bounds, vector and matrix shapes, the keys of each kind.
     The rules across keys (exactly one of [pipe] and [section], a vessel needs a sea, ...) and finiteness are

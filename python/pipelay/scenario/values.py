@@ -1,12 +1,12 @@
-"""The building blocks of the scenario format: what one key takes (a `Value`), what every table is (a `Table`),
-and the words the format's messages use.
+"""The building blocks of the scenario format: what one key takes (a `Value`), what every table is (a
+`Table`), and the words the format's messages use.
 
-Each value's type in the models (`pipelay.scenario.models`) carries a `Value` (`Number`, `Integer`, `Vector`,
-...): the core schema pydantic checks the value with (strict: no conversions; numbers finite; integers accepted
-for numbers, not the reverse) and the words a message uses for it. Here too are the values the tables share
-(`POINT`, `END`, ...), `Table`, the base of every model (unknown keys are errors), and the helpers every message
-of the format is worded with (`show`, `join`, `suggest`, and `rule`, the error a validator raises for a rule
-that spans keys).
+Each value's type in the models (`pipelay.scenario.models`) carries a `Value` (`Number`, `Integer`,
+`Vector`, ...): the core schema pydantic checks the value with (strict: no conversions; numbers finite;
+integers accepted for numbers, not the reverse) and the words a message uses for it. Here too are the values
+the tables share (`POINT`, `END`, ...), `Table`, the base of every model (unknown keys are errors), and the
+helpers every message of the format is worded with (`show`, `join`, `suggest`, and `rule`, the error a
+validator raises for a rule that spans keys).
 
 Imports nothing of pipelay.
 """
