@@ -2,16 +2,16 @@
 
 * `extremes(results, ...)`: the largest and smallest top tension, the largest strain, bending moment and
   effective axial force and (optionally) the largest DNV-ST-F101 utilisation of a run, each with its time
-  (and element);
+  (and element).
 * `utilisation(results, ...)`: the DNV-ST-F101 (or a user check's) utilisation of every element at every
-  record;
-
-both of them from `pipelay.analysis.extremes`, and, here, the statistics of a time series:
-
+  record.
 * `response_spectrum(series, dt)`: the one-sided power spectral density of a time series by Welch's method,
   with the spectral moments m0, m2, m4, the mean zero up-crossing period Tz and the bandwidth ε.
 * `most_probable_maximum(series, dt, duration)`: the most probable maximum (MPM) of a response over a storm
   of `duration` (default 3 h) estimated from a shorter (or equally long) record by one of three methods.
+
+The first two are those of `pipelay.analysis.extremes` (the statistics of a run), re-exported here; the
+others, the statistics of a time series, are defined here.
 
 Units are those of the series (N, N·m, m, …) and seconds; frequencies are in Hz.
 
@@ -438,7 +438,7 @@ def _weibull(values: FloatArray, step: float, span: float, record: float) -> Mos
     )
 
 
-# --- helpers ------------------------------------------------------------------------------------------------
+# --- helpers ---------------------------------------------------------------------------------------------
 
 
 def _series(argument: str, series: ArrayLike) -> FloatArray:
