@@ -3,9 +3,16 @@
 SI units throughout; the inertial frame e has its origin at the pipe's seabed end, e1 along the lay
 direction and e3 pointing down (gravity is +g·e3); the sea surface is the plane z = −depth.
 Rod end "A" is node 0 (seabed end), "B" is node n (top end).
+
+The package's parts, each building only on those named before it: the engine `pipelay._core` (`Model`,
+`Rod`, `Section`, ..., re-exported here); `pipelay.results`, results as files: netCDF, streamed runs,
+checkpoints (`load`, `resume`, `streaming`); `pipelay.scenario`, scenario files; `pipelay.analysis`, what a
+state or a run means: `checks`, `statistics`, `lay` (`find_lay_position`) and `sweep`; `pipelay.plots`, the
+figures; and `pipelay.cli`, the ``pipelay`` command.
 """
 
-from pipelay import checks, lay, streaming
+import sys
+
 from pipelay._core import (
     PID,
     Bathymetry,
@@ -31,9 +38,10 @@ from pipelay._core import (
     Vessel,
     Waves,
 )
-from pipelay.lay import find_lay_position
-from pipelay.results import load, resume
-from pipelay.sweep import sweep
+from pipelay.analysis import checks, lay, statistics
+from pipelay.analysis.lay import find_lay_position
+from pipelay.analysis.sweep import sweep
+from pipelay.results import load, resume, streaming
 
 
 def _simulation(self: Model, state: State | None = None, dt: float = 0.05) -> Simulation:
@@ -43,6 +51,20 @@ def _simulation(self: Model, state: State | None = None, dt: float = 0.05) -> Si
 
 
 Model.simulation = _simulation  # type: ignore[attr-defined]
+
+# The modules' old import paths, kept for compatibility: each is registered as the module itself (not a
+# copy), so an attribute set through either name is set for both, and a later `import pipelay.sweep` finds
+# the module registered instead of binding it over `pl.sweep`, the function. The files at the old paths
+# re-export the same names for type checkers and readers.
+for _old, _new in {
+    "checks": "analysis.checks",
+    "lay": "analysis.lay",
+    "statistics": "analysis.statistics",
+    "streaming": "results.streaming",
+    "sweep": "analysis.sweep",
+}.items():
+    sys.modules[f"pipelay.{_old}"] = sys.modules[f"pipelay.{_new}"]
+del _old, _new
 
 __all__ = [
     "PID",
@@ -73,6 +95,7 @@ __all__ = [
     "lay",
     "load",
     "resume",
+    "statistics",
     "streaming",
     "sweep",
 ]

@@ -10,9 +10,10 @@
 
 `pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
 flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
-`pipelay sweep` runs the scenario for every combination of the --over values on Dask (pipelay.sweep): a
-local cluster of --workers processes (default: one a core) or the scheduler at --scheduler; the cases' results
-and the summary go to DIR (DIR/summary.nc), and finished cases found there are not run again. `pipelay plot`
+`pipelay sweep` runs the scenario for every combination of the --over values on Dask
+(pipelay.analysis.sweep): a local cluster of --workers processes (default: one a core) or the scheduler at
+--scheduler; the cases' results and the summary go to DIR (DIR/summary.nc), and finished cases found there
+are not run again. `pipelay plot`
 on a summary draws the operability map of a statistic over two swept keys. `pipelay schema` prints the
 scenario files' JSON Schema.
 
@@ -36,12 +37,12 @@ import numpy as np
 
 import pipelay as pl
 from pipelay import plots
-from pipelay.lay import TARGETS, find_lay_position
+from pipelay.analysis.lay import TARGETS, find_lay_position
+from pipelay.analysis.sweep import SUMMARY_TITLE, _label, sweep
+from pipelay.analysis.sweep import run as run_simulation
+from pipelay.analysis.sweep import start as start_simulation
 from pipelay.results import checkpoint, load
 from pipelay.scenario import Scenario, load_scenario, parse_scenario
-from pipelay.sweep import SUMMARY_TITLE, _label, sweep
-from pipelay.sweep import run as run_simulation
-from pipelay.sweep import start as start_simulation
 
 INTERRUPTED = 130
 

@@ -1,19 +1,22 @@
-"""Results as labelled arrays and files: xarray datasets, netCDF (written atomically), exact reloading, and
-checkpoints that let a long run be resumed exactly.
+"""Results as labelled arrays and netCDF files: the file layout (`LAYOUT`, `GROUPS`), xarray datasets
+(`to_xarray`), netCDF written atomically (`to_netcdf`) and exact reloading (`load`). Importing it makes the
+first two the methods ``Results.to_xarray`` and ``Results.to_netcdf``.
 
-The netCDF layout (`Results.to_xarray`): dimensions ``time``, ``node`` (n + 1), ``element`` (n), ``axis`` (x, y,
-z of frame e), ``column`` (of a rotation matrix) and ``dof`` (6 components: force/moment or η/ν entries);
-every variable carries ``units`` and ``long_name`` attributes. With pay-out the mesh grows during a run: ``node``
-and ``element`` count the most any record had, and the node and element values a record did not have are NaN
-(the last valid node of a record is end B). A run streamed to a file (``Simulation.run(..., output=path)``,
-pipelay.streaming) writes the same layout with ``time``, ``node`` and ``element`` unlimited, holding the variables
-of the groups it recorded (``GROUPS``) and a global attribute ``recorded_groups``.
+The netCDF layout (`Results.to_xarray`): dimensions ``time``, ``node`` (n + 1), ``element`` (n), ``axis``
+(x, y, z of frame e), ``column`` (of a rotation matrix) and ``dof`` (6 components: force/moment or η/ν
+entries); every variable carries ``units`` and ``long_name`` attributes. With pay-out the mesh grows during a
+run: ``node`` and ``element`` count the most any record had, and the node and element values a record did not
+have are NaN (the last valid node of a record is end B). A run streamed to a file
+(``Simulation.run(..., output=path)``, pipelay.results.streaming) writes the same layout with ``time``,
+``node`` and ``element`` unlimited, holding the variables of the groups it recorded (``GROUPS``) and a global
+attribute ``recorded_groups``.
+
+Imports of pipelay: the engine (`pipelay._core`) and `pipelay.results.atomic`.
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
 from collections.abc import Callable, Iterable
 from datetime import UTC, datetime
 from functools import partial
@@ -22,9 +25,10 @@ from typing import Any
 
 import numpy as np
 
-from pipelay._core import InputError, Model, Results, Simulation
+from pipelay._core import InputError, Results
+from pipelay.results.atomic import _atomic_write
 
-__all__ = ["GROUPS", "LOAD_GROUPS", "checkpoint", "load", "resume", "to_netcdf", "to_xarray"]
+__all__ = ["GROUPS", "LAYOUT", "LOAD_GROUPS", "load", "to_netcdf", "to_xarray"]
 
 AXES = ["x", "y", "z"]
 FORCE_DOFS = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"]
@@ -223,20 +227,6 @@ def _file_attributes() -> dict[str, str]:
     }
 
 
-def _atomic_write(path: Path, write: Any) -> None:
-    """Calls ``write(temporary_path)`` and renames the file into place: readers never see half a file."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    os.close(handle)
-    try:
-        write(Path(temporary))
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-
-
 def to_netcdf(results: Results, path: str | os.PathLike[str]) -> Path:
     """Writes the results to a netCDF-4 file (h5netcdf) atomically: a temporary file, then a rename."""
     dataset = to_xarray(results)
@@ -270,33 +260,8 @@ def load(path: str | os.PathLike[str]) -> Results:
     return Results._from_arrays(nodes, arrays)
 
 
-def checkpoint(simulation: Simulation, path: str | os.PathLike[str]) -> Path:
-    """Saves the simulation's complete state (atomically, numpy ``.npz``) so that ``resume`` continues it
-    exactly as if it had not stopped."""
-    arrays = simulation._checkpoint()
-    target = Path(path)
-
-    def write(temporary: Path) -> None:
-        with open(temporary, "wb") as stream:
-            np.savez(stream, **arrays)
-
-    _atomic_write(target, write)
-    return target
-
-
-def resume(model: Model, path: str | os.PathLike[str]) -> Simulation:
-    """The simulation saved by ``checkpoint``, continued on `model` (the same model it was saved from)."""
-    target = Path(path)
-    if not target.is_file():
-        raise InputError(f"path: no checkpoint file at {str(target)!r}")
-    with np.load(target) as data:
-        arrays = {key: data[key] for key in data.files}
-    return Simulation._restore(model, arrays)
-
-
 def _attach() -> None:
-    """Makes these functions methods of the engine's classes: ``Results.to_xarray``, ``Results.to_netcdf``,
-    ``Simulation.checkpoint``."""
+    """Makes these functions methods of the engine's Results: ``Results.to_xarray``, ``Results.to_netcdf``."""
 
     def results_to_xarray(self: Results) -> Any:
         """The results as an xarray.Dataset (dimensions time, node, element, axis, column, dof; units)."""
@@ -306,13 +271,8 @@ def _attach() -> None:
         """Write a netCDF-4 file atomically; pl.load reads it back exactly."""
         return to_netcdf(self, path)
 
-    def simulation_checkpoint(self: Simulation, path: str | os.PathLike[str]) -> Path:
-        """Save the complete state (atomically); pl.resume continues it exactly."""
-        return checkpoint(self, path)
-
     Results.to_xarray = results_to_xarray  # type: ignore[attr-defined]
     Results.to_netcdf = results_to_netcdf  # type: ignore[attr-defined]
-    Simulation.checkpoint = simulation_checkpoint  # type: ignore[attr-defined]
 
 
 _attach()

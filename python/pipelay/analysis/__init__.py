@@ -1,0 +1,13 @@
+"""Analyses on top of the engine's states and results: what a run or a lay configuration means.
+
+* `pipelay.analysis.checks`: DNV-ST-F101 local-buckling checks of a state (``pl.checks``);
+* `pipelay.analysis.extremes`: the extremes of a run and the utilisation of every element at every record;
+* `pipelay.analysis.statistics`: those, and the statistics of time series: response spectra, most probable
+  maxima (``pl.statistics``);
+* `pipelay.analysis.lay`: where to put the vessel for a wanted lay configuration (``pl.lay``,
+  ``pl.find_lay_position``);
+* `pipelay.analysis.sweep`: operability sweeps of a scenario on Dask (``pl.sweep``).
+
+Imports of pipelay: the engine, `pipelay.results` and `pipelay.scenario` (the sweep); neither of those imports
+this package.
+"""

@@ -1,0 +1,517 @@
+"""Operability sweeps: a scenario run over a grid of values of some of its keys, on Dask.
+
+```python
+import pipelay as pl
+
+sweep = pl.sweep(
+    "lay.toml",
+    over={"sea.current.surface_velocity": [[0, -0.4, 0], [0, -0.8, 0]], "pipe.wall_thickness": [0.015, 0.02]},
+    output="lay-sweep",
+)
+sweep.summary  # xarray.Dataset, a dimension per swept key: every case's statistics (lay-sweep/summary.nc)
+sweep.failures  # {(surface_velocity, wall_thickness): message} of the cases that failed
+```
+
+Every combination of the values in `over` is a case: the scenario's TOML data with those dotted keys set
+(`scenario.apply_overrides`). All cases are checked (`scenario.validate_overrides`, then each case parsed)
+before anything runs, so a bad key or value raises `pl.InputError` at once, naming it. Instead of a file, a
+factory (a picklable callable taking the case {key: value} and returning a `Scenario` or a TOML-like dict)
+builds each case on its worker; its cases are checked there, a bad one failing alone.
+
+Each case runs as one task on a Dask cluster (a `distributed.LocalCluster` of one single-threaded process a
+core by default, or the given `distributed.Client` or scheduler address): the worker is sent the case's data
+(not engine objects), runs statics then the simulation to `solver.t_end` (`run_case`, the same function a
+single run uses, so a case's numbers do not depend on where it ran), and writes, each atomically:
+
+* ``<output>/cases/<name>.nc``: the case's results (the layout of `Results.to_netcdf`);
+* ``<output>/cases/<name>.json``: the case {key: value} and its statistics (`STATISTICS`), or its failure.
+
+`<name>` is the case's values made filesystem-safe, then a hash of the scenario, the case and the checks: a
+case with a JSON file is not run again, so calling `sweep` again with the same output folder reuses the
+finished cases (after Ctrl-C, a lost worker or a changed grid) and runs only the rest. A case that fails (a
+bad value: `InputError`; Newton not converging: `ConvergenceError`) is recorded with its message and the
+others go on. The summary, assembled from the JSON files, is written to ``<output>/summary.nc`` at the end,
+and also when Ctrl-C stops the sweep (KeyboardInterrupt is then raised again). The output folder must be on a
+filesystem the workers share, at the same path.
+
+Imports of pipelay: the engine, `pipelay.scenario`, `pipelay.results` and `pipelay.analysis.extremes`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import os
+import re
+import warnings
+from collections.abc import Callable, Iterable, Iterator, Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from pipelay import scenario as scenario_format
+from pipelay._core import ConvergenceError, InputError, Model, Results, Simulation
+from pipelay.analysis.extremes import extremes
+from pipelay.results import load, resume
+from pipelay.results.atomic import _atomic_write
+from pipelay.scenario import (
+    Scenario,
+    apply_overrides,
+    load_scenario,
+    parse_scenario,
+    validate_overrides,
+)
+from pipelay.scenario.schema import _reference
+
+__all__ = ["STATISTICS", "Sweep", "case_statistics", "run", "run_case", "start", "sweep"]
+
+Factory = Callable[[dict[str, Any]], "Scenario | dict[str, Any]"]
+"""Builds a case's scenario from the case {dotted key: value}."""
+
+STATISTICS: dict[str, tuple[str, str]] = {
+    "top_tension_max": ("N", "largest top tension |F_B|, the force of the pipe on what holds end B"),
+    "top_tension_min": ("N", "smallest top tension |F_B|"),
+    "lay_top_tension_max": ("N", "largest effective tension at the tensioner or tower"),
+    "lay_top_tension_min": ("N", "smallest effective tension at the tensioner or tower"),
+    "tension_max": ("N", "largest effective axial force along the pipe"),
+    "tension_min": ("N", "smallest effective axial force along the pipe (negative: compression)"),
+    "moment_max": ("N m", "largest bending moment along the pipe"),
+    "strain_max": ("1", "largest longitudinal strain at the outer fibre"),
+    "utilisation_max": ("1", "largest DNV-ST-F101 local-buckling utilisation (1: the limit)"),
+    "load_controlled_max": ("1", "largest DNV-ST-F101 load-controlled utilisation"),
+    "displacement_controlled_max": ("1", "largest DNV-ST-F101 displacement-controlled utilisation"),
+    "offset_max": ("m", "largest horizontal distance of the vessel from its position at t = 0"),
+    "thrust_max": ("N", "largest horizontal thrust |(tau_surge, tau_sway)|"),
+    "touchdown_excursion": (
+        "m",
+        "largest horizontal distance of the touchdown point from its first position",
+    ),
+    "passivity_margin_min": (
+        "J",
+        "min over t of W(t) - (E(t) - E(0)), work supplied less energy gained: 0 to round-off, < 0: made",
+    ),
+}
+"""The statistics of a case (`case_statistics`): name → (units, description). Only those that apply to the
+model are computed: the vessel's without a vessel, strain without a section, utilisation without a pipe's
+wall thickness (`[pipe]`), the touchdown's without contact are absent (NaN in the summary)."""
+
+SUMMARY_TITLE = "pipelay sweep summary"
+
+
+# --- one case --------------------------------------------------------------------------------------------
+
+
+def start(scenario: Scenario, checkpoint: str | os.PathLike[str] | None = None) -> Simulation:
+    """The simulation of a scenario from its static state (``model.static`` with the scenario's steps and
+    start), or continued from a `checkpoint` file; time step ``scenario.dt`` (s).
+
+    Raises InputError if the scenario has no ``solver.t_end``, ConvergenceError if the statics fail.
+    """
+    if scenario.t_end is None:
+        raise InputError("solver.t_end: needed for a simulation (s); use `pipelay static` for statics only")
+    if checkpoint is not None:
+        return resume(scenario.model, checkpoint)
+    state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
+    return scenario.model.simulation(state=state, dt=scenario.dt)  # type: ignore[attr-defined, no-any-return]
+
+
+def run(
+    simulation: Simulation, scenario: Scenario, output: str | os.PathLike[str], *, progress: bool = False
+) -> bool:
+    """Runs `simulation` to ``scenario.t_end`` (s), recording every ``scenario.record_every``-th step,
+    streamed to the netCDF file `output` as it goes (complete there also if the run fails or is stopped).
+
+    Returns whether Ctrl-C stopped the run early (the results so far are in the file). Raises ConvergenceError
+    if a step fails.
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        simulation.run(
+            scenario.t_end,  # type: ignore[arg-type]
+            progress=progress,
+            record_every=scenario.record_every,
+            output=output,
+        )
+    return any("interrupted" in str(warning.message) for warning in caught)
+
+
+def case_statistics(
+    results: Results, model: Model, checks: Mapping[str, Any] | None = None
+) -> dict[str, float]:
+    """The statistics of a run (`STATISTICS`, SI units): `statistics.extremes` (top tension, axial force,
+    moment, strain and, for a pipe with a wall thickness, DNV-ST-F101 utilisation with `checks`, keyword
+    arguments of `checks.dnv_st_f101`, default its defaults), the vessel's largest offset from its starting
+    position (m) and horizontal thrust (N), the touchdown point's excursion (m) and the passivity margin
+    (J)."""
+    section = model.rod.section
+    dnv = dict(checks or {}) if section.wall_thickness is not None else None
+    found = {
+        key: value for key, value in extremes(results, model=model, checks=dnv).items() if key in STATISTICS
+    }
+    if results.eta is not None and results.tau is not None:
+        found["offset_max"] = float(np.max(np.hypot(*(results.eta[:, :2] - results.eta[0, :2]).T)))
+        found["thrust_max"] = float(np.max(np.hypot(results.tau[:, 0], results.tau[:, 1])))
+    touchdown = results.touchdown
+    points = None if touchdown is None else touchdown[np.isfinite(touchdown).all(axis=1), :2]
+    if points is not None and len(points):
+        found["touchdown_excursion"] = float(np.max(np.hypot(*(points - points[0]).T)))
+    found["passivity_margin_min"] = -results.passivity_margin()
+    return found
+
+
+def run_case(
+    scenario: Scenario, path: str | os.PathLike[str], checks: Mapping[str, Any] | None = None
+) -> dict[str, float]:
+    """One run of a scenario, as a sweep runs each case: statics, the simulation to ``solver.t_end`` written
+    to the netCDF file `path` atomically (only a finished run is there), then its `case_statistics` (read back
+    from the file).
+
+    Raises InputError (no ``solver.t_end``), ConvergenceError (the file is then not written) or
+    KeyboardInterrupt (Ctrl-C; nor is it).
+    """
+    simulation = start(scenario)
+
+    def write(temporary: Path) -> None:
+        if run(simulation, scenario, temporary):
+            raise KeyboardInterrupt
+
+    _atomic_write(Path(path), write)
+    return case_statistics(load(path), scenario.model, checks)
+
+
+@dataclass(frozen=True)
+class _Case:
+    """A case as shipped to a worker: plain data and, for a factory, the factory."""
+
+    values: tuple[Any, ...]  # in the order of `over`
+    settings: dict[str, Any]  # {dotted key: value}
+    name: str
+    origin: str
+    folder: str | None  # the scenario file's, for its relative paths
+    data: dict[str, Any] | None  # the scenario's TOML data with the settings applied
+    factory: Factory | None
+    checks: dict[str, Any] | None
+
+    def scenario(self) -> Scenario:
+        """The case's scenario, built from its data or by its factory."""
+        if self.data is not None:
+            return parse_scenario(self.data, self.origin, self.folder)
+        built = self.factory(dict(self.settings))  # type: ignore[misc]
+        return built if isinstance(built, Scenario) else parse_scenario(built, self.origin)
+
+
+def _task(case: _Case, directory: Path) -> dict[str, Any]:
+    """Runs a case on a worker and writes its JSON record (statistics or failure) atomically; returns it."""
+    # One engine thread per worker unless the user says otherwise: a sweep's parallelism is its cases (the
+    # engine's results do not depend on its thread count). Read when the engine first runs in this process.
+    os.environ.setdefault("RAYON_NUM_THREADS", "1")
+    record: dict[str, Any] = {"name": case.name, "case": case.settings}
+    try:
+        record["statistics"] = run_case(case.scenario(), directory / "cases" / f"{case.name}.nc", case.checks)
+    except (InputError, ConvergenceError) as error:
+        record["error"] = f"{type(error).__name__}: {error}"
+    text = json.dumps(record, indent=1, default=str)
+    _atomic_write(directory / "cases" / f"{case.name}.json", lambda temporary: temporary.write_text(text))
+    return record
+
+
+def _read(directory: Path, case: _Case) -> dict[str, Any] | None:
+    """The record a previous sweep left for `case`, or None."""
+    path = directory / "cases" / f"{case.name}.json"
+    if not path.is_file():
+        return None
+    record: dict[str, Any] = json.loads(path.read_text())
+    return record if "statistics" in record or "error" in record else None
+
+
+# --- the grid --------------------------------------------------------------------------------------------
+
+
+def _grid(over: Mapping[str, Iterable[Any]]) -> dict[str, list[Any]]:
+    """`over` as keys to non-empty lists of distinct values (numpy values made plain)."""
+    if not isinstance(over, Mapping) or not over:
+        raise InputError(f"over: must be a non-empty mapping of dotted scenario keys to values, got {over!r}")
+    grid = {}
+    for key, given in over.items():
+        if not isinstance(key, str):
+            raise InputError(f"over: {key!r} is not a dotted scenario key such as 'sea.current.velocity'")
+        if isinstance(given, (str, bytes, Mapping)) or not isinstance(given, Iterable):
+            raise InputError(f"{key}: must be a list of values, got {given!r}")
+        values = [value.tolist() if hasattr(value, "tolist") else value for value in given]
+        labels = [_label(value) for value in values]
+        if not values or len(set(labels)) < len(labels):
+            raise InputError(f"{key}: must be a non-empty list of distinct values, got {values!r}")
+        grid[key] = values
+    return grid
+
+
+def _label(value: Any) -> str:
+    """A value as text: a string as is, anything else as JSON."""
+    return value if isinstance(value, str) else json.dumps(value)
+
+
+def _hashable(value: Any) -> Any:
+    """A case value usable in a dict key: lists become tuples."""
+    return tuple(_hashable(v) for v in value) if isinstance(value, list) else value
+
+
+def _name(settings: Mapping[str, Any], fingerprint: str) -> str:
+    """A case's file name: its values, filesystem-safe and shortened, then a hash of the scenario's
+    `fingerprint` and the case (unique)."""
+    readable = "__".join(
+        f"{key.rsplit('.', 1)[-1]}={re.sub(r'[^A-Za-z0-9.+-]+', '_', _label(value)).strip('_')}"
+        for key, value in settings.items()
+    )[:80]
+    digest = hashlib.sha256(json.dumps([fingerprint, list(settings.items())], default=str).encode())
+    return f"{readable}-{digest.hexdigest()[:10]}"
+
+
+def _cases(
+    scenario: str | os.PathLike[str] | Factory,
+    grid: Mapping[str, list[Any]],
+    checks: Mapping[str, Any] | None,
+) -> tuple[list[_Case], str]:
+    """Every case of the grid, and the scenario's source for the summary. The cases of a file are checked
+    here (`validate_overrides`, then each case parsed): a bad key or value raises InputError naming it."""
+    checks = None if checks is None else dict(checks)
+    base, factory, folder = None, None, None
+    if callable(scenario):
+        import cloudpickle  # type: ignore[import-untyped]
+
+        factory = scenario
+        origin = getattr(scenario, "__qualname__", type(scenario).__name__)
+        fingerprint = hashlib.sha256(cloudpickle.dumps(scenario)).hexdigest()
+    else:
+        origin = os.fspath(scenario)
+        folder = str(Path(scenario).absolute().parent)  # for the scenario's relative paths, on every worker
+        base = load_scenario(scenario).source
+        validate_overrides(base, dict(grid), origin, folder)
+        fingerprint = json.dumps(base, sort_keys=True, default=str)
+    fingerprint += json.dumps(checks, sort_keys=True, default=str)
+    cases = []
+    for values in itertools.product(*grid.values()):
+        settings = dict(zip(grid, values, strict=True))
+        described = ", ".join(f"{key} = {_label(value)}" for key, value in settings.items())
+        case = _Case(
+            values=tuple(values),
+            settings=settings,
+            name=_name(settings, fingerprint),
+            origin=f"{origin}, sweep case {described}",
+            folder=folder,
+            data=None if base is None else apply_overrides(base, settings),
+            factory=factory,
+            checks=checks,
+        )
+        if case.data is not None:
+            case.scenario()
+        cases.append(case)
+    return cases, origin
+
+
+# --- the sweep -------------------------------------------------------------------------------------------
+
+
+@dataclass
+class Sweep:
+    """The outcome of `sweep`.
+
+    Attributes:
+        summary: xarray.Dataset with one dimension per swept key (coordinates: its values; non-numbers as
+            JSON text), the statistics of every case (`STATISTICS`; NaN where a case failed or a statistic
+            does not apply), ``failed`` (1 for a failed case), ``error`` (its message) and ``case`` (the
+            name of its files in ``output/cases``); also in ``output/summary.nc``.
+        failures: {case: message} of the failed cases; a case is the tuple of its values in the order of
+            `over` (lists as tuples).
+        cases: {case: results file (netCDF)} of the finished cases.
+        output: the sweep's folder.
+    """
+
+    summary: Any
+    failures: dict[tuple[Any, ...], str]
+    cases: dict[tuple[Any, ...], Path]
+    output: Path
+
+
+def sweep(
+    scenario: str | os.PathLike[str] | Factory,
+    over: Mapping[str, Iterable[Any]],
+    client: Any = None,
+    output: str | os.PathLike[str] = "sweep",
+    *,
+    workers: int | None = None,
+    checks: Mapping[str, Any] | None = None,
+    progress: bool = True,
+) -> Sweep:
+    """Runs `scenario` for every combination of the values in `over` on a Dask cluster (see the module's
+    documentation); returns the summary and the failures.
+
+    Args:
+        scenario: a scenario file (TOML), or a factory: a picklable callable taking the case {key: value}
+            and returning a `Scenario` or a TOML-like dict, called on the workers.
+        over: dotted scenario keys (``"controller.kp"``) to the values to try; the cases are their product.
+        client: a `distributed.Client`, a scheduler address (``"tcp://host:8786"``), or None: a
+            `distributed.LocalCluster` of `workers` single-threaded processes for the sweep's duration.
+        output: the folder for ``cases/`` and ``summary.nc``; finished cases found there are not run again.
+        workers: processes of the local cluster (default: one a core, at most one a case to run).
+        checks: keyword arguments of `checks.dnv_st_f101` for the utilisation (default: its defaults).
+        progress: show a progress bar over the cases.
+
+    Raises:
+        InputError: `over` is not a mapping of keys to lists of distinct values, or (scenario file) a case
+            has a bad key or value: at once, before anything runs.
+        KeyboardInterrupt: Ctrl-C, after writing the summary of the cases finished so far.
+    """
+    from tqdm import tqdm  # type: ignore[import-untyped]
+
+    grid = _grid(over)
+    cases, origin = _cases(scenario, grid, checks)
+    directory = Path(output)
+    (directory / "cases").mkdir(parents=True, exist_ok=True)
+    records: dict[str, dict[str, Any]] = {}
+    for case in cases:
+        if (record := _read(directory, case)) is not None:
+            records[case.name] = record
+    pending = [case for case in cases if case.name not in records]
+    _discard_partial(directory, pending)
+    bar = tqdm(total=len(cases), initial=len(records), unit="case", desc="sweep", disable=not progress)
+    try:
+        if pending:
+            with _connected(client, workers, len(pending)) as active:
+                _compute(active, pending, directory, records, bar)
+    except KeyboardInterrupt:
+        _discard_partial(directory, [case for case in pending if case.name not in records])
+        _write_summary(directory, grid, cases, records, origin)
+        raise
+    finally:
+        bar.close()
+    return _write_summary(directory, grid, cases, records, origin)
+
+
+def _discard_partial(directory: Path, cases: Iterable[_Case]) -> None:
+    """Removes the temporary files of runs of `cases` that were stopped (Ctrl-C, a killed worker)."""
+    for case in cases:
+        for stale in (directory / "cases").glob(f".{case.name}.*"):
+            stale.unlink(missing_ok=True)
+
+
+@contextmanager
+def _connected(client: Any, workers: int | None, pending: int) -> Iterator[Any]:
+    """The client to run on: `client`, a client of the scheduler at the address `client`, or of a local
+    cluster of single-threaded processes (closed afterwards)."""
+    from distributed import Client, LocalCluster
+
+    if isinstance(client, str):
+        with Client(client) as remote:
+            yield remote
+    elif client is not None:
+        yield client
+    else:
+        count = min(workers or os.cpu_count() or 1, pending)
+        with (
+            LocalCluster(
+                n_workers=count, threads_per_worker=1, processes=True, dashboard_address=":0"
+            ) as cluster,
+            Client(cluster) as local,
+        ):
+            yield local
+
+
+def _compute(
+    client: Any,
+    pending: list[_Case],
+    directory: Path,
+    records: dict[str, dict[str, Any]],
+    bar: Any,
+) -> None:
+    """Runs the pending cases, one task each, putting their records in `records` as they finish; a task that
+    fails in another way (a lost worker, a full disk) gets a record with its error that is not saved (the case
+    is run again next time). Ctrl-C cancels the tasks not finished."""
+    from distributed import as_completed
+
+    # An absolute path: the workers may run elsewhere (on a filesystem shared at the same path).
+    futures = {client.submit(_task, case, directory.absolute(), pure=False): case for case in pending}
+    try:
+        for future in as_completed(futures):
+            case = futures[future]
+            try:
+                records[case.name] = future.result()
+            except Exception as error:  # noqa: BLE001 - recorded as the case's failure
+                records[case.name] = {"name": case.name, "error": f"{type(error).__name__}: {error}"}
+            bar.update()
+    except KeyboardInterrupt:
+        client.cancel(list(futures))
+        raise
+
+
+def _unit(key: str) -> str:
+    """The unit of a dotted scenario key, from the reference tables of `pipelay.scenario` ("" if none)."""
+    table, _, leaf = re.sub(r"\[\d+\]", "", key).rpartition(".")
+    row = _reference(scenario_format.__doc__ or "").get(table, ("", {}))[1].get(leaf)
+    return "" if row is None else "1" if row[0] == "—" else row[0]
+
+
+def _write_summary(
+    directory: Path,
+    grid: Mapping[str, list[Any]],
+    cases: list[_Case],
+    records: Mapping[str, dict[str, Any]],
+    origin: str,
+) -> Sweep:
+    """The summary of the cases' records as a Sweep; writes ``summary.nc`` atomically."""
+    import xarray as xr
+
+    shape = tuple(len(values) for values in grid.values())
+    names = [name for name in STATISTICS if any(name in r.get("statistics", {}) for r in records.values())]
+    arrays = {name: np.full(shape, np.nan) for name in names}
+    failed = np.zeros(shape, dtype=np.int8)
+    error = np.full(shape, "", dtype=object)
+    files = np.full(shape, "", dtype=object)
+    failures, finished = {}, {}
+    for case, index in zip(cases, itertools.product(*map(range, shape)), strict=True):
+        files[index] = case.name
+        record = records.get(case.name)
+        if record is None:
+            continue
+        key = tuple(_hashable(value) for value in case.values)
+        if "error" in record:
+            failed[index], error[index] = 1, record["error"]
+            failures[key] = record["error"]
+            continue
+        finished[key] = directory / "cases" / f"{case.name}.nc"
+        for name, value in record["statistics"].items():
+            if name in arrays:
+                arrays[name][index] = value
+    dims = list(grid)
+    coords = {}
+    for dim, values in grid.items():
+        numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values)
+        coordinate = np.asarray(values) if numeric else np.array([_label(v) for v in values], dtype=object)
+        coords[dim] = (dim, coordinate, {"units": _unit(dim), "long_name": f"scenario key {dim}"})
+    variables = {
+        name: (dims, array, {"units": STATISTICS[name][0], "long_name": STATISTICS[name][1]})
+        for name, array in arrays.items()
+    }
+    variables["failed"] = (dims, failed, {"units": "1", "long_name": "1: the case failed (see error)"})
+    variables["error"] = (dims, error, {"long_name": "the failed case's error message"})
+    variables["case"] = (dims, files, {"long_name": "name of the case's files in cases/ (.nc, .json)"})
+    summary = xr.Dataset(
+        variables,
+        coords=coords,
+        attrs={
+            "title": SUMMARY_TITLE,
+            "source": origin,
+            "swept_keys": json.dumps(dims),
+            "conventions": "SI units; frame e: origin at the seabed end, e1 lay direction, e3 down",
+            "created": datetime.now(UTC).isoformat(timespec="seconds"),
+            "cases": len(cases),
+            "finished": len(finished),
+            "failed": len(failures),
+        },
+    )
+    _atomic_write(directory / "summary.nc", lambda temporary: summary.to_netcdf(temporary, engine="h5netcdf"))
+    return Sweep(summary=summary, failures=failures, cases=finished, output=directory)

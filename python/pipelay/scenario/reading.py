@@ -1,0 +1,385 @@
+"""Reading a scenario: a TOML file (`load_scenario`) or its parsed document (`parse_scenario`), checked, then
+made into the API calls that build the model, returned as a `Scenario` with its solver settings and outputs.
+
+Imports of pipelay: the package (`pl.Model`, `pl.Vessel`, ...: the engine's classes, looked up there when a
+scenario is built), `pipelay.scenario.values`, `pipelay.scenario.models`, `pipelay.scenario.schema` and
+`pipelay.scenario.checking`.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import os
+import re
+import tomllib
+from collections.abc import Callable, Collection, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal, cast
+
+import pipelay as pl
+from pipelay.scenario import models
+from pipelay.scenario.checking import _check, _folder
+from pipelay.scenario.schema import KEYS
+from pipelay.scenario.values import End, join
+
+__all__ = ["Scenario", "SmoothStart", "load_scenario", "parse_scenario"]
+
+_PAY_OUT_RAMP = 60.0
+"""Default `[pay_out]` ramp (s)."""
+
+
+@dataclass
+class Scenario:
+    """A model ready to solve, its solver settings and outputs, as read from a scenario file.
+
+    Attributes:
+        model: the model with its supports, loads and vessel.
+        dt: time step of the simulation (s).
+        t_end: end time of the simulation (s); None: statics only.
+        record_every: record every k-th time step.
+        static_steps: initial number of load steps of the static solve; None: the engine's default.
+        static_start: Newton's starting shape in statics: "auto", "reference" or "catenary".
+        output: the `[output]` table: `plot_times` (list of s, or None when not given).
+        source: the parsed TOML as given (a copy), for provenance.
+    """
+
+    model: pl.Model
+    dt: float
+    t_end: float | None
+    record_every: int
+    static_steps: int | None
+    static_start: Literal["auto", "reference", "catenary"]
+    output: dict[str, Any]
+    source: dict[str, Any]
+
+
+@dataclass(frozen=True)
+class SmoothStart:
+    """A speed that rises smoothly from 0 at `start_time` to `speed` over `ramp`: v(t) = speed · (3s² − 2s³),
+    s = (t − start_time)/ramp clipped to [0, 1] (a step at start_time when ramp = 0); the `[pay_out]` speed.
+
+    Attributes:
+        speed: the final speed (m/s).
+        start_time: when it starts rising (s).
+        ramp: how long it takes to reach `speed` (s), ≥ 0.
+    """
+
+    speed: float
+    start_time: float = 0.0
+    ramp: float = _PAY_OUT_RAMP
+
+    def __call__(self, t: float) -> float:
+        """The speed at time t (s), m/s."""
+        if self.ramp <= 0.0:
+            return self.speed if t >= self.start_time else 0.0
+        s = min(max((t - self.start_time) / self.ramp, 0.0), 1.0)
+        return self.speed * s * s * (3.0 - 2.0 * s)
+
+    def distance(self, t: float) -> float:
+        """∫ v dt from start_time to t (m): the length paid out by time t."""
+        if t <= self.start_time:
+            return 0.0
+        if self.ramp <= 0.0 or t >= self.start_time + self.ramp:
+            return self.speed * (t - self.start_time - 0.5 * self.ramp)
+        s = (t - self.start_time) / self.ramp
+        return self.speed * self.ramp * (s**3 - 0.5 * s**4)
+
+
+def _settings(file: models.ScenarioFile) -> dict[str, Any]:
+    """The Scenario's solver settings and outputs."""
+    solver = file.solver
+    return {
+        "dt": solver.dt,
+        "t_end": solver.t_end,
+        "record_every": solver.record_every,
+        "static_steps": solver.static_steps,
+        "static_start": solver.static_start,
+        "output": {"plot_times": file.output.plot_times},
+    }
+
+
+# Building: the API calls of a checked document.
+
+
+@contextmanager
+def _engine(path: str, keys: Collection[str] = (), elsewhere: dict[str, str] | None = None) -> Iterator[None]:
+    """Re-raise the engine's InputError with the key path in front (`path.key` if it names one of `keys`, the
+    path `elsewhere[argument]` for arguments that belong to another table)."""
+    try:
+        yield
+    except pl.InputError as error:
+        message = str(error)
+        argument, _, rest = message.partition(": ")
+        if elsewhere and argument in elsewhere:
+            raise pl.InputError(f"{elsewhere[argument]}: {rest}") from None
+        if argument in keys:
+            raise pl.InputError(f"{join(path, argument)}: {rest}") from None
+        raise pl.InputError(f"{path}: {message}" if path else message) from None
+
+
+_SEABED_SHAPE = {"bathymetry": "sea.seabed.bathymetry"}
+_STINGER_ARGUMENTS = {
+    "stinger radius": "vessel.lay.stinger.radius",
+    "stinger length": "vessel.lay.stinger.length",
+    "stinger origin": "vessel.lay.stinger.origin",
+    "stinger angle": "vessel.lay.stinger.angle",
+    "roller positions": "vessel.lay.stinger.positions",
+    "roller axes": "vessel.lay.stinger.axes",
+}
+_CURRENTS: dict[str, Callable[..., pl.Current]] = {
+    "uniform": pl.Current.uniform,
+    "linear": pl.Current.linear,
+    "profile": pl.Current.profile,
+}
+_BATHYMETRIES: dict[str, Callable[..., pl.Bathymetry]] = {
+    "flat": pl.Bathymetry.flat,
+    "plane": pl.Bathymetry.plane,
+    "grid": pl.Bathymetry.grid,
+}
+_WAVES: dict[str, Callable[..., pl.Waves]] = {"regular": pl.Waves.regular, "jonswap": pl.Waves.jonswap}
+
+
+def _harmonic_drive(
+    center: Any,
+    period: float,
+    amplitude: list[float] | None = None,
+    phase: list[float] | None = None,
+    ramp: float = 0.0,
+) -> tuple[Callable[[float], list[float]], Callable[[float], list[float]]]:
+    """Position and velocity of an end driven harmonically about `center` (m): x(t) = c + a r(t) sin(ωt + φ),
+    ω = 2π/period, with the amplitude a ramped in by r(t) = 10s³ − 15s⁴ + 6s⁵, s = min(t/ramp, 1) (no jump in
+    position, velocity or acceleration at t = 0)."""
+    omega = 2.0 * math.pi / period
+    a = amplitude if amplitude is not None else [0.0, 0.0, 0.0]
+    phi = phase if phase is not None else [0.0, 0.0, 0.0]
+    c = [float(v) for v in center]
+
+    def ramp_of(t: float) -> tuple[float, float]:
+        if ramp <= 0.0 or t >= ramp:
+            return 1.0, 0.0
+        x = max(t, 0.0) / ramp
+        return 10 * x**3 - 15 * x**4 + 6 * x**5, (30 * x**2 - 60 * x**3 + 30 * x**4) / ramp
+
+    def position(t: float) -> list[float]:
+        r, _ = ramp_of(t)
+        return [c[k] + a[k] * r * math.sin(omega * t + phi[k]) for k in range(3)]
+
+    def velocity(t: float) -> list[float]:
+        r, dr = ramp_of(t)
+        return [
+            a[k] * (dr * math.sin(omega * t + phi[k]) + r * omega * math.cos(omega * t + phi[k]))
+            for k in range(3)
+        ]
+
+    return position, velocity
+
+
+def _rod(file: models.ScenarioFile) -> pl.Rod:
+    """The cross-section (`[pipe]` or `[section]`) and the rod."""
+    if file.pipe is not None:
+        with _engine("pipe", KEYS["pipe"]):
+            section = pl.Section.pipe(**file.pipe.given())
+    else:
+        with _engine("section", KEYS["section"]):
+            section = pl.Section(**cast(models.Section, file.section).given())
+    with _engine("rod", KEYS["rod"]):
+        if isinstance(file.rod, models.NodesRod):
+            return pl.Rod(file.rod.nodes, section)
+        return pl.Rod.straight(section=section, **file.rod.given())
+
+
+def _seabed(seabed: models.Seabed) -> pl.Seabed:
+    """`[sea.seabed]` and its bathymetry."""
+    bathymetry = None
+    if seabed.bathymetry is not None:
+        with _engine("sea.seabed.bathymetry", KEYS["sea.seabed.bathymetry"]):
+            bathymetry = _BATHYMETRIES[seabed.bathymetry.kind](**seabed.bathymetry.given())
+    with _engine("sea.seabed", KEYS["sea.seabed"]):
+        return pl.Seabed(**seabed.given("bathymetry"), bathymetry=bathymetry)
+
+
+def _sea(sea: models.Sea) -> pl.Sea:
+    """`[sea]` with its current, seabed and waves. The waves' `ramp` is passed only when the file gives it."""
+    current = seabed = waves = None
+    if sea.current is not None:
+        with _engine("sea.current", KEYS["sea.current"]):
+            current = _CURRENTS[sea.current.kind](**sea.current.given())
+    if sea.seabed is not None:
+        seabed = _seabed(sea.seabed)
+    if sea.waves is not None:
+        with _engine("sea.waves", KEYS["sea.waves"]):
+            waves = _WAVES[sea.waves.kind](**sea.waves.given())
+    with _engine("sea", KEYS["sea"], _SEABED_SHAPE):
+        return pl.Sea(**sea.given("current", "seabed", "waves"), current=current, seabed=seabed, waves=waves)
+
+
+def _hold(model: pl.Model, supports: models.Supports) -> None:
+    """Clamp, pin or drive the ends of `[supports]`."""
+    ends: list[tuple[End, models.Clamp | models.Pin | models.Drive | None]] = [
+        ("A", supports.A),
+        ("B", supports.B),
+    ]
+    for end, support in ends:
+        if support is None:
+            continue
+        with _engine(f"supports.{end}", KEYS[f"supports.{end}"]):
+            if isinstance(support, models.Clamp):
+                model.clamp(end, **support.given())
+            elif isinstance(support, models.Pin):
+                model.pin(end, **support.given())
+            else:
+                node = model.rod.nodes[0 if end == "A" else -1]
+                center = node if support.position is None else support.position
+                position, velocity = _harmonic_drive(center, **support.given("position"))
+                model.drive(end, position, velocity=velocity)
+
+
+def _lay(lay: models.SLay | models.JLay) -> pl.SLay | pl.JLay:
+    """The lay equipment of `[vessel.lay]` (and `[vessel.lay.stinger]`)."""
+    if isinstance(lay, models.JLay):
+        with _engine("vessel.lay", KEYS["vessel.lay"]):
+            return pl.JLay(**lay.given())
+    stinger = None
+    if lay.stinger is not None:
+        with _engine("vessel.lay.stinger", KEYS["vessel.lay.stinger"], _STINGER_ARGUMENTS):
+            if isinstance(lay.stinger, models.RollerStinger):
+                stinger = pl.Stinger.from_rollers(**lay.stinger.given())
+            else:
+                stinger = pl.Stinger(**lay.stinger.given())
+    with _engine("vessel.lay", KEYS["vessel.lay"]):
+        return pl.SLay(stinger=stinger, **lay.given("stinger"))
+
+
+def _vessel(vessel: models.ModelVessel | models.MatrixVessel) -> pl.Vessel:
+    """The vessel of `[vessel]`, with the RAOs of `raos` if given (else the API's default)."""
+    raos: dict[str, Any] = {}
+    if vessel.raos is not None:
+        with _engine("vessel.raos", (), {"path": "vessel.raos", "raos": "vessel.raos"}):
+            raos["raos"] = pl.Raos.read(vessel.raos)
+    with _engine("vessel", KEYS["vessel"]):
+        if isinstance(vessel, models.ModelVessel):
+            return pl.Vessel.osv(**raos)
+        return pl.Vessel(**vessel.given("end", "eta", "angle", "raos", "lay"), **raos)
+
+
+def _controller(controller: models.FixedController | models.RouteController) -> pl.PID:
+    """The PID of `[controller]`, with its route and tension loop."""
+    arguments = controller.given("route", "tension")
+    if isinstance(controller, models.RouteController):
+        with _engine("controller.route", KEYS["controller.route"]):
+            arguments["reference"] = pl.Route(**controller.route.given())
+    if controller.tension is not None:
+        with _engine("controller.tension", KEYS["controller.tension"]):
+            arguments["tension"] = pl.TensionControl(**controller.tension.given())
+    with _engine("controller", KEYS["controller"]):
+        return pl.PID(**arguments)
+
+
+def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
+    """Build the vessel, its lay equipment, controller and environment; attach them."""
+    vessel = cast(models.ModelVessel | models.MatrixVessel, file.vessel)
+    lay = None if vessel.lay is None else _lay(vessel.lay)
+    body = _vessel(vessel)
+    controller = None if file.controller is None else _controller(file.controller)
+    environment = []
+    for i, force in enumerate(file.environment):
+        with _engine(f"environment[{i}]", KEYS["environment"]):
+            environment.append(pl.Force(**force.given()))
+    with _engine("vessel", KEYS["vessel"]):
+        model.attach_vessel(
+            vessel.end,
+            body,
+            eta=vessel.eta,
+            angle=vessel.angle,
+            controller=controller,
+            environment=environment,
+            lay=lay,
+        )
+
+
+def _pay_out(pay_out: models.PayOut, controller: models.ControllerTable | None) -> SmoothStart:
+    """The pay-out speed; speed = "route" is the route's speed, from the route's start time by default."""
+    speed, start_time = pay_out.speed, pay_out.start_time
+    if isinstance(speed, str):  # "route": the checks made sure there is one
+        route = cast(models.RouteController, controller).route
+        speed = route.speed or 0.0
+        start_time = route.start_time if start_time is None else start_time
+    ramp = _PAY_OUT_RAMP if pay_out.ramp is None else pay_out.ramp
+    return SmoothStart(speed, start_time or 0.0, ramp)
+
+
+def _build(file: models.ScenarioFile) -> pl.Model:
+    """Make the API calls of a checked document."""
+    rod = _rod(file)
+    sea = None if file.sea is None else _sea(file.sea)
+    gravity = file.gravity.acceleration if isinstance(file.gravity, models.Gravity) else file.gravity
+    with _engine("", ("gravity",), _SEABED_SHAPE):
+        model = pl.Model(rod, sea=sea, **({} if gravity is None else {"gravity": gravity}))
+    if file.supports is not None:
+        _hold(model, file.supports)
+    for i, load in enumerate(file.point_loads):
+        with _engine(f"point_loads[{i}]", KEYS["point_loads"]):
+            model.point_load(**load.given())
+    if file.vessel is not None:
+        _attach(model, file)
+    if file.pay_out is not None:
+        speed = _pay_out(file.pay_out, file.controller)
+        with _engine("pay_out", KEYS["pay_out"]):
+            model.pay_out(file.pay_out.end or "B", speed=speed)
+    return model
+
+
+def parse_scenario(
+    data: dict[str, Any], origin: str = "<dict>", folder: str | os.PathLike[str] | None = None
+) -> Scenario:
+    """The scenario described by `data`, a parsed TOML document (see the module's reference).
+
+    Every key is checked before the model is built; nothing is solved. `origin` names the source in messages;
+    file paths in it (`vessel.raos`) are relative to `folder` (default: the folder of `origin` if it is a file,
+    else the current one). Raises pl.InputError whose message starts with the key path and ends with
+    `(in origin)`.
+    """
+    try:
+        file = _check(data, _folder(origin, folder))
+        model = _build(file)
+    except pl.InputError as error:
+        raise pl.InputError(f"{error} (in {origin})") from None
+    return Scenario(model=model, source=copy.deepcopy(data), **_settings(file))
+
+
+def _syntax_error(error: tomllib.TOMLDecodeError, text: str, origin: str) -> pl.InputError:
+    """A TOML syntax error as an InputError naming the file, line and column."""
+    message = str(error)
+    found = re.fullmatch(r"(.*) \(at line (\d+), column (\d+)\)", message, flags=re.DOTALL)
+    if found:
+        reason, line, column = found.group(1), int(found.group(2)), int(found.group(3))
+    else:
+        reason = message.removesuffix(" (at end of document)")
+        lines = text.split("\n")
+        line, column = len(lines), len(lines[-1]) + 1
+    return pl.InputError(f"{origin}, line {line}, column {column}: TOML syntax error: {reason}")
+
+
+def load_scenario(path: str | os.PathLike[str]) -> Scenario:
+    """The scenario in the TOML file at `path` (see the module's reference); nothing is solved.
+
+    Raises pl.InputError for a syntax error (naming the line and column) or any invalid key (naming the key
+    path and the file); OSError if the file cannot be read.
+    """
+    origin = os.fspath(path)
+    raw = Path(path).read_bytes()
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as error:
+        line = raw.count(b"\n", 0, error.start) + 1
+        raise pl.InputError(f"{origin}, line {line}: not UTF-8 text, as TOML must be") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise _syntax_error(error, text, origin) from None
+    except RecursionError:
+        raise pl.InputError(f"{origin}: arrays or tables nested too deeply") from None
+    return parse_scenario(data, origin, Path(path).absolute().parent)
