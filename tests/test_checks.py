@@ -22,7 +22,7 @@ def _load_checks() -> ModuleType:
     try:
         import pipelay.checks as module
     except ImportError:
-        path = Path(__file__).resolve().parents[1] / "python" / "pipelay" / "checks.py"
+        path = Path(__file__).resolve().parents[1] / "python" / "pipelay" / "analysis" / "checks.py"
         spec = importlib.util.spec_from_file_location("pipelay_checks_standalone", path)
         assert spec is not None and spec.loader is not None
         module = importlib.util.module_from_spec(spec)
