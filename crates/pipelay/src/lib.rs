@@ -1,13 +1,14 @@
 //! pipelay engine: geometrically exact (Simo–Reissner) rods for offshore pipelay analysis.
 //!
 //! The folders show the architecture, bottom up:
-//! - [`so3`] (rotations), [`error`], [`memory`], [`smooth`] and [`table`] (functions of time as tables): what
-//!   every layer uses;
+//! - [`so3`] (rotations), [`error`], [`memory`], [`smooth`] and [`table`] (functions of time): what every layer
+//!   uses;
+//! - [`linalg`]: the LU factorisations of the tangent, and the engine's thread pool (uses nothing else);
 //! - [`rod`]: the cross-section, the stress-free reference and the element (statics and dynamics);
-//! - [`environment`]: the sea, its current and Morison drag;
-//! - [`vessel`]: the DP vessel as a rigid body, its Euler angles, its coupling to the pipe and its control;
+//! - [`environment`]: the sea, its current and waves, Morison drag, the seabed and its bathymetry;
+//! - [`vessel`]: the DP vessel as a rigid body, its Euler angles, its coupling to the pipe, its control and lay
+//!   equipment;
 //! - [`model`]: what is simulated: rod, environment, supports, loads, vessel;
-//! - [`linalg`]: the LU factorisations of the tangent, and the engine's thread pool;
 //! - [`contact`]: the pipe's contact with the seabed (normal and friction) and with the vessel's rollers;
 //! - [`assembly`]: the global residual and tangent over the nodal DOFs;
 //! - [`response`]: what users read off a configuration (section forces, reactions, lay summary);

@@ -3,7 +3,7 @@
 //!
 //! Rotations map material (body) coordinates to spatial (inertial) ones. `skew(a) b = a × b`.
 //! Every map that divides by a power of θ = |θ| switches to its Taylor series for
-//! θ < [`SERIES_MAX`], so all of them are accurate to machine precision near θ = 0 and never
+//! θ < `SERIES_MAX`, so all of them are accurate to machine precision near θ = 0 and never
 //! return NaN there.
 
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};

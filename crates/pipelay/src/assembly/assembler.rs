@@ -252,7 +252,7 @@ impl Assembler {
         }
     }
 
-    /// Adds the small shift on the rotational diagonal (see [`ROTATION_SHIFT`]) once a tangent is complete.
+    /// Adds the small shift on the rotational diagonal (see `ROTATION_SHIFT`) once a tangent is complete.
     pub fn shift_rotations(&mut self) {
         let largest = largest_magnitude(&self.values);
         for &p in &self.rotation_diagonal {

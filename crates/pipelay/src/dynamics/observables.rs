@@ -14,7 +14,8 @@ use crate::response::lay_summary::{lay_summary, LaySummary};
 use crate::vessel::coupling::{eta_of, low_frequency_pose};
 use crate::vessel::rigid_body::kinetic_energy;
 use crate::vessel::wave_motion::WaveOffset;
-use nalgebra::{Vector3, Vector6};
+use crate::vessel::VesselAttachment;
+use nalgebra::{Matrix3, Vector3, Vector6};
 
 /// A view of a state with what its observables need beside it.
 #[derive(Clone, Copy)]
@@ -37,17 +38,22 @@ impl<'a> Observables<'a> {
         self.model.rod.length()
     }
 
+    /// The low-frequency pose (position of CO, body rotation) of the vessel `attachment` holds the rod by.
+    fn vessel_pose(&self, attachment: &VesselAttachment) -> (Vector3<f64>, Matrix3<f64>) {
+        let node = attachment.node;
+        low_frequency_pose(
+            attachment,
+            &self.state.configuration.positions[node],
+            &self.state.configuration.rotations[node],
+            self.wave_offset,
+        )
+    }
+
     /// With a vessel: its η, ν, the thrust τ and the pipe's force χ of the current state.
     pub fn vessel_values(&self) -> Option<[Vector6<f64>; 4]> {
         let state = &self.state;
         let (attachment, motion) = (self.model.vessel.as_ref()?, state.vessel.as_ref()?);
-        let node = attachment.node;
-        let (position, body) = low_frequency_pose(
-            attachment,
-            &state.configuration.positions[node],
-            &state.configuration.rotations[node],
-            self.wave_offset,
-        );
+        let (position, body) = self.vessel_pose(attachment);
         let eta = eta_of(&position, &body);
         Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
     }
@@ -72,13 +78,7 @@ impl<'a> Observables<'a> {
             .sum();
         let (vessel_kinetic, vessel_potential) = match (&self.model.vessel, &state.vessel) {
             (Some(attachment), Some(motion)) => {
-                let node = attachment.node;
-                let (position, body) = low_frequency_pose(
-                    attachment,
-                    &state.configuration.positions[node],
-                    &state.configuration.rotations[node],
-                    self.wave_offset,
-                );
+                let (position, body) = self.vessel_pose(attachment);
                 (
                     kinetic_energy(&attachment.vessel, &motion.velocity),
                     attachment

@@ -1,5 +1,7 @@
-//! What the pipe is immersed in and rests on: the sea, its current and the drag it exerts, the seabed and
-//! its shape.
+//! What the pipe is immersed in and rests on: the sea, its current and the drag it exerts, the waves, the
+//! seabed and its shape.
+//!
+//! May use: the basics (errors, memory, smooth steps).
 pub mod bathymetry;
 pub mod current;
 pub mod drag;

@@ -15,7 +15,7 @@
 //!
 //! Pivoting stays within the diagonal blocks. That is stable for the block diagonally dominant or positive
 //! definite tangents of dynamics (mass over Δt²) and of stable statics; a block whose pivot falls below
-//! [`PIVOT_FLOOR`] of its size is reported, and the caller factorises with full band pivoting instead.
+//! `PIVOT_FLOOR` of its size is reported, and the caller factorises with full band pivoting instead.
 //!
 //! Prescribed DOFs are not unknowns: their rows and columns are padded with the identity, so that every node
 //! has a full 6×6 block.
@@ -36,7 +36,7 @@ const PIVOT_FLOOR: f64 = 1e-13;
 /// A 6×6 block, column-major: entry (row, column) at 6·column + row.
 type Block = [f64; 36];
 
-/// A pivot of a diagonal block was zero, non-finite or below [`PIVOT_FLOOR`] of the block.
+/// A pivot of a diagonal block was zero, non-finite or below `PIVOT_FLOOR` of the block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SmallPivot;
 

@@ -1,4 +1,4 @@
-//! LU of a square matrix of any fixed pattern: narrow bands ([`BAND_LIMIT`]) by the band LU of
+//! LU of a square matrix of any fixed pattern: narrow bands (`BAND_LIMIT`) by the band LU of
 //! [`crate::linalg::band_lu`] (in n·kl·(kl + ku) operations), small systems by faer's dense partial-pivoting
 //! LU (whose cost there is a fraction of the sparse factorisation's bookkeeping), the rest by faer's sparse
 //! LU with its symbolic factorisation computed once. Each numeric factorisation and solve runs without

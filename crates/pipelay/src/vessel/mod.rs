@@ -1,4 +1,7 @@
-//! The DP vessel: a rigid body (eq. 10), its Euler angles, its coupling to the pipe's end and its control.
+//! The DP vessel: a rigid body (eq. 10), its Euler angles, its coupling to the pipe's end, its control, its
+//! lay equipment (tensioner and stinger, or tower), its RAOs and the wave-frequency motion they give.
+//!
+//! May use: the basics and [`crate::environment`] (the waves that move it).
 pub mod control;
 pub mod coupling;
 pub mod euler;
