@@ -16,6 +16,7 @@ import sys
 from pipelay._core import (
     PID,
     Bathymetry,
+    Coating,
     ConvergenceError,
     Current,
     Force,
@@ -69,6 +70,7 @@ del _old, _new
 __all__ = [
     "PID",
     "Bathymetry",
+    "Coating",
     "ConvergenceError",
     "Current",
     "Force",

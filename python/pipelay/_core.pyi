@@ -15,6 +15,7 @@ _End: TypeAlias = Literal["A", "B"]
 __all__ = [
     "PID",
     "Bathymetry",
+    "Coating",
     "ConvergenceError",
     "Current",
     "Force",
@@ -45,6 +46,22 @@ class ConvergenceError(RuntimeError):
     """Newton failed: the message gives the load factor or time reached, iterations and residual."""
 
 @final
+class Coating:
+    """A layer outside a pipe's steel wall (a coating) or inside it (a lining): thickness (m), density
+    (kg/m³) and the Young's modulus (Pa) it adds to the axial and bending stiffness (0: none)."""
+
+    def __new__(cls, thickness: float, density: float, youngs_modulus: float = 0.0) -> Coating: ...
+    @property
+    def thickness(self) -> float:
+        """Thickness (m)."""
+    @property
+    def density(self) -> float:
+        """Density (kg/m³)."""
+    @property
+    def youngs_modulus(self) -> float:
+        """Young's modulus added to the stiffness (Pa; 0: none)."""
+
+@final
 class Section:
     """Cross-section properties. GA, EI: one number (both principal axes) or a pair (axis 2, axis 3)."""
 
@@ -72,8 +89,14 @@ class Section:
         contents_density: float = 0.0,
         drag: Sequence[float] | None = None,
         added_mass: Sequence[float] | None = None,
+        *,
+        grade: str | None = None,
+        coatings: Sequence[Coating] | None = None,
+        lining: Coating | None = None,
     ) -> Section:
-        """A pipe from its geometry (m) and material; drag and added mass default to (0, 1)."""
+        """A pipe from its geometry (m) and material; drag and added mass default to (0, 1). `grade` (a key of
+        `pipelay.analysis.checks.GRADES`) is what the design checks take by default; `coatings` (from the
+        steel outwards) and `lining` add their mass and set the hydrodynamic diameter, not the steel's."""
     @property
     def EA(self) -> float:
         """Axial stiffness (N)."""
@@ -106,7 +129,22 @@ class Section:
         """Rotational inertia per unit length about t1, t2, t3 (kg·m)."""
     @property
     def outer_diameter(self) -> float:
-        """Outer diameter (m)."""
+        """Outer diameter (m): the steel's for a Section.pipe (coatings not included)."""
+    @property
+    def hydrodynamic_diameter(self) -> float:
+        """Diameter over the coatings (m), to which drag, added mass, buoyancy, contact and rollers refer."""
+    @property
+    def submerged_weight(self) -> float:
+        """Submerged weight per unit length in sea water of 1025 kg/m³ under g = 9.81 m/s² (N/m)."""
+    @property
+    def grade(self) -> str | None:
+        """The steel's grade of a Section.pipe given one; None otherwise."""
+    @property
+    def coatings(self) -> list[Coating]:
+        """The external coatings of a Section.pipe, from the steel outwards."""
+    @property
+    def lining(self) -> Coating | None:
+        """The internal lining of a Section.pipe; None without one."""
     @property
     def displaced_area(self) -> float:
         """Buoyancy area per unit length (m²)."""

@@ -1,11 +1,78 @@
 //! Python classes for what a model is built from: Section, Rod, Current, Sea.
 use crate::convert::{array, points, points_to_numpy, scalar_or_array, vector, vector3};
-use crate::errors::to_py;
+use crate::errors::{input, to_py};
 use numpy::PyArray2;
 use pipelay::environment::current::{self, CurrentProfile};
 use pipelay::environment::sea;
+use pipelay::error::{non_negative, positive};
 use pipelay::rod::section::{self, SectionExtras};
 use pyo3::prelude::*;
+
+/// Sea water's density (kg/m³) and gravity (m/s²) of `Section.submerged_weight`.
+const SEA_WATER_DENSITY: f64 = 1025.0;
+const GRAVITY: f64 = 9.81;
+
+/// A layer outside a pipe's steel wall (a coating) or inside it (a lining): thickness (m), density (kg/m³)
+/// and the Young's modulus (Pa) it adds to the axial and bending stiffness (default 0: none, as usual for
+/// concrete).
+#[pyclass(module = "pipelay", name = "Coating", frozen, from_py_object)]
+#[derive(Clone, Copy)]
+pub struct Coating(pub section::Coating);
+
+#[pymethods]
+impl Coating {
+    #[new]
+    #[pyo3(signature = (thickness, density, youngs_modulus=0.0))]
+    fn new(thickness: f64, density: f64, youngs_modulus: f64) -> PyResult<Self> {
+        let layer = section::Coating {
+            thickness,
+            density,
+            youngs_modulus,
+        };
+        positive("thickness", thickness, "m").map_err(to_py)?;
+        non_negative("density", density, "kg/m³").map_err(to_py)?;
+        non_negative("youngs_modulus", youngs_modulus, "Pa").map_err(to_py)?;
+        Ok(Coating(layer))
+    }
+    /// Thickness (m).
+    #[getter]
+    fn thickness(&self) -> f64 {
+        self.0.thickness
+    }
+    /// Density (kg/m³).
+    #[getter]
+    fn density(&self) -> f64 {
+        self.0.density
+    }
+    /// Young's modulus added to the stiffness (Pa; 0: none).
+    #[getter]
+    fn youngs_modulus(&self) -> f64 {
+        self.0.youngs_modulus
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Coating(thickness={}, density={}, youngs_modulus={})",
+            self.0.thickness, self.0.density, self.0.youngs_modulus
+        )
+    }
+}
+
+/// Refuses a steel grade that the design checks do not know (`pipelay.analysis.checks.GRADES`).
+fn check_grade(py: Python<'_>, grade: &str) -> PyResult<()> {
+    let grades = py.import("pipelay.analysis.checks")?.getattr("GRADES")?;
+    if grades.contains(grade)? {
+        return Ok(());
+    }
+    let known: Vec<String> = grades
+        .try_iter()?
+        .map(|g| g?.extract())
+        .collect::<PyResult<_>>()?;
+    Err(input(
+        "grade",
+        format!("{grade:?}"),
+        &format!("must be one of {}", known.join(", ")),
+    ))
+}
 
 /// Cross-section properties (SI units). GA, EI: one number (both principal axes) or a pair (axis 2, axis 3).
 #[pyclass(module = "pipelay", name = "Section", frozen)]
@@ -58,11 +125,13 @@ impl Section {
     }
 
     /// A pipe from its geometry (m) and material: density (kg/m³), Young's modulus (Pa), Poisson's ratio,
-    /// contents density (kg/m³, adds to the mass), Morison drag and added-mass coefficients (axial, normal).
+    /// contents density (kg/m³, adds to the mass), Morison drag and added-mass coefficients (axial, normal),
+    /// the steel's grade (for the design checks), external coatings (from the steel outwards) and a lining.
     #[staticmethod]
-    #[pyo3(signature = (outer_diameter, wall_thickness, density=7850.0, youngs_modulus=207e9, poisson_ratio=0.3, contents_density=0.0, drag=None, added_mass=None))]
+    #[pyo3(signature = (outer_diameter, wall_thickness, density=7850.0, youngs_modulus=207e9, poisson_ratio=0.3, contents_density=0.0, drag=None, added_mass=None, *, grade=None, coatings=None, lining=None))]
     #[allow(clippy::too_many_arguments)]
     fn pipe(
+        py: Python<'_>,
         outer_diameter: f64,
         wall_thickness: f64,
         density: f64,
@@ -71,6 +140,9 @@ impl Section {
         contents_density: f64,
         drag: Option<&Bound<'_, PyAny>>,
         added_mass: Option<&Bound<'_, PyAny>>,
+        grade: Option<String>,
+        coatings: Option<Vec<Coating>>,
+        lining: Option<Coating>,
     ) -> PyResult<Self> {
         let drag = drag
             .map(|v| array::<2>(v, "drag"))
@@ -80,18 +152,57 @@ impl Section {
             .map(|v| array::<2>(v, "added_mass"))
             .transpose()?
             .unwrap_or([0.0, 1.0]);
-        section::Section::pipe(
+        if let Some(grade) = &grade {
+            check_grade(py, grade)?;
+        }
+        let coatings: Vec<section::Coating> = coatings.unwrap_or_default().iter().map(|c| c.0).collect();
+        let mut pipe = section::Section::coated_pipe(
             outer_diameter,
             wall_thickness,
             density,
             youngs_modulus,
             poisson_ratio,
             contents_density,
+            &coatings,
+            lining.map(|l| l.0),
             drag,
             added_mass,
         )
-        .map(Section)
-        .map_err(to_py)
+        .map_err(to_py)?;
+        if let Some(wall) = pipe.wall.as_mut() {
+            wall.grade = grade;
+        }
+        Ok(Section(pipe))
+    }
+
+    /// Diameter over the coatings (m): drag, added mass, buoyancy, seabed contact and rollers refer to it;
+    /// `outer_diameter` for a section without coatings.
+    #[getter]
+    fn hydrodynamic_diameter(&self) -> f64 {
+        self.0.hydrodynamic_diameter
+    }
+    /// Submerged weight per unit length (N/m) in sea water of 1025 kg/m³ under g = 9.81 m/s²: (mass −
+    /// 1025·displaced_area)·g, contents included.
+    #[getter]
+    fn submerged_weight(&self) -> f64 {
+        (self.0.mass - SEA_WATER_DENSITY * self.0.displaced_area) * GRAVITY
+    }
+    /// The steel's grade of a section built by Section.pipe with one (e.g. "X65"); None otherwise.
+    #[getter]
+    fn grade(&self) -> Option<String> {
+        self.0.wall.as_ref().and_then(|w| w.grade.clone())
+    }
+    /// The external coatings of a section built by Section.pipe, from the steel outwards.
+    #[getter]
+    fn coatings(&self) -> Vec<Coating> {
+        self.0.wall.as_ref().map_or_else(Vec::new, |w| {
+            w.coatings.iter().copied().map(Coating).collect()
+        })
+    }
+    /// The internal lining of a section built by Section.pipe; None without one.
+    #[getter]
+    fn lining(&self) -> Option<Coating> {
+        self.0.wall.as_ref().and_then(|w| w.lining).map(Coating)
     }
 
     /// Axial stiffness EA (N).
@@ -127,27 +238,27 @@ impl Section {
     fn inertia(&self) -> (f64, f64, f64) {
         (self.0.inertia.x, self.0.inertia.y, self.0.inertia.z)
     }
-    /// Outer diameter (m).
     /// Wall thickness (m) of a section built by Section.pipe; None otherwise.
     #[getter]
     fn wall_thickness(&self) -> Option<f64> {
-        self.0.wall.map(|w| w.thickness)
+        self.0.wall.as_ref().map(|w| w.thickness)
     }
     /// Young's modulus (Pa) of a section built by Section.pipe; None otherwise.
     #[getter]
     fn youngs_modulus(&self) -> Option<f64> {
-        self.0.wall.map(|w| w.youngs_modulus)
+        self.0.wall.as_ref().map(|w| w.youngs_modulus)
     }
     /// Poisson's ratio of a section built by Section.pipe; None otherwise.
     #[getter]
     fn poisson_ratio(&self) -> Option<f64> {
-        self.0.wall.map(|w| w.poisson_ratio)
+        self.0.wall.as_ref().map(|w| w.poisson_ratio)
     }
     /// Density of the contents (kg/m³) of a section built by Section.pipe; None otherwise.
     #[getter]
     fn contents_density(&self) -> Option<f64> {
-        self.0.wall.map(|w| w.contents_density)
+        self.0.wall.as_ref().map(|w| w.contents_density)
     }
+    /// Outer diameter (m): the steel's for a Section.pipe (coatings not included).
     #[getter]
     fn outer_diameter(&self) -> f64 {
         self.0.outer_diameter

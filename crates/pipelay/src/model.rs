@@ -609,7 +609,7 @@ impl Model {
         let section = &self.rod.section;
         match &self.sea {
             Some(sea) => {
-                let k = 0.5 * sea.density * section.outer_diameter;
+                let k = 0.5 * sea.density * section.hydrodynamic_diameter;
                 (k * section.drag[0], k * section.drag[1])
             }
             None => (0.0, 0.0),

@@ -119,6 +119,9 @@ GRADES: dict[str, tuple[float, float]] = {
 }
 """Line pipe grade (API 5L / ISO 3183 L360 … L555, as tabulated by DNV) -> (SMYS, SMTS) in Pa."""
 
+DEFAULT_GRADE = "X65"
+"""The grade checked where neither the call nor the section names one."""
+
 GAMMA_M = 1.15
 """Material resistance factor γ_m for the ultimate limit state (DNV-ST-F101 Table 5-1)."""
 
@@ -260,7 +263,7 @@ class Utilisation:
 def dnv_st_f101(
     state: Any,
     *,
-    grade: str = "X65",
+    grade: str | None = None,
     wall_thickness: float | None = None,
     safety_class: str = "medium",
     internal_pressure: float = 0.0,
@@ -281,8 +284,9 @@ def dnv_st_f101(
         ``strain`` (n,) (largest longitudinal strain), ``water_depth`` (m, or None: no sea),
         ``water_density`` (kg/m³) and ``section`` with ``outer_diameter`` (m), ``wall_thickness`` (m or
         None), ``youngs_modulus`` (Pa or None: 207e9) and ``poisson_ratio`` (or None: 0.3).
-    grade : str
-        Line pipe grade, a key of `GRADES` ("X52" … "X80").
+    grade : str or None
+        Line pipe grade, a key of `GRADES` ("X52" … "X80"); None takes ``state.section.grade`` (the grade
+        given to ``pl.Section.pipe``), or "X65" where the section has none.
     wall_thickness : float or None
         Nominal wall thickness t (m); None takes ``state.section.wall_thickness``.
     safety_class : {"low", "medium", "high"}
@@ -311,7 +315,7 @@ def dnv_st_f101(
     pipelay.InputError
         If an argument or a state attribute is missing, of the wrong type, shape or value.
     """
-    grade_key = _choice("grade", grade, list(GRADES), "is not a known grade")
+    grade_key = None if grade is None else _choice("grade", grade, list(GRADES), "is not a known grade")
     safety = _choice("safety_class", safety_class, list(GAMMA_SC), "is not a safety class")
     fab = _choice("fabrication", fabrication, list(ALPHA_FAB), "is not a fabrication")
     cond = _choice("condition", condition, list(CONDITIONS), "is not a condition")
@@ -332,6 +336,9 @@ def dnv_st_f101(
     strain = np.abs(_state_array(state, "strain", (n,)))
 
     section = _attribute(state, "section", "state")
+    if grade_key is None:
+        section_grade = _attribute(section, "grade", required=False) or DEFAULT_GRADE
+        grade_key = _choice("state.section.grade", section_grade, list(GRADES), "is not a known grade")
     diameter = _number("state.section.outer_diameter", _attribute(section, "outer_diameter"), positive=True)
     if wall_thickness is None:
         section_t = _attribute(section, "wall_thickness", "state.section", required=False)

@@ -74,7 +74,7 @@ impl Assembler {
         let rollers = model.vessel.as_ref().and_then(|attachment| {
             RollerContact::new(
                 attachment,
-                model.rod.section.outer_diameter,
+                model.rod.section.hydrodynamic_diameter,
                 &model.rod.arc_lengths(),
             )
         });
@@ -131,7 +131,7 @@ impl Assembler {
             SeabedContact::new(
                 seabed,
                 &lengths,
-                model.rod.section.outer_diameter,
+                model.rod.section.hydrodynamic_diameter,
                 model.submerged_weight(),
             )
         });

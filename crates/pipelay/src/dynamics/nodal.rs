@@ -26,7 +26,7 @@ impl NodalProperties {
             section.added_mass[1]
                 * sea.density
                 * std::f64::consts::FRAC_PI_4
-                * section.outer_diameter.powi(2)
+                * section.hydrodynamic_diameter.powi(2)
         })
     }
 

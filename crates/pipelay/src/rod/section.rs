@@ -13,8 +13,12 @@ pub struct Section {
     pub mass: f64,
     /// Rotational inertia per unit length J_ρ = diag(J1, J2, J3) (kg·m).
     pub inertia: Vector3<f64>,
-    /// Outer diameter, to which drag and added mass refer (m).
+    /// Outer diameter of the structural tube (the steel's, m): the strain's outer fibre and the design checks
+    /// refer to it.
     pub outer_diameter: f64,
+    /// Diameter of the outer surface, over any coatings (m): drag, added mass, the default buoyancy area, the
+    /// seabed's contact width and the rollers refer to it. The outer diameter for a section without coatings.
+    pub hydrodynamic_diameter: f64,
     /// Buoyancy area per unit length (m²).
     pub displaced_area: f64,
     /// Morison drag coefficients (axial, normal).
@@ -28,7 +32,7 @@ pub struct Section {
 }
 
 /// The wall of a pipe section.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PipeWall {
     /// Wall thickness (m).
     pub thickness: f64,
@@ -37,6 +41,45 @@ pub struct PipeWall {
     pub poisson_ratio: f64,
     /// Density of the contents (kg/m³).
     pub contents_density: f64,
+    /// The steel's grade (e.g. "X65"), for the design checks; the engine does not read it.
+    pub grade: Option<String>,
+    /// The external coatings, from the steel outwards, and the internal lining.
+    pub coatings: Vec<Coating>,
+    pub lining: Option<Coating>,
+}
+
+/// A layer of a pipe outside its steel wall (a coating: anti-corrosion, concrete weight coat, insulation) or
+/// inside it (a lining).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coating {
+    /// Layer thickness (m).
+    pub thickness: f64,
+    /// Density (kg/m³).
+    pub density: f64,
+    /// Young's modulus the layer adds to the axial and bending stiffness (Pa): 0 (the usual choice for
+    /// concrete, whose cracked coat carries little) adds none.
+    pub youngs_modulus: f64,
+}
+
+impl Coating {
+    /// A layer of `thickness` (m) and `density` (kg/m³) that adds no stiffness.
+    pub fn new(thickness: f64, density: f64) -> Self {
+        Coating {
+            thickness,
+            density,
+            youngs_modulus: 0.0,
+        }
+    }
+}
+
+/// An annulus between diameters `inner` and `outer` (m): its area A = π/4(D² − d²) and second moment of area
+/// I = π/64(D⁴ − d⁴).
+fn annulus(inner: f64, outer: f64) -> (f64, f64) {
+    let pi = std::f64::consts::PI;
+    (
+        pi / 4.0 * (outer * outer - inner * inner),
+        pi / 64.0 * (outer.powi(4) - inner.powi(4)),
+    )
 }
 
 /// Hydrodynamic and inertial data of a section that are optional when building one.
@@ -103,6 +146,7 @@ impl Section {
             mass,
             inertia: Vector3::from(extras.inertia),
             outer_diameter: extras.outer_diameter,
+            hydrodynamic_diameter: extras.outer_diameter,
             displaced_area,
             drag: extras.drag,
             added_mass: extras.added_mass,
@@ -126,6 +170,37 @@ impl Section {
         drag: [f64; 2],
         added_mass: [f64; 2],
     ) -> Result<Self> {
+        Self::coated_pipe(
+            outer_diameter,
+            wall_thickness,
+            density,
+            youngs_modulus,
+            poisson_ratio,
+            contents_density,
+            &[],
+            None,
+            drag,
+            added_mass,
+        )
+    }
+
+    /// A pipe as [`Section::pipe`] with external `coatings` (listed from the steel outwards) and an internal
+    /// `lining`. Each layer adds its mass ρA and rotational inertia ρ·diag(J, I, I), and with a Young's modulus
+    /// E_c its stiffness E_c A and E_c I (shear and torsion stay the steel's); the contents fill the lining's
+    /// bore. The coatings' outer surface is the hydrodynamic diameter D_h, and the buoyancy area π/4 D_h².
+    #[allow(clippy::too_many_arguments)]
+    pub fn coated_pipe(
+        outer_diameter: f64,
+        wall_thickness: f64,
+        density: f64,
+        youngs_modulus: f64,
+        poisson_ratio: f64,
+        contents_density: f64,
+        coatings: &[Coating],
+        lining: Option<Coating>,
+        drag: [f64; 2],
+        added_mass: [f64; 2],
+    ) -> Result<Self> {
         positive("outer_diameter", outer_diameter, "m")?;
         positive("wall_thickness", wall_thickness, "m")?;
         if wall_thickness > 0.5 * outer_diameter {
@@ -146,39 +221,80 @@ impl Section {
             ));
         }
         non_negative("contents_density", contents_density, "kg/m³")?;
+        for (name, layer) in coatings
+            .iter()
+            .map(|c| ("coatings", c))
+            .chain(lining.iter().map(|l| ("lining", l)))
+        {
+            positive(&format!("{name} thickness"), layer.thickness, "m")?;
+            non_negative(&format!("{name} density"), layer.density, "kg/m³")?;
+            non_negative(
+                &format!("{name} youngs_modulus"),
+                layer.youngs_modulus,
+                "Pa",
+            )?;
+        }
         let d_o = outer_diameter;
         let d_i = outer_diameter - 2.0 * wall_thickness;
+        let bore = match lining {
+            Some(lining) if 2.0 * lining.thickness >= d_i => {
+                return Err(crate::error::Error::input(
+                    "lining thickness",
+                    lining.thickness,
+                    format!("must be < the steel's inner radius {} m", 0.5 * d_i),
+                ))
+            }
+            Some(lining) => d_i - 2.0 * lining.thickness,
+            None => d_i,
+        };
         let pi = std::f64::consts::PI;
-        let area = pi / 4.0 * (d_o * d_o - d_i * d_i);
-        let second_moment = pi / 64.0 * (d_o.powi(4) - d_i.powi(4));
+        let (area, second_moment) = annulus(d_i, d_o);
         let shear_modulus = youngs_modulus / (2.0 * (1.0 + poisson_ratio));
         let shear_area = 0.5 * area;
-        let mass = density * area + contents_density * pi / 4.0 * d_i * d_i;
+        let mut mass = density * area + contents_density * pi / 4.0 * bore * bore;
+        let mut inertia = density * second_moment;
+        let (mut axial, mut bending) = (youngs_modulus * area, youngs_modulus * second_moment);
+        // The layers from the bore outwards: the lining, then the coatings.
+        let mut layers = Vec::with_capacity(coatings.len() + 1);
+        layers.extend(lining.map(|lining| (bore, d_i, lining)));
+        let mut inner = d_o;
+        for coating in coatings {
+            let outer = inner + 2.0 * coating.thickness;
+            layers.push((inner, outer, *coating));
+            inner = outer;
+        }
+        for (inside, outside, layer) in layers {
+            let (layer_area, layer_moment) = annulus(inside, outside);
+            mass += layer.density * layer_area;
+            inertia += layer.density * layer_moment;
+            axial += layer.youngs_modulus * layer_area;
+            bending += layer.youngs_modulus * layer_moment;
+        }
         let extras = SectionExtras {
-            inertia: [
-                density * 2.0 * second_moment,
-                density * second_moment,
-                density * second_moment,
-            ],
-            outer_diameter: d_o,
+            inertia: [2.0 * inertia, inertia, inertia],
+            outer_diameter: inner,
             displaced_area: None,
             drag,
             added_mass,
             rotational_damping: [0.0; 3],
         };
         let mut section = Section::new(
-            youngs_modulus * area,
+            axial,
             [shear_modulus * shear_area; 2],
             shear_modulus * 2.0 * second_moment,
-            [youngs_modulus * second_moment; 2],
+            [bending; 2],
             mass,
             extras,
         )?;
+        section.outer_diameter = d_o;
         section.wall = Some(PipeWall {
             thickness: wall_thickness,
             youngs_modulus,
             poisson_ratio,
             contents_density,
+            grade: None,
+            coatings: coatings.to_vec(),
+            lining,
         });
         Ok(section)
     }
@@ -203,5 +319,147 @@ impl Section {
     /// C_R as a matrix.
     pub fn c_r(&self) -> Matrix3<f64> {
         Matrix3::from_diagonal(&self.rotational_stiffness)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// A 24-inch pipe with 3 mm of 3LPE and 60 mm of concrete, lined and flooded: mass, diameters, buoyancy
+    /// area and inertia against the layers summed by hand; the steel alone carries the stiffness.
+    #[test]
+    fn coatings_and_lining_add_mass_and_diameter_but_no_stiffness() {
+        let (d, t) = (0.6096, 0.0206);
+        let (pe, concrete) = (Coating::new(0.003, 940.0), Coating::new(0.06, 3040.0));
+        let lining = Coating::new(0.005, 1100.0);
+        let bare =
+            Section::pipe(d, t, 7850.0, 207e9, 0.3, 0.0, [0.0, 1.0], [0.0, 1.0]).expect("pipe");
+        let coated = Section::coated_pipe(
+            d,
+            t,
+            7850.0,
+            207e9,
+            0.3,
+            1025.0,
+            &[pe, concrete],
+            Some(lining),
+            [0.0, 1.0],
+            [0.0, 1.0],
+        )
+        .expect("coated pipe");
+        let ring = |inner: f64, outer: f64| PI / 4.0 * (outer * outer - inner * inner);
+        let moment = |inner: f64, outer: f64| PI / 64.0 * (outer.powi(4) - inner.powi(4));
+        let (d_i, d_pe) = (d - 2.0 * t, d + 0.006);
+        let (d_h, bore) = (d_pe + 0.12, d - 2.0 * t - 0.01);
+        let mass = 7850.0 * ring(d_i, d)
+            + 940.0 * ring(d, d_pe)
+            + 3040.0 * ring(d_pe, d_h)
+            + 1100.0 * ring(bore, d_i)
+            + 1025.0 * PI / 4.0 * bore * bore;
+        assert!(
+            (coated.mass - mass).abs() < 1e-9 * mass,
+            "{} vs {mass}",
+            coated.mass
+        );
+        assert_eq!(coated.outer_diameter, d);
+        assert!((coated.hydrodynamic_diameter - d_h).abs() < 1e-15);
+        assert!((coated.displaced_area - PI / 4.0 * d_h * d_h).abs() < 1e-15);
+        let inertia = 7850.0 * moment(d_i, d)
+            + 940.0 * moment(d, d_pe)
+            + 3040.0 * moment(d_pe, d_h)
+            + 1100.0 * moment(bore, d_i);
+        assert!((coated.inertia.y - inertia).abs() < 1e-9 * inertia);
+        assert!((coated.inertia.x - 2.0 * inertia).abs() < 1e-9 * inertia);
+        assert_eq!(coated.translational_stiffness, bare.translational_stiffness);
+        assert_eq!(coated.rotational_stiffness, bare.rotational_stiffness);
+        let wall = coated.wall.expect("wall");
+        assert_eq!((wall.thickness, wall.contents_density), (t, 1025.0));
+        assert_eq!(
+            (wall.coatings, wall.lining),
+            (vec![pe, concrete], Some(lining))
+        );
+    }
+
+    /// A coating given a Young's modulus adds E_c A and E_c I of its annulus to EA and EI, not to GJ.
+    #[test]
+    fn a_stiff_coating_adds_its_stiffness() {
+        let (d, t) = (0.5, 0.02);
+        let stiff = Coating {
+            youngs_modulus: 30e9,
+            ..Coating::new(0.05, 2400.0)
+        };
+        let bare = Section::pipe(d, t, 7850.0, 207e9, 0.3, 0.0, [0.0; 2], [0.0; 2]).expect("pipe");
+        let coated = Section::coated_pipe(
+            d,
+            t,
+            7850.0,
+            207e9,
+            0.3,
+            0.0,
+            &[stiff],
+            None,
+            [0.0; 2],
+            [0.0; 2],
+        )
+        .expect("pipe");
+        let (area, moment) = (
+            PI / 4.0 * (0.6_f64.powi(2) - d * d),
+            PI / 64.0 * (0.6_f64.powi(4) - d.powi(4)),
+        );
+        let ea = bare.translational_stiffness.x + 30e9 * area;
+        let ei = bare.rotational_stiffness.y + 30e9 * moment;
+        assert!((coated.translational_stiffness.x - ea).abs() < 1e-9 * ea);
+        assert!((coated.rotational_stiffness.z - ei).abs() < 1e-9 * ei);
+        assert_eq!(coated.rotational_stiffness.x, bare.rotational_stiffness.x);
+    }
+
+    /// A pipe without layers is the coated pipe without layers, to the bit; bad layers name themselves.
+    #[test]
+    fn bare_pipes_are_unchanged_and_bad_layers_are_input_errors() {
+        let bare = Section::pipe(
+            0.6,
+            0.015,
+            7850.0,
+            207e9,
+            0.3,
+            1025.0,
+            [0.0, 1.2],
+            [0.0, 1.0],
+        )
+        .expect("pipe");
+        assert_eq!(bare.hydrodynamic_diameter, bare.outer_diameter);
+        let coated = |coatings: &[Coating], lining: Option<Coating>| {
+            Section::coated_pipe(
+                0.6,
+                0.015,
+                7850.0,
+                207e9,
+                0.3,
+                1025.0,
+                coatings,
+                lining,
+                [0.0, 1.2],
+                [0.0, 1.0],
+            )
+        };
+        assert_eq!(coated(&[], None).expect("pipe"), bare);
+        for (coatings, lining, named) in [
+            (vec![Coating::new(0.0, 3040.0)], None, "coatings thickness"),
+            (
+                vec![Coating::new(-0.01, 3040.0)],
+                None,
+                "coatings thickness",
+            ),
+            (vec![Coating::new(0.05, f64::NAN)], None, "coatings density"),
+            (vec![], Some(Coating::new(0.3, 1000.0)), "lining thickness"),
+            (vec![], Some(Coating::new(0.0, 1000.0)), "lining thickness"),
+        ] {
+            let error = coated(&coatings, lining)
+                .expect_err("bad layer")
+                .to_string();
+            assert!(error.starts_with(named), "{error}");
+        }
     }
 }

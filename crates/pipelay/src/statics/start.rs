@@ -110,7 +110,7 @@ fn roller_path(model: &Model, held: &SupportTarget) -> Vec<(f64, Vector3<f64>)> 
     };
     let body = rotation.to_rotation_matrix().into_inner() * attachment.angle;
     let hang_off = attachment.hang_off();
-    let radius = 0.5 * model.rod.section.outer_diameter;
+    let radius = 0.5 * model.rod.section.hydrodynamic_diameter;
     let mut path = vec![(0.0, held.position)];
     for roller in attachment.rollers() {
         let top = roller.centre + (roller.radius + radius) * roller.normal;
