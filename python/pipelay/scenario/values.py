@@ -8,6 +8,11 @@ the tables share (`POINT`, `END`, ...), `Table`, the base of every model (unknow
 helpers every message of the format is worded with (`show`, `join`, `suggest`, and `rule`, the error a
 validator raises for a rule that spans keys).
 
+What a key means is its field's `description`; a key the file may leave out for the API call's default
+applies is declared with `api` (the model holds None, the field records that default), and a table that
+several models make up (a union chosen by `kind` or by its keys) is described by the `About` in its union's
+`Annotated`. The scenario reference and the JSON Schema are made from these (`pipelay.scenario.schema`).
+
 Imports nothing of pipelay.
 """
 
@@ -19,12 +24,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, ClassVar, Literal
 
-from pydantic import BaseModel, ConfigDict, model_validator
+from pydantic import BaseModel, ConfigDict, Field, model_validator
 from pydantic_core import PydanticCustomError, core_schema
 
 __all__ = [
     "AXES",
     "COEFFICIENTS",
+    "DEFAULT_WORDS",
     "END",
     "ETA",
     "INT64",
@@ -36,6 +42,7 @@ __all__ = [
     "START",
     "VELOCITY",
     "XYZ",
+    "About",
     "Choice",
     "Either",
     "End",
@@ -46,6 +53,7 @@ __all__ = [
     "Text",
     "Value",
     "Vector",
+    "api",
     "gains",
     "join",
     "number_or_vector",
@@ -391,6 +399,35 @@ COEFFICIENTS = Vector(2, Number(ge=0), PAIR)
 NODE = Either(
     Integer(), END, _is_text, 'a node index (an integer; negative counts from the end) or "A" / "B"'
 )
+
+
+# Documenting keys and tables: what a key means and the default the API gives it; what a table is.
+
+DEFAULT_WORDS = "x-default-words"
+"""The field metadata (`json_schema_extra`) key of a default that no single value states (`api(words=...)`);
+`pipelay.scenario.json_schema` leaves it out of the schema."""
+
+
+def api(meaning: str, default: object = None, *, words: str = "") -> Any:
+    """A key the file may leave out, the default of the API call it maps onto applying: the field's default is
+    None (the key is then not passed) and its metadata records the API's default, `default` (a TOML value,
+    `json_schema_extra={"default": ...}`; None: the call has none either) or, where no single value states it,
+    `words` (e.g. "π/4·d²"). `meaning` is the field's description."""
+    extra: dict[str, Any] = {}
+    if default is not None:
+        extra["default"] = default
+    if words:
+        extra[DEFAULT_WORDS] = words
+    return Field(None, description=meaning, json_schema_extra=extra or None)
+
+
+@dataclass(frozen=True)
+class About:
+    """What a table is that several models make up (the union of its kinds, or of the ways to give it), as
+    metadata of the union's `Annotated`: `text`'s first paragraph is the table's one-line description, the
+    rest notes for the reference. A table of one model is described by that model's docstring."""
+
+    text: str
 
 
 # Tables: the base of every model.
