@@ -1,8 +1,12 @@
 """The scenario format as pydantic models: one model per table (and per kind of a table whose keys depend
 on `kind`), its fields the keyword arguments of the API call the table maps onto, up to the whole file
-(`ScenarioFile`). `pipelay.scenario`'s docstring is the human reference of every key; each field's type
-carries the `Value` (`pipelay.scenario.values`) it is checked with, and a rule that spans keys raises
-`rule(message, key)` from a validator.
+(`ScenarioFile`). Each field's type carries the `Value` (`pipelay.scenario.values`) it is checked with, and a
+rule that spans keys raises `rule(message, key)` from a validator.
+
+The models are the format's reference too, stated once: a field's `description` is what the key means, `api`
+records the default of a key the API call supplies, a model's docstring says what its table is (its first
+paragraph in one line, the rest notes), and the `About` of a union what a table of several models is.
+`pipelay.scenario.schema.reference_tables` reads them for the Scenario reference page and the JSON Schema.
 
 This module has the models of the pipe, its supports and loads, the sea, the solver and the outputs, and the
 file's; those of the vessel and what works with it are in `pipelay.scenario.models_vessel`, and this module
@@ -15,7 +19,7 @@ from __future__ import annotations
 
 from typing import Annotated, ClassVar, Literal
 
-from pydantic import Discriminator, Tag, model_validator
+from pydantic import Discriminator, Field, Tag, model_validator
 
 from pipelay.scenario.models_vessel import (
     ArcStinger,
@@ -46,6 +50,7 @@ from pipelay.scenario.values import (
     START,
     VELOCITY,
     XYZ,
+    About,
     Choice,
     End,
     Integer,
@@ -56,6 +61,7 @@ from pipelay.scenario.values import (
     Vector,
     _having,
     _table_or,
+    api,
     number_or_vector,
     rule,
 )
@@ -117,22 +123,35 @@ MAX_ELEMENTS = 1_000_000
 
 
 class Gravity(Table):
-    """`[gravity]`: the acceleration of gravity (`pl.Model(rod, sea, gravity)`)."""
+    """Instead of the top-level `gravity` (`pl.Model(rod, sea, gravity)`)."""
 
-    acceleration: Annotated[float, Number("m/s²", ge=0)]
+    acceleration: Annotated[float, Number("m/s²", ge=0)] = Field(
+        description="acceleration of gravity along +e3, ≥ 0"
+    )
 
 
 class Pipe(Table):
-    """`[pipe]`: `pl.Section.pipe`."""
+    """`pl.Section.pipe`: a pipe from its geometry and material.
 
-    outer_diameter: Annotated[float, POSITIVE_LENGTH]
-    wall_thickness: Annotated[float, POSITIVE_LENGTH]
-    density: Annotated[float | None, Number("kg/m³", gt=0)] = None
-    youngs_modulus: Annotated[float | None, Number("Pa", gt=0)] = None
-    poisson_ratio: Annotated[float | None, Number(gt=-1, lt=0.5)] = None
-    contents_density: Annotated[float | None, Number("kg/m³", ge=0)] = None
-    drag: Annotated[list[float] | None, COEFFICIENTS] = None
-    added_mass: Annotated[list[float] | None, COEFFICIENTS] = None
+    Exactly one of `[pipe]` and `[section]`.
+    """
+
+    outer_diameter: Annotated[float, POSITIVE_LENGTH] = Field(description="outer diameter, > 0")
+    wall_thickness: Annotated[float, POSITIVE_LENGTH] = Field(
+        description="wall thickness, > 0 and ≤ outer_diameter / 2"
+    )
+    density: Annotated[float | None, Number("kg/m³", gt=0)] = api("density of the wall material, > 0", 7850)
+    youngs_modulus: Annotated[float | None, Number("Pa", gt=0)] = api("Young's modulus, > 0", 207e9)
+    poisson_ratio: Annotated[float | None, Number(gt=-1, lt=0.5)] = api("Poisson's ratio, in (−1, 0.5)", 0.3)
+    contents_density: Annotated[float | None, Number("kg/m³", ge=0)] = api(
+        "density of the contents (1025: flooded), ≥ 0", 0
+    )
+    drag: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "Morison drag coefficients [axial, normal], ≥ 0", [0, 1]
+    )
+    added_mass: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "added-mass coefficients [axial, normal], ≥ 0", [0, 1]
+    )
 
     @model_validator(mode="after")
     def thin_wall(self) -> Pipe:
@@ -145,29 +164,49 @@ class Pipe(Table):
 
 
 class Section(Table):
-    """`[section]`: `pl.Section`."""
+    """`pl.Section`: the cross-section's properties directly, instead of `[pipe]`."""
 
-    EA: Annotated[float, Number("N", gt=0)]
-    GA: Annotated[float | list[float], number_or_vector(2, Number("N", gt=0), AXES)]
-    GJ: Annotated[float, Number("N·m²", gt=0)]
-    EI: Annotated[float | list[float], number_or_vector(2, Number("N·m²", gt=0), AXES)]
-    mass: Annotated[float, Number("kg/m", gt=0)]
-    inertia: Annotated[list[float] | None, Vector(3, Number("kg·m", ge=0), "[J1, J2, J3]")] = None
-    outer_diameter: Annotated[float | None, Number("m", ge=0)] = None
-    displaced_area: Annotated[float | None, Number("m²", ge=0)] = None
-    drag: Annotated[list[float] | None, COEFFICIENTS] = None
-    added_mass: Annotated[list[float] | None, COEFFICIENTS] = None
+    EA: Annotated[float, Number("N", gt=0)] = Field(description="axial stiffness, > 0")
+    GA: Annotated[float | list[float], number_or_vector(2, Number("N", gt=0), AXES)] = Field(
+        description="shear stiffness, > 0: a number or [axis 2, axis 3]"
+    )
+    GJ: Annotated[float, Number("N·m²", gt=0)] = Field(description="torsional stiffness, > 0")
+    EI: Annotated[float | list[float], number_or_vector(2, Number("N·m²", gt=0), AXES)] = Field(
+        description="bending stiffness, > 0: a number or [axis 2, axis 3]"
+    )
+    mass: Annotated[float, Number("kg/m", gt=0)] = Field(
+        description="mass per unit length, contents included, > 0"
+    )
+    inertia: Annotated[list[float] | None, Vector(3, Number("kg·m", ge=0), "[J1, J2, J3]")] = api(
+        "rotational inertia per length [J1, J2, J3], ≥ 0", [0, 0, 0]
+    )
+    outer_diameter: Annotated[float | None, Number("m", ge=0)] = api(
+        "diameter that drag and added mass refer to, ≥ 0", 0
+    )
+    displaced_area: Annotated[float | None, Number("m²", ge=0)] = api(
+        "buoyancy area per length (d: outer_diameter), ≥ 0", words="π/4·d²"
+    )
+    drag: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "Morison drag coefficients [axial, normal], ≥ 0", [0, 0]
+    )
+    added_mass: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "added-mass coefficients [axial, normal], ≥ 0", [0, 0]
+    )
     rotational_damping: Annotated[
         float | list[float] | None, number_or_vector(3, Number("N·m·s/m", ge=0), "[t1, t2, t3]")
-    ] = None
+    ] = api("a number or [t1, t2, t3], ≥ 0", 0)
 
 
 class StraightRod(Table):
     """`[rod]` with start, end and elements: `pl.Rod.straight`."""
 
-    start: Annotated[list[float], POINT]
-    end: Annotated[list[float], POINT]
-    elements: Annotated[int, Integer(1, MAX_ELEMENTS)]
+    start: Annotated[list[float], POINT] = Field(description="first node (end A) [x, y, z] of a straight rod")
+    end: Annotated[list[float], POINT] = Field(
+        description="last node (end B) [x, y, z], distinct from `start`"
+    )
+    elements: Annotated[int, Integer(1, MAX_ELEMENTS)] = Field(
+        description="number of equal elements n, an integer in [1, 1000000]"
+    )
 
 
 class NodesRod(Table):
@@ -176,38 +215,53 @@ class NodesRod(Table):
     conflicts: ClassVar[dict[str, str]] = dict.fromkeys(
         ("start", "end", "elements"), "conflicts with rod.nodes; give either nodes or start, end and elements"
     )
-    nodes: Annotated[list[list[float]], Matrix(None, POINT, at_least=2)]
+    nodes: Annotated[list[list[float]], Matrix(None, POINT, at_least=2)] = Field(
+        description="the nodes [[x, y, z], ...] from end A to end B, ≥ 2 of them"
+    )
 
 
 Rod = Annotated[
     Annotated[StraightRod, Tag("straight")] | Annotated[NodesRod, Tag("nodes")],
     Discriminator(_having("nodes", "nodes", "straight")),
+    About("`pl.Rod.straight(start, end, elements)` or `pl.Rod(nodes)`: the stress-free reference."),
 ]
+
+
+_CurrentStart = Annotated[float | None, START, api("time the current starts", 0)]
+"""`start`, a key of every kind of current."""
 
 
 class UniformCurrent(Table):
     """`[sea.current]` of kind "uniform": `pl.Current.uniform`."""
 
     kind: Literal["uniform"]
-    velocity: Annotated[list[float], Vector(3, Number("m/s"), VELOCITY)]
-    start: Annotated[float | None, START] = None
+    velocity: Annotated[list[float], Vector(3, Number("m/s"), VELOCITY)] = Field(
+        description="[vx, vy, vz] in e at every depth"
+    )
+    start: _CurrentStart = None
 
 
 class LinearCurrent(Table):
     """`[sea.current]` of kind "linear": `pl.Current.linear`."""
 
     kind: Literal["linear"]
-    surface_velocity: Annotated[list[float], Vector(3, Number("m/s"), VELOCITY)]
-    start: Annotated[float | None, START] = None
+    surface_velocity: Annotated[list[float], Vector(3, Number("m/s"), VELOCITY)] = Field(
+        description="[vx, vy, vz] at the surface, 0 at end A's depth"
+    )
+    start: _CurrentStart = None
 
 
 class ProfileCurrent(Table):
     """`[sea.current]` of kind "profile": `pl.Current.profile`."""
 
     kind: Literal["profile"]
-    depths: Annotated[list[float], Vector(None, Number("m"), at_least=1)]
-    velocities: Annotated[list[list[float]], Matrix(None, Vector(3, Number("m/s"), VELOCITY), at_least=1)]
-    start: Annotated[float | None, START] = None
+    depths: Annotated[list[float], Vector(None, Number("m"), at_least=1)] = Field(
+        description="depths below the surface, increasing"
+    )
+    velocities: Annotated[list[list[float]], Matrix(None, Vector(3, Number("m/s"), VELOCITY), at_least=1)] = (
+        Field(description="one [vx, vy, vz] per depth, interpolated")
+    )
+    start: _CurrentStart = None
 
     @model_validator(mode="after")
     def one_velocity_per_depth(self) -> ProfileCurrent:
@@ -218,34 +272,44 @@ class ProfileCurrent(Table):
         return self
 
 
-Current = Annotated[UniformCurrent | LinearCurrent | ProfileCurrent, Discriminator("kind")]
+Current = Annotated[
+    UniformCurrent | LinearCurrent | ProfileCurrent,
+    Discriminator("kind"),
+    About("`pl.Current.uniform`, `.linear` or `.profile`, chosen by `kind`."),
+]
 
 
 class FlatBathymetry(Table):
     """`[sea.seabed.bathymetry]` of kind "flat": `pl.Bathymetry.flat`."""
 
     kind: Literal["flat"]
-    z: Annotated[float | None, Number("m")] = None
+    z: Annotated[float | None, Number("m")] = api("elevation of the seabed", 0)
 
 
 class PlaneBathymetry(Table):
     """`[sea.seabed.bathymetry]` of kind "plane": `pl.Bathymetry.plane`."""
 
     kind: Literal["plane"]
-    z: Annotated[float | None, Number("m")] = None
-    gradient: Annotated[list[float] | None, Vector(2, Number(), "[dz/dx, dz/dy]")] = None
+    z: Annotated[float | None, Number("m")] = api("elevation at x = y = 0", 0)
+    gradient: Annotated[list[float] | None, Vector(2, Number(), "[dz/dx, dz/dy]")] = api(
+        "[dz/dx, dz/dy] (a positive value deepens along that axis)", [0, 0]
+    )
 
 
 class GridBathymetry(Table):
     """`[sea.seabed.bathymetry]` of kind "grid": `pl.Bathymetry.grid`."""
 
     kind: Literal["grid"]
-    x: Annotated[list[float], Vector(None, Number("m"), at_least=2)]
-    y: Annotated[list[float], Vector(None, Number("m"), at_least=2)]
+    x: Annotated[list[float], Vector(None, Number("m"), at_least=2)] = Field(
+        description="strictly increasing x of the grid points"
+    )
+    y: Annotated[list[float], Vector(None, Number("m"), at_least=2)] = Field(
+        description="strictly increasing y of the grid points"
+    )
     z: Annotated[
         list[list[float]],
         Matrix(None, Vector(None, Number("m")), text="rows of numbers, one row of len(y) per x (m)"),
-    ]
+    ] = Field(description="elevations, rows of len(y) numbers, one row per x")
 
     @model_validator(mode="after")
     def one_row_per_x(self) -> GridBathymetry:
@@ -259,53 +323,94 @@ class GridBathymetry(Table):
         return self
 
 
-Bathymetry = Annotated[FlatBathymetry | PlaneBathymetry | GridBathymetry, Discriminator("kind")]
+Bathymetry = Annotated[
+    FlatBathymetry | PlaneBathymetry | GridBathymetry,
+    Discriminator("kind"),
+    About(
+        """`pl.Bathymetry.flat`, `.plane` or `.grid`, chosen by `kind`; default flat z = 0.
+
+        Elevations z are in frame e (e3 down: larger z is deeper); the seabed must lie below the surface
+        z = −depth."""
+    ),
+]
 
 
 class Seabed(Table):
-    """`[sea.seabed]`: `pl.Seabed`."""
+    """`pl.Seabed`: contact with the seabed (without it the pipe passes through the bottom)."""
 
-    stiffness: Annotated[float | None, Number("Pa/m", gt=0)] = None
-    damping: Annotated[float | None, Number("Pa·s/m", ge=0)] = None
-    friction: Annotated[float | list[float] | None, number_or_vector(2, Number(ge=0), "[axial, lateral]")] = (
-        None
+    stiffness: Annotated[float | None, Number("Pa/m", gt=0)] = api(
+        "normal force per length = stiffness · d · penetration of the centreline, > 0", 1e5
     )
-    mobilisation: Annotated[float | None, Number("m", gt=0)] = None
+    damping: Annotated[float | None, Number("Pa·s/m", ge=0)] = api("normal damping (dynamics), ≥ 0", 0)
+    friction: Annotated[float | list[float] | None, number_or_vector(2, Number(ge=0), "[axial, lateral]")] = (
+        api("Coulomb coefficient, a number or [axial, lateral], ≥ 0", 0)
+    )
+    mobilisation: Annotated[float | None, Number("m", gt=0)] = api(
+        "sliding distance at which friction reaches μN (pipe under its own weight), > 0", 0.01
+    )
     bathymetry: Bathymetry | None = None
+
+
+_WaveDirection = Annotated[
+    float | None, Number("rad"), api("direction the waves travel toward, from e1 toward e2", 0)
+]
+"""`direction`, a key of every kind of waves."""
 
 
 class RegularWaves(Table):
     """`[sea.waves]` of kind "regular": `pl.Waves.regular`."""
 
     kind: Literal["regular"]
-    height: Annotated[float, POSITIVE_LENGTH]
-    period: Annotated[float, Number("s", gt=0)]
-    direction: Annotated[float | None, Number("rad")] = None
-    ramp: Annotated[float | None, Number("s", ge=0)] = None
+    height: Annotated[float, POSITIVE_LENGTH] = Field(description="crest-to-trough height, > 0")
+    period: Annotated[float, Number("s", gt=0)] = Field(description="period, > 0")
+    direction: _WaveDirection = None
+    ramp: Annotated[float | None, Number("s", ge=0)] = api(
+        "time over which the waves grow smoothly from zero, ≥ 0", words="one period"
+    )
 
 
 class JonswapWaves(Table):
     """`[sea.waves]` of kind "jonswap": `pl.Waves.jonswap`."""
 
     kind: Literal["jonswap"]
-    hs: Annotated[float, POSITIVE_LENGTH]
-    tp: Annotated[float, Number("s", gt=0)]
-    gamma: Annotated[float | None, Number(ge=1)] = None
-    direction: Annotated[float | None, Number("rad")] = None
-    seed: Annotated[int | None, Integer(0)] = None
-    components: Annotated[int | None, Integer(1, 100_000)] = None
-    spreading: Annotated[float | None, Number(gt=0, le=1000)] = None
-    ramp: Annotated[float | None, Number("s", ge=0)] = None
+    hs: Annotated[float, POSITIVE_LENGTH] = Field(description="significant wave height, > 0")
+    tp: Annotated[float, Number("s", gt=0)] = Field(description="peak period, > 0")
+    gamma: Annotated[float | None, Number(ge=1)] = api("peak enhancement factor, ≥ 1", 3.3)
+    direction: _WaveDirection = None
+    seed: Annotated[int | None, Integer(0)] = api(
+        "seed of the random phases (and directions), an integer ≥ 0", 0
+    )
+    components: Annotated[int | None, Integer(1, 100_000)] = api(
+        "number of components, an integer in [1, 100000]", 200
+    )
+    spreading: Annotated[float | None, Number(gt=0, le=1000)] = api(
+        "cos^2s spreading exponent s, > 0 and ≤ 1000; none: long-crested"
+    )
+    ramp: Annotated[float | None, Number("s", ge=0)] = api(
+        "time over which the waves grow smoothly from zero, ≥ 0",
+        words="about tp: the period of the largest component",
+    )
 
 
-Waves = Annotated[RegularWaves | JonswapWaves, Discriminator("kind")]
+Waves = Annotated[
+    RegularWaves | JonswapWaves,
+    Discriminator("kind"),
+    About(
+        """`pl.Waves.regular` or `.jonswap`, chosen by `kind`: linear (Airy) waves.
+
+        They load the pipe (Morison drag and inertia in the waves' particle kinematics) and, through its RAOs,
+        move the vessel at wave frequency. Without `[sea.waves]` the sea is calm."""
+    ),
+]
 
 
 class Sea(Table):
-    """`[sea]`: `pl.Sea`."""
+    """`pl.Sea`; without it the pipe hangs in air (no buoyancy, drag or added mass)."""
 
-    depth: Annotated[float, POSITIVE_LENGTH]
-    density: Annotated[float | None, Number("kg/m³", ge=0)] = None
+    depth: Annotated[float, POSITIVE_LENGTH] = Field(
+        description="water depth, > 0: the surface is z = −depth"
+    )
+    density: Annotated[float | None, Number("kg/m³", ge=0)] = api("water density, ≥ 0", 1025)
     current: Current | None = None
     seabed: Seabed | None = None
     waves: Waves | None = None
@@ -324,21 +429,27 @@ def _turns(kind: str) -> dict[str, str]:
     return {"rotation": f'only kind = "clamp" holds a rotation; a {kind} leaves it free'}
 
 
+_HeldAt = Annotated[list[float] | None, POINT, api("where the end is held [x, y, z]", words="reference node")]
+"""`position`, a key of the supports that hold their end still."""
+
+
 class Clamp(Table):
-    """`[supports.A]` or `[supports.B]` of kind "clamp": `model.clamp`."""
+    """`[supports.A]` or `[supports.B]` of kind "clamp": `model.clamp`, position and rotation held."""
 
     conflicts: ClassVar[dict[str, str]] = _still("clamp")
     kind: Literal["clamp"]
-    position: Annotated[list[float] | None, POINT] = None
-    rotation: Annotated[list[list[float]] | None, Matrix(3, Vector(3, Number()))] = None
+    position: _HeldAt = None
+    rotation: Annotated[list[list[float]] | None, Matrix(3, Vector(3, Number()))] = api(
+        "R_t^e held, 3 rows of 3 numbers", words="reference frame"
+    )
 
 
 class Pin(Table):
-    """`[supports.A]` or `[supports.B]` of kind "pin": `model.pin`."""
+    """`[supports.A]` or `[supports.B]` of kind "pin": `model.pin`, position held, rotation free."""
 
     conflicts: ClassVar[dict[str, str]] = _turns("pin") | _still("pin")
     kind: Literal["pin"]
-    position: Annotated[list[float] | None, POINT] = None
+    position: _HeldAt = None
 
 
 class Drive(Table):
@@ -346,18 +457,30 @@ class Drive(Table):
 
     conflicts: ClassVar[dict[str, str]] = _turns("drive")
     kind: Literal["drive"]
-    position: Annotated[list[float] | None, POINT] = None
-    amplitude: Annotated[list[float] | None, POINT] = None
-    period: Annotated[float, Number("s", gt=0)]
-    phase: Annotated[list[float] | None, Vector(3, Number("rad"), XYZ)] = None
-    ramp: Annotated[float | None, Number("s", ge=0)] = None
+    position: Annotated[list[float] | None, POINT] = api(
+        "the centre of the motion [x, y, z]", words="reference node"
+    )
+    amplitude: Annotated[list[float] | None, POINT] = api(
+        "x(t) = position + amplitude · r(t) · sin(2πt/period + phase)", [0, 0, 0]
+    )
+    period: Annotated[float, Number("s", gt=0)] = Field(description="period of the motion, > 0")
+    phase: Annotated[list[float] | None, Vector(3, Number("rad"), XYZ)] = api(
+        "phase of each component", [0, 0, 0]
+    )
+    ramp: Annotated[float | None, Number("s", ge=0)] = api(
+        "the amplitude grows smoothly (C²) from 0 over this time, ≥ 0", 0
+    )
 
 
-Support = Annotated[Clamp | Pin | Drive, Discriminator("kind")]
+Support = Annotated[
+    Clamp | Pin | Drive,
+    Discriminator("kind"),
+    About("`model.clamp`, `model.pin` or `model.drive` at that end."),
+]
 
 
 class Supports(Table):
-    """`[supports]`: the ends held."""
+    """The ends held: `[supports.A]` (node 0, the seabed end) and `[supports.B]` (node n, the top end)."""
 
     unknown: ClassVar[str] = 'unknown end; must be "A" (node 0, seabed end) or "B" (node n, top end)'
     A: Support | None = None
@@ -365,43 +488,63 @@ class Supports(Table):
 
 
 class PointLoad(Table):
-    """An entry of `[[point_loads]]`: `model.point_load`."""
+    """`model.point_load`, one table per load of fixed direction in e."""
 
-    node: Annotated[int | str, NODE]
-    force: Annotated[list[float] | None, Vector(3, Number("N"), "[fx, fy, fz]")] = None
-    moment: Annotated[list[float] | None, Vector(3, Number("N·m"), "[mx, my, mz]")] = None
+    node: Annotated[int | str, NODE] = Field(
+        description='index in [−(n+1), n] (negative: from the end) or "A"/"B"'
+    )
+    force: Annotated[list[float] | None, Vector(3, Number("N"), "[fx, fy, fz]")] = api(
+        "force [fx, fy, fz] in e", [0, 0, 0]
+    )
+    moment: Annotated[list[float] | None, Vector(3, Number("N·m"), "[mx, my, mz]")] = api(
+        "moment [mx, my, mz] in e", [0, 0, 0]
+    )
 
 
 class Solver(Table):
-    """`[solver]`: the static and time solvers' settings, defaults filled in."""
+    """`model.static(steps, start)`, `model.simulation(dt)`, `simulation.run(t_end, record_every)`."""
 
-    static_steps: Annotated[int | None, Integer(1)] = None
+    static_steps: Annotated[int | None, Integer(1)] = api(
+        "initial number of (adaptive) static load steps, ≥ 1", 1
+    )
     static_start: Annotated[
         Literal["auto", "reference", "catenary"], Choice(("auto", "reference", "catenary"))
-    ] = "auto"
-    dt: Annotated[float, Number("s", gt=0)] = 0.05
-    t_end: Annotated[float | None, Number("s", gt=0)] = None
-    record_every: Annotated[int, Integer(1)] = 1
+    ] = Field("auto", description='Newton\'s start: `"auto"`, `"reference"` or `"catenary"`')
+    dt: Annotated[float, Number("s", gt=0)] = Field(0.05, description="time step, > 0")
+    t_end: Annotated[float | None, Number("s", gt=0)] = api(
+        "end of the time simulation, > 0; none: statics only"
+    )
+    record_every: Annotated[int, Integer(1)] = Field(
+        1, description="record every k-th time step, an integer ≥ 1"
+    )
 
 
 class Output(Table):
-    """`[output]`: for the program that runs the scenario."""
+    """For the figures; kept in `Scenario.output` for the program that runs the scenario."""
 
-    plot_times: Annotated[list[float] | None, Vector(None, Number("s", ge=0), at_least=1)] = None
+    plot_times: Annotated[list[float] | None, Vector(None, Number("s", ge=0), at_least=1)] = api(
+        "times of the pipe shapes to plot, each in [0, t_end]; none: the plotter's choice"
+    )
 
 
 class ScenarioFile(Table):
-    """A whole scenario file. Rules across sections are checked once every section is valid."""
+    """A scenario file: a whole pipelay model, with its solver settings and outputs, in one TOML file.
 
-    title: Annotated[str | None, Text()] = None
-    description: Annotated[str | None, Text()] = None
+    Each table is checked on its own first, then the rules across tables: exactly one of `[pipe]` and
+    `[section]`, point loads on nodes that exist, something that holds the rod (`[supports]` or a `[vessel]`,
+    not both at one end), a `[sea]` for a `[vessel]` and a `[vessel]` for a `[controller]` or
+    `[[environment]]`, a `[controller.route]` for a pay-out at the route's speed, plot times within the run.
+    """
+
+    title: Annotated[str | None, Text()] = api("a name for the scenario (text; kept in `Scenario.source`)")
+    description: Annotated[str | None, Text()] = api("free text (kept in `Scenario.source`)")
     gravity: (
         Annotated[
             Annotated[float, Number("m/s²", ge=0), Tag("number")] | Annotated[Gravity, Tag("table")],
             Discriminator(_table_or("number")),
         ]
         | None
-    ) = None
+    ) = api("acceleration of gravity along +e3, ≥ 0 (or a `[gravity]` table)", 9.81)
     pipe: Pipe | None = None
     section: Section | None = None
     rod: Rod

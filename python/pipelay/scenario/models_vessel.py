@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Discriminator, Tag, ValidationInfo, field_validator, model_validator
+from pydantic import Discriminator, Field, Tag, ValidationInfo, field_validator, model_validator
 
 from pipelay.scenario.values import (
     END,
@@ -20,6 +20,7 @@ from pipelay.scenario.values import (
     POSITIVE_LENGTH,
     START,
     XYZ,
+    About,
     Choice,
     Either,
     End,
@@ -31,6 +32,7 @@ from pipelay.scenario.values import (
     Vector,
     _having,
     _is_text,
+    api,
     gains,
     rule,
 )
@@ -57,16 +59,26 @@ __all__ = [
 ]
 
 
+_RollerRadius = Annotated[float | None, POSITIVE_LENGTH, api("radius of every roller", 0.25)]
+"""`roller_radius`, a key of either way to give a stinger."""
+
+
 class ArcStinger(Table):
     """`[vessel.lay.stinger]` as an arc: `pl.Stinger`."""
 
     conflicts: ClassVar[dict[str, str]] = {"axes": "belongs to positions (rollers given point by point)"}
-    radius: Annotated[float, POSITIVE_LENGTH]
-    length: Annotated[float, POSITIVE_LENGTH]
-    rollers: Annotated[int, Integer(1, 1000)]
-    origin: Annotated[list[float] | None, POINT] = None
-    angle: Annotated[float | None, Number("rad")] = None
-    roller_radius: Annotated[float | None, POSITIVE_LENGTH] = None
+    radius: Annotated[float, POSITIVE_LENGTH] = Field(description="radius of the arc, the rollers' top line")
+    length: Annotated[float, POSITIVE_LENGTH] = Field(description="the arc's length (≤ π · radius)")
+    rollers: Annotated[int, Integer(1, 1000)] = Field(
+        description="number of rollers spread evenly over the arc, 1 to 1000"
+    )
+    origin: Annotated[list[float] | None, POINT] = api(
+        "where the arc starts [x, y, z]; it runs aft and bends down", [0, 0, 0]
+    )
+    angle: Annotated[float | None, Number("rad")] = api(
+        "the arc's slope below the horizontal at the origin", 0
+    )
+    roller_radius: _RollerRadius = None
 
 
 class RollerStinger(Table):
@@ -76,9 +88,13 @@ class RollerStinger(Table):
         ("radius", "length", "rollers", "origin", "angle"),
         "conflicts with positions: give an arc or the rollers' points",
     )
-    positions: Annotated[list[list[float]], Matrix(None, POINT, at_least=1)]
-    axes: Annotated[list[list[float]] | None, Matrix(None, Vector(3, Number(), XYZ), at_least=1)] = None
-    roller_radius: Annotated[float | None, POSITIVE_LENGTH] = None
+    positions: Annotated[list[list[float]], Matrix(None, POINT, at_least=1)] = Field(
+        description="the rollers' top points, one row [x, y, z] per roller"
+    )
+    axes: Annotated[list[list[float]] | None, Matrix(None, Vector(3, Number(), XYZ), at_least=1)] = api(
+        "the rollers' axis directions, one row per roller", words="b2 (athwartships)"
+    )
+    roller_radius: _RollerRadius = None
 
     @model_validator(mode="after")
     def one_axis_per_roller(self) -> RollerStinger:
@@ -92,37 +108,64 @@ class RollerStinger(Table):
 Stinger = Annotated[
     Annotated[ArcStinger, Tag("arc")] | Annotated[RollerStinger, Tag("rollers")],
     Discriminator(_having("positions", "rollers", "arc")),
+    About(
+        """`pl.Stinger`: the rollers of an s-lay.
+
+        Either an arc (`radius`, `length`, `rollers`, …) or the rollers' top points (`positions`, `axes`)."""
+    ),
 ]
 
 
 class SLay(Table):
-    """`[vessel.lay]` of kind "s-lay": `pl.SLay`."""
+    """`[vessel.lay]` of kind "s-lay": `pl.SLay`, the pipe held by a tensioner, over a stinger."""
 
     kind: Literal["s-lay"]
-    tensioner: Annotated[list[float], POINT]
-    roller_stiffness: Annotated[float | None, Number("N/m", gt=0)] = None
-    friction: Annotated[float | None, Number(ge=0)] = None
+    tensioner: Annotated[list[float], POINT] = Field(
+        description="the tensioner [x, y, z]; the firing line is horizontal, +b1"
+    )
+    roller_stiffness: Annotated[float | None, Number("N/m", gt=0)] = api(
+        "contact stiffness of every roller", 1e7
+    )
+    friction: Annotated[float | None, Number(ge=0)] = api(
+        "roller friction; only 0 (free rollers) is modelled", 0
+    )
     stinger: Stinger | None = None
 
 
 class JLay(Table):
-    """`[vessel.lay]` of kind "j-lay": `pl.JLay`."""
+    """`[vessel.lay]` of kind "j-lay": `pl.JLay`, the pipe held at the exit of a tower."""
 
     kind: Literal["j-lay"]
-    position: Annotated[list[float], POINT]
-    angle: Annotated[float | None, Number("rad")] = None
+    position: Annotated[list[float], POINT] = Field(description="the tower exit [x, y, z]")
+    angle: Annotated[float | None, Number("rad")] = api(
+        "the tower's lean from vertical toward the bow, in [0, π/2]", 0
+    )
 
 
-Lay = Annotated[SLay | JLay, Discriminator("kind")]
+Lay = Annotated[
+    SLay | JLay,
+    Discriminator("kind"),
+    About(
+        """`pl.SLay` or `pl.JLay`: the pipe held by lay equipment instead of at CO.
+
+        Positions in the vessel's body frame (forward, starboard, down; m from CO). Leave `vessel.angle` out."""
+    ),
+]
 
 
 class VesselTable(Table):
     """`[vessel]`: the keys of `model.attach_vessel` and the RAOs, whichever way the vessel is given."""
 
-    end: Annotated[End, END]
-    eta: Annotated[list[float], Vector(6, Number("m, rad"), ETA)]
-    angle: Annotated[list[float] | None, Vector(3, Number("rad"), "[φ, θ, ψ]")] = None
-    raos: Annotated[str | None, Text()] = None
+    end: Annotated[End, END] = Field(description='the end held, "A" or "B"; not in `[supports]`')
+    eta: Annotated[list[float], Vector(6, Number("m, rad"), ETA)] = Field(
+        description="starting pose η = [x, y, z, φ, θ, ψ] in e (zyx)"
+    )
+    angle: Annotated[list[float] | None, Vector(3, Number("rad"), "[φ, θ, ψ]")] = api(
+        "clamp angle β of the pipe on the vessel (zyx)", [0, 0, 0]
+    )
+    raos: Annotated[str | None, Text()] = api(
+        "first-order motion RAOs: path of a CSV table", words='the built-in OSV\'s (model = "osv"), else none'
+    )
     lay: Lay | None = None
 
     @field_validator("raos")
@@ -152,7 +195,9 @@ class ModelVessel(VesselTable):
     conflicts: ClassVar[dict[str, str]] = dict.fromkeys(
         _MATRICES, "conflicts with vessel.model; give either model or the matrices M, D, G"
     )
-    model: Annotated[str, Choice(("osv",))]
+    model: Annotated[str, Choice(("osv",))] = Field(
+        description='`"osv"`: the built-in offshore supply vessel'
+    )
 
 
 def _six_by_six(unit: str) -> Matrix:
@@ -163,11 +208,21 @@ def _six_by_six(unit: str) -> Matrix:
 class MatrixVessel(VesselTable):
     """`[vessel]` with the matrices: `pl.Vessel(M, D, G, ...)`."""
 
-    M: Annotated[list[list[float]], _six_by_six("kg, kg·m, kg·m²")]
-    D: Annotated[list[list[float]], _six_by_six("kg/s, kg·m/s, kg·m²/s")]
-    G: Annotated[list[list[float]], _six_by_six("N/m, N, N·m/rad")]
-    M_RB: Annotated[list[list[float]] | None, _six_by_six("kg, kg·m, kg·m²")] = None
-    quadratic_damping: Annotated[list[list[float]] | None, _six_by_six("kg/m, kg, kg·m²")] = None
+    M: Annotated[list[list[float]], _six_by_six("kg, kg·m, kg·m²")] = Field(
+        description="M = M_RB + M_A, symmetric, positive definite"
+    )
+    D: Annotated[list[list[float]], _six_by_six("kg/s, kg·m/s, kg·m²/s")] = Field(
+        description="linear damping, positive semi-definite"
+    )
+    G: Annotated[list[list[float]], _six_by_six("N/m, N, N·m/rad")] = Field(
+        description="restoring: heave, roll and pitch only"
+    )
+    M_RB: Annotated[list[list[float]] | None, _six_by_six("kg, kg·m, kg·m²")] = api(
+        "rigid-body mass; M − M_RB is added mass", words="M"
+    )
+    quadratic_damping: Annotated[list[list[float]] | None, _six_by_six("kg/m, kg, kg·m²")] = api(
+        "D_q, positive semi-definite"
+    )
 
     @model_validator(mode="before")
     @classmethod
@@ -181,46 +236,76 @@ class MatrixVessel(VesselTable):
 Vessel = Annotated[
     Annotated[ModelVessel, Tag("model")] | Annotated[MatrixVessel, Tag("matrices")],
     Discriminator(_having("model", "model", "matrices")),
+    About(
+        """`pl.Vessel.osv(raos)` or `pl.Vessel(M, D, G, ..., raos)`, then `model.attach_vessel`.
+
+        Needs `[sea]`. Give `model` or the matrices (6×6, about CO, rows and columns surge … yaw).
+
+        `raos` is the path (text) of a table of first-order displacement RAOs in pipelay's CSV format
+        (`pl.Raos.read`: columns period_s, heading_deg and <dof>_amp, <dof>_phase for surge … yaw), relative to
+        the scenario file's folder. Without it, `model = "osv"` moves with the built-in OSV's table, and a
+        vessel given by its matrices has no wave-frequency motion."""
+    ),
 ]
 
 
 class Route(Table):
-    """`[controller.route]`: `pl.Route`."""
+    """`pl.Route`: a moving reference along a lay route, instead of `reference`."""
 
-    start: Annotated[list[float], Vector(2, Number("m"), "[x, y]")]
-    heading: Annotated[float | None, Number("rad")] = None
-    speed: Annotated[float | None, Number("m/s")] = None
-    start_time: Annotated[float | None, START] = None
+    start: Annotated[list[float], Vector(2, Number("m"), "[x, y]")] = Field(
+        description="where the route starts, [x, y]"
+    )
+    heading: Annotated[float | None, Number("rad")] = api("the route's direction and the vessel's heading", 0)
+    speed: Annotated[float | None, Number("m/s")] = api("lay speed along the route", 0)
+    start_time: Annotated[float | None, START] = api("when the reference starts moving", 0)
 
 
 class Tension(Table):
-    """`[controller.tension]`: `pl.TensionControl`."""
+    """`pl.TensionControl`: the lay-tension loop, `PID(tension=...)`.
 
-    target: Annotated[float, Number("N")]
-    gain: Annotated[float, Number("m/(s·N)", gt=0)]
-    start: Annotated[float | None, START] = None
-    rate_limit: Annotated[float | None, Number("m/s", gt=0)] = None
-    filter: Annotated[float | None, Number("s", gt=0)] = None
+    Moves the DP set-point along the reference's heading (the route's, or ψ of a fixed `reference`) at
+    −gain · (T_f − target) m/s, T_f the top tension low-passed with the `filter` time constant.
+    """
+
+    target: Annotated[float, Number("N")] = Field(description="top tension to hold")
+    gain: Annotated[float, Number("m/(s·N)", gt=0)] = Field(
+        description="set-point speed per newton of tension error, > 0"
+    )
+    start: Annotated[float | None, START] = api("time the loop starts", 0)
+    rate_limit: Annotated[float | None, Number("m/s", gt=0)] = api("bound on the set-point's speed, > 0")
+    filter: Annotated[float | None, Number("s", gt=0)] = api(
+        "time constant of the tension's low-pass filter, > 0", 20
+    )
 
 
 class ControllerTable(Table):
     """`[controller]`: the keys of `pl.PID` whichever way the reference is given."""
 
-    kp: Annotated[list[float] | list[list[float]], gains("N/m, N·m/rad")]
-    kd: Annotated[list[float] | list[list[float]], gains("N·s/m, N·m·s/rad")]
-    ki: Annotated[list[float] | list[list[float]] | None, gains("N/(m·s), N·m/(rad·s)")] = None
-    start: Annotated[float | None, START] = None
-    integral_limit: Annotated[list[float] | None, Vector(6, Number("m·s, rad·s", gt=0), ETA)] = None
+    kp: Annotated[list[float] | list[list[float]], gains("N/m, N·m/rad")] = Field(
+        description="proportional gains"
+    )
+    kd: Annotated[list[float] | list[list[float]], gains("N·s/m, N·m·s/rad")] = Field(
+        description="derivative gains"
+    )
+    ki: Annotated[list[float] | list[list[float]] | None, gains("N/(m·s), N·m/(rad·s)")] = api(
+        "integral gains; none: PD control"
+    )
+    start: Annotated[float | None, START] = api("time the controller takes over from holding thrust", 0)
+    integral_limit: Annotated[list[float] | None, Vector(6, Number("m·s, rad·s", gt=0), ETA)] = api(
+        "bound on ∫(η − η_ref) dt, 6 numbers > 0"
+    )
     thrust_limit: Annotated[
         list[float] | None, Vector(3, Number("N, N, N·m", gt=0), "[surge, sway, yaw]")
-    ] = None
+    ] = api("bound on thrust [surge, sway, yaw], > 0")
     tension: Tension | None = None
 
 
 class FixedController(ControllerTable):
     """`[controller]` with a fixed `reference`."""
 
-    reference: Annotated[list[float], Vector(6, Number("m, rad"), ETA)]
+    reference: Annotated[list[float], Vector(6, Number("m, rad"), ETA)] = Field(
+        description="η_ref = [x, y, z, φ, θ, ψ]; or give `[controller.route]`"
+    )
 
 
 class RouteController(ControllerTable):
@@ -233,22 +318,43 @@ class RouteController(ControllerTable):
 Controller = Annotated[
     Annotated[FixedController, Tag("reference")] | Annotated[RouteController, Tag("route")],
     Discriminator(_having("route", "route", "reference")),
+    About(
+        """`pl.PID` on the vessel's η; needs `[vessel]`.
+
+        Gains are 6 numbers (a diagonal matrix) or a 6×6 matrix."""
+    ),
 ]
 
 
 class PayOut(Table):
-    """`[pay_out]`: `model.pay_out(end, speed)` with a smoothly started speed."""
+    """`model.pay_out(end, speed)`: pipe paid out (or in) through the tensioner or tower.
 
-    end: Annotated[End | None, END] = None
+    The end must be the one `[vessel]` holds or a driven `[supports]` end. The speed rises smoothly from 0 at
+    `start_time` to `speed` over `ramp` seconds, v(t) = speed · (3s² − 2s³), s = (t − start_time)/ramp clipped
+    to [0, 1] (a sudden start sends an axial shock v·√(EA·m) through the pipe): the length paid out by t ≥
+    start_time + ramp is speed · (t − start_time − ramp/2). A route starts at full speed: a pay-out that starts
+    with it falls speed · ramp/2 behind the vessel, which lifts laid pipe off the seabed; starting it ramp/2
+    earlier (`start_time` = the route's − ramp/2) keeps the length paid out equal to the route's advance.
+    """
+
+    end: Annotated[End | None, END] = api('the end the pipe is paid out at, "A" or "B"', "B")
     speed: Annotated[
         float | str, Either(Number("m/s"), Choice(("route",)), _is_text, 'a number (m/s) or "route"')
-    ]
-    start_time: Annotated[float | None, START] = None
-    ramp: Annotated[float | None, Number("s", ge=0)] = None
+    ] = Field(
+        description='of unstretched pipe (< 0 pays in), or `"route"`: the speed of `[controller.route]`'
+    )
+    start_time: Annotated[float | None, START] = api(
+        'when the pay-out starts; with speed = "route", the route\'s `start_time`', 0
+    )
+    ramp: Annotated[float | None, Number("s", ge=0)] = api(
+        "time over which the speed rises to its value, ≥ 0 (0: at once)", 60
+    )
 
 
 class Environment(Table):
-    """An entry of `[[environment]]`: `pl.Force`."""
+    """`pl.Force`, one table per force on the vessel; needs `[vessel]`."""
 
-    value: Annotated[list[float], Vector(6, Number("N, N·m"), "[X, Y, Z, K, M, N]")]
-    start: Annotated[float | None, START] = None
+    value: Annotated[list[float], Vector(6, Number("N, N·m"), "[X, Y, Z, K, M, N]")] = Field(
+        description="force and moment [X, Y, Z, K, M, N], body frame"
+    )
+    start: Annotated[float | None, START] = api("time the force starts", 0)
