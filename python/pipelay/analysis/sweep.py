@@ -54,7 +54,6 @@ from typing import Any
 
 import numpy as np
 
-from pipelay import scenario as scenario_format
 from pipelay._core import ConvergenceError, InputError, Model, Results, Simulation
 from pipelay.analysis.extremes import extremes
 from pipelay.results import load, resume
@@ -66,7 +65,7 @@ from pipelay.scenario import (
     parse_scenario,
     validate_overrides,
 )
-from pipelay.scenario.schema import _reference
+from pipelay.scenario.schema import reference_tables
 
 __all__ = ["STATISTICS", "Sweep", "case_statistics", "run", "run_case", "start", "sweep"]
 
@@ -449,10 +448,16 @@ def _compute(
 
 
 def _unit(key: str) -> str:
-    """The unit of a dotted scenario key, from the reference tables of `pipelay.scenario` ("" if none)."""
+    """The unit of a dotted scenario key, from the scenario reference ("1" for a number without one, "" for a
+    key it does not know or one that holds a table)."""
     table, _, leaf = re.sub(r"\[\d+\]", "", key).rpartition(".")
-    row = _reference(scenario_format.__doc__ or "").get(table, ("", {}))[1].get(leaf)
-    return "" if row is None else "1" if row[0] == "—" else row[0]
+    for entry in reference_tables():
+        if table in entry.paths:
+            for variant in entry.variants:
+                for row in variant.rows:
+                    if row.key == leaf and row.takes:
+                        return row.unit or "1"
+    return ""
 
 
 def _write_summary(
