@@ -335,7 +335,8 @@ def _build(file: models.ScenarioFile) -> pl.Model:
 def parse_scenario(
     data: dict[str, Any], origin: str = "<dict>", folder: str | os.PathLike[str] | None = None
 ) -> Scenario:
-    """The scenario described by `data`, a parsed TOML document (see the module's reference).
+    """The scenario described by `data`, a parsed TOML document (its keys: the documentation's Scenario
+    reference).
 
     Every key is checked before the model is built; nothing is solved. `origin` names the source in messages;
     file paths in it (`vessel.raos`) are relative to `folder` (default: the folder of `origin` if it is a file,
@@ -364,7 +365,8 @@ def _syntax_error(error: tomllib.TOMLDecodeError, text: str, origin: str) -> pl.
 
 
 def load_scenario(path: str | os.PathLike[str]) -> Scenario:
-    """The scenario in the TOML file at `path` (see the module's reference); nothing is solved.
+    """The scenario in the TOML file at `path` (its keys: the documentation's Scenario reference); nothing is
+    solved.
 
     Raises pl.InputError for a syntax error (naming the line and column) or any invalid key (naming the key
     path and the file); OSError if the file cannot be read.
