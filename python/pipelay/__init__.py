@@ -11,7 +11,10 @@ state or a run means: `checks`, `statistics`, `lay` (`find_lay_position`) and `s
 figures; and `pipelay.cli`, the ``pipelay`` command.
 """
 
+import functools
 import sys
+from collections.abc import Callable
+from typing import Any
 
 from pipelay._core import (
     PID,
@@ -39,8 +42,9 @@ from pipelay._core import (
     Vessel,
     Waves,
 )
-from pipelay.analysis import checks, lay, statistics
+from pipelay.analysis import checks, lay, statistics, suspect
 from pipelay.analysis.lay import find_lay_position
+from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep
 from pipelay.results import load, resume, streaming
 
@@ -52,6 +56,35 @@ def _simulation(self: Model, state: State | None = None, dt: float = 0.05) -> Si
 
 
 Model.simulation = _simulation  # type: ignore[attr-defined]
+
+
+def _checking_static(static: Callable[..., State]) -> Callable[..., State]:
+    """`Model.static`, warning (`PhysicsWarning`) of what is suspect in the state it returns."""
+
+    @functools.wraps(static)
+    def checked(self: Model, *args: Any, **kwargs: Any) -> State:
+        state = static(self, *args, **kwargs)
+        suspect.warn(suspect.suspect_state(state))
+        return state
+
+    return checked
+
+
+def _checking_run(run: Callable[..., Results]) -> Callable[..., Results]:
+    """`Simulation.run`, warning (`PhysicsWarning`) of what is suspect in the run's records."""
+
+    @functools.wraps(run)
+    def checked(self: Simulation, *args: Any, **kwargs: Any) -> Results:
+        results = run(self, *args, **kwargs)
+        if len(results):
+            suspect.warn(suspect.suspect_results(results, self.state))
+        return results
+
+    return checked
+
+
+Model.static = _checking_static(Model.static)  # type: ignore[method-assign]
+Simulation.run = _checking_run(Simulation.run)  # type: ignore[method-assign]
 
 # The modules' old import paths, kept for compatibility: each is registered as the module itself (not a
 # copy), so an attribute set through either name is set for both, and a later `import pipelay.sweep` finds
@@ -77,6 +110,7 @@ __all__ = [
     "InputError",
     "JLay",
     "Model",
+    "PhysicsWarning",
     "Raos",
     "Results",
     "Rod",

@@ -30,6 +30,7 @@ import copy
 import json
 import sys
 import tomllib
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -38,6 +39,7 @@ import numpy as np
 import pipelay as pl
 from pipelay import plots
 from pipelay.analysis.lay import TARGETS, find_lay_position
+from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import SUMMARY_TITLE, _label, sweep
 from pipelay.analysis.sweep import run as run_simulation
 from pipelay.analysis.sweep import start as start_simulation
@@ -313,12 +315,19 @@ def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
 
 def _static(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
-    if args.target:
-        state = _target(args, scenario)
-    else:
-        state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", PhysicsWarning)
+        if args.target:
+            state = _target(args, scenario)
+        else:
+            state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
     print(f"static equilibrium: {state.iterations} Newton iterations in {state.steps} load step(s)")
     print(_summary(state))
+    for warning in caught:
+        if issubclass(warning.category, PhysicsWarning):
+            print(f"warning: {warning.message}", file=sys.stderr)
+        else:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
     if args.plots:
         path = Path(args.plots) / "tension_bending.png"
         plots.tension_and_bending(state, path=path)

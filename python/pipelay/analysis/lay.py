@@ -11,12 +11,14 @@ Imports of pipelay: the package (the engine's classes and ``pl.checks``, looked 
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 import pipelay as pl
+from pipelay.analysis import suspect
 
 __all__ = ["TARGETS", "LayPosition", "find_lay_position", "lay_quantity"]
 
@@ -149,7 +151,10 @@ def find_lay_position(
     def solve(x: float) -> pl.State:
         if x not in states:
             try:
-                states[x] = build(x).static()
+                # The search passes through suspect positions on its way: only the one found is reported.
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore", suspect.PhysicsWarning)
+                    states[x] = build(x).static()
             except pl.ConvergenceError as error:
                 raise pl.ConvergenceError(
                     f"lay position search: statics failed at x = {x:.3f} m: {error}"
@@ -184,4 +189,5 @@ def find_lay_position(
     else:
         x = float(brentq(miss, low, high, xtol=tolerance))
     state = solve(x)
+    suspect.warn(suspect.suspect_state(state), stacklevel=2)
     return LayPosition(x=x, value=lay_quantity(state, target, **check), state=state, solves=len(states))

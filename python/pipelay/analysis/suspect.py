@@ -1,0 +1,132 @@
+"""Warnings for a solution that solved but whose physics is suspect.
+
+A `PhysicsWarning` (a `UserWarning`) names where and how much:
+
+* the pipe in compression at the hold point (the lay summary's top tension below zero): a pipe cannot be laid
+  pushed, and the equilibrium found may be a buckled one;
+* a strain beyond the steel's yield strain SMYS/E (of the section's grade, X65 where it has none): the rod is
+  linear elastic, so its stresses there are not real (sections without a steel wall are not checked);
+* the vessel heeled (roll) or trimmed (pitch) beyond 10°, outside the small-angle hydrostatics of its model.
+
+`Model.static` checks the state it returns, `Simulation.run` the records of its run.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+
+from pipelay.analysis.checks import DEFAULT_GRADE, GRADES
+
+__all__ = ["HEEL_LIMIT", "PhysicsWarning", "suspect_results", "suspect_state", "warn"]
+
+HEEL_LIMIT = math.radians(10.0)
+"""Largest roll or pitch of the vessel (rad) within its model's small-angle hydrostatics."""
+
+
+class PhysicsWarning(UserWarning):
+    """A solution whose physics is suspect: compression at the hold point, strain beyond yield, large heel."""
+
+
+def _yield_strain(section: Any) -> tuple[float, str] | None:
+    """SMYS/E of the section's steel and its grade; None for a section without a steel wall."""
+    if section.wall_thickness is None:
+        return None
+    grade = section.grade or DEFAULT_GRADE
+    return GRADES[grade][0] / section.youngs_modulus, grade
+
+
+def _messages(
+    top_tension: np.ndarray | None,
+    strain: tuple[float, str] | None,
+    eta: np.ndarray | None,
+    section: Any,
+    time: np.ndarray | None,
+) -> list[str]:
+    """What is suspect: the top tension (N) and the vessel's pose η over records (first axis; one record for
+    a state), and the largest strain with where it is."""
+
+    def when(record: int) -> str:
+        return "" if time is None else f" at t = {time[record]:.6g} s"
+
+    messages = []
+    # Compression beyond the round-off of the axial force (about 1e-13 EA per element).
+    if top_tension is not None and np.nanmin(top_tension) < -1e-9 * section.EA:
+        record = int(np.nanargmin(top_tension))
+        messages.append(
+            f"the pipe is in compression at the hold point{when(record)}: top tension "
+            f"{top_tension[record] / 1e3:.4g} kN"
+        )
+    limit = _yield_strain(section)
+    if limit is not None and strain is not None and strain[0] > limit[0]:
+        messages.append(
+            f"strain {100 * strain[0]:.3g} % {strain[1]} exceeds the yield strain {100 * limit[0]:.3g} % of "
+            f"{limit[1]}: the pipe model is linear elastic, so its stresses beyond yield are not real"
+        )
+    if eta is not None:
+        for index, name in ((3, "heels (roll)"), (4, "trims (pitch)")):
+            angle = np.abs(eta[:, index])
+            record = int(np.nanargmax(angle))
+            if angle[record] > HEEL_LIMIT:
+                messages.append(
+                    f"the vessel {name} {math.degrees(angle[record]):.1f}°{when(record)}, beyond "
+                    f"{math.degrees(HEEL_LIMIT):.0f}° (its hydrostatics are linear in small angles)"
+                )
+    return messages
+
+
+def _element_strain(state: Any, at: str = "") -> tuple[float, str] | None:
+    """The largest |strain| of a state's elements, with the element and its distance from end A (m)."""
+    strain = np.abs(np.asarray(state.strain))
+    if not strain.size:
+        return None
+    element = int(np.nanargmax(strain))
+    arcs = np.asarray(state.reference_arc_length)
+    middle = 0.5 * (arcs[element] + arcs[element + 1])
+    return float(strain[element]), f"in element {element} ({middle:.1f} m from end A){at}"
+
+
+def suspect_state(state: Any) -> list[str]:
+    """What is suspect in a `pl.State` (messages; empty if nothing is)."""
+    summary = state.lay_summary()
+    eta = state.eta
+    return _messages(
+        None if summary is None else np.array([summary["top_tension"]]),
+        _element_strain(state),
+        None if eta is None else np.asarray(eta)[np.newaxis],
+        state.section,
+        None,
+    )
+
+
+def suspect_results(results: Any, final: Any) -> list[str]:
+    """What is suspect in the records of a run that ended in the `pl.State` `final` (messages; empty if
+    nothing is). The strain is the larger of the final state's, over every element, and, with a vessel, the
+    recorded overbend and sagbend strains: the records' whole strain field is not read (it can be larger than
+    the memory)."""
+    summary = results.lay_summary()
+    time = np.asarray(results.time)
+    candidates = [_element_strain(final, f" at t = {final.time:.6g} s")]
+    if summary is not None:
+        for region in ("overbend", "sagbend"):
+            series = np.abs(np.asarray(summary[f"{region}_strain"]))
+            if series.size and not np.all(np.isnan(series)):
+                record = int(np.nanargmax(series))
+                candidates.append((float(series[record]), f"in the {region} at t = {time[record]:.6g} s"))
+    strain = max((c for c in candidates if c is not None), default=None, key=lambda c: c[0])
+    return _messages(
+        None if summary is None else np.asarray(summary["top_tension"]),
+        strain,
+        None if results.eta is None else np.asarray(results.eta),
+        final.section,
+        time,
+    )
+
+
+def warn(messages: list[str], stacklevel: int = 3) -> None:
+    """Each message as a `PhysicsWarning`, attributed `stacklevel` frames up (the user's call)."""
+    for message in messages:
+        warnings.warn(message, PhysicsWarning, stacklevel=stacklevel)
