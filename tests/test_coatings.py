@@ -9,12 +9,17 @@ two alike), and through the DNV-ST-F101 check.
 from __future__ import annotations
 
 import math
+import re
+import warnings
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
 import pipelay as pl
 import pytest
+from pipelay.scenario import load_scenario
 
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 G, RHO_W = 9.81, 1025.0
 D, T = 0.6096, 0.0206  # 24-inch line pipe (m)
 STEEL, PE, CONCRETE = 7850.0, 940.0, 3040.0  # kg/m³
@@ -146,3 +151,41 @@ def test_design_checks_see_the_steel_wall_and_the_sections_grade() -> None:
 def test_bad_layers_and_grades_are_input_errors_naming_them(build: object, named: str) -> None:
     with pytest.raises(pl.InputError, match=f"^{named}"):
         build()  # type: ignore[operator]
+
+
+def test_scenario_files_take_coatings_a_lining_and_a_grade(tmp_path: Path) -> None:
+    text = (EXAMPLES / "s_lay_concrete.toml").read_text()
+    scenario = load_scenario(EXAMPLES / "s_lay_concrete.toml")
+    section = scenario.model.rod.section
+    assert section.grade == "X65"
+    assert section.submerged_weight == pytest.approx(concrete_pipe().submerged_weight, rel=1e-12)
+    lined = text.replace(
+        "[[pipe.coatings]]  # 3LPE",
+        "[pipe.lining]\nthickness = 0.005\ndensity = 1100.0\n\n[[pipe.coatings]]  # 3LPE",
+    )
+    path = tmp_path / "lined.toml"
+    path.write_text(lined)
+    assert load_scenario(path).model.rod.section.lining.thickness == 0.005  # type: ignore[union-attr]
+    for old, new, key in [
+        ('grade = "X65"', 'grade = "X99"', "pipe.grade"),
+        ("thickness = 0.003", "thickness = 0.0", "pipe.coatings[0].thickness"),
+        ("density = 3040.0", "density = -3040.0", "pipe.coatings[1].density"),
+    ]:
+        path.write_text(text.replace(old, new, 1))
+        with pytest.raises(pl.InputError, match=re.escape(key)):
+            load_scenario(path)
+
+
+def test_the_concrete_s_lay_example_solves_within_its_checks() -> None:
+    """The example lays the heavy line at about 1.1 MN over its stinger, its steel within DNV-ST-F101 and
+    below yield (no PhysicsWarning)."""
+    scenario = load_scenario(EXAMPLES / "s_lay_concrete.toml")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", pl.PhysicsWarning)
+        state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
+    summary = state.lay_summary()
+    assert summary is not None and 0.9e6 < summary["top_tension"] < 1.3e6
+    assert 0.0 < summary["overbend_strain"] < 450e6 / 207e9
+    check = pl.checks.dnv_st_f101(state, safety_class="low")
+    assert check.grade == "X65"
+    assert 0.1 < check.load_controlled.max() < 1.0 and check.displacement_controlled.max() < 1.0

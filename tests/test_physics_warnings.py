@@ -108,5 +108,5 @@ def test_pipelay_static_prints_the_warning(capsys: pytest.CaptureFixture[str]) -
     assert main(["static", str(EXAMPLES / "jensen2009.toml")]) == 0
     err = capsys.readouterr().err
     assert re.search(
-        r"^warning: the pipe is in compression at the hold point: top tension -\S+ kN$", err, re.M
+        r"^warning: the pipe is in compression at the hold point: top tension -\S+ kN$", err, re.MULTILINE
     )

@@ -170,12 +170,33 @@ def _summary(state: pl.State) -> str:
     summary = state.lay_summary()
     if summary is not None:
         lines.extend(_lay_lines(summary, state.roller_reactions))
+    if state.section.wall_thickness is not None and len(state.tension):
+        lines.extend(_check_lines(state))
     if state.eta is not None:
         lines.append(f"vessel η                {np.array2string(state.eta, precision=3)}")
         lines.append(
             f"thrust τ (surge, sway, yaw) {np.array2string(state.tau[[0, 1, 5]] / 1e3, precision=1)} kN, kN m"
         )
     return "\n".join(lines)
+
+
+def _check_lines(state: pl.State) -> list[str]:
+    """The largest DNV-ST-F101 utilisations of a state of a pipe (its section's grade, installation, safety
+    class low), each with its element and distance from end A."""
+    check = pl.checks.dnv_st_f101(state, safety_class="low")
+    arcs = state.reference_arc_length
+    lines = []
+    for name, values in (
+        ("load-controlled", check.load_controlled),
+        ("displacement-controlled", check.displacement_controlled),
+    ):
+        worst = int(np.argmax(values))
+        middle = 0.5 * (arcs[worst] + arcs[worst + 1])
+        lines.append(
+            f"DNV-ST-F101 {name:<24s}{values[worst]:8.3f} (element {worst}, {middle:.1f} m from A; "
+            f"{check.grade}, installation, safety class low)"
+        )
+    return lines
 
 
 def _lay_lines(summary: dict[str, Any], rollers: np.ndarray | None) -> list[str]:

@@ -130,6 +130,24 @@ class Gravity(Table):
     )
 
 
+class Layer(Table):
+    """`pl.Coating`: a coating outside the pipe's steel wall, one table per layer from the steel outwards. It
+    adds its mass; the coatings' outer surface is the diameter that buoyancy, drag, added mass, the seabed and
+    the rollers take."""
+
+    thickness: Annotated[float, POSITIVE_LENGTH] = Field(description="layer thickness, > 0")
+    density: Annotated[float, Number("kg/m³", ge=0)] = Field(description="density, ≥ 0")
+    youngs_modulus: Annotated[float | None, Number("Pa", ge=0)] = api(
+        "Young's modulus the layer adds to the axial and bending stiffness, ≥ 0 (0: none, as usual for concrete)",
+        0,
+    )
+
+
+class Lining(Layer):
+    """`pl.Coating` as the lining inside the pipe's steel wall: it adds its mass, and the contents fill its
+    bore."""
+
+
 class Pipe(Table):
     """`pl.Section.pipe`: a pipe from its geometry and material.
 
@@ -152,6 +170,13 @@ class Pipe(Table):
     added_mass: Annotated[list[float] | None, COEFFICIENTS] = api(
         "added-mass coefficients [axial, normal], ≥ 0", [0, 1]
     )
+    grade: Annotated[str | None, Text()] = api(
+        'the steel\'s grade for the design checks, "X52" … "X80" (the checks take X65 without one)'
+    )
+    coatings: list[Layer] = Field(  # noqa: RUF012 (a Table is a BaseModel: pydantic copies defaults)
+        [], description="external coatings, from the steel outwards: `[[pipe.coatings]]` tables"
+    )
+    lining: Lining | None = api("internal lining: a `[pipe.lining]` table")
 
     @model_validator(mode="after")
     def thin_wall(self) -> Pipe:

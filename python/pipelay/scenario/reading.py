@@ -181,7 +181,11 @@ def _rod(file: models.ScenarioFile) -> pl.Rod:
     """The cross-section (`[pipe]` or `[section]`) and the rod."""
     if file.pipe is not None:
         with _engine("pipe", KEYS["pipe"]):
-            section = pl.Section.pipe(**file.pipe.given())
+            layers = {
+                "coatings": [pl.Coating(**layer.given()) for layer in file.pipe.coatings],
+                "lining": None if file.pipe.lining is None else pl.Coating(**file.pipe.lining.given()),
+            }
+            section = pl.Section.pipe(**file.pipe.given("coatings", "lining"), **layers)
     else:
         with _engine("section", KEYS["section"]):
             section = pl.Section(**cast(models.Section, file.section).given())
