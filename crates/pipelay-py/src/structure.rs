@@ -155,7 +155,8 @@ impl Section {
         if let Some(grade) = &grade {
             check_grade(py, grade)?;
         }
-        let coatings: Vec<section::Coating> = coatings.unwrap_or_default().iter().map(|c| c.0).collect();
+        let coatings: Vec<section::Coating> =
+            coatings.unwrap_or_default().iter().map(|c| c.0).collect();
         let mut pipe = section::Section::coated_pipe(
             outer_diameter,
             wall_thickness,
