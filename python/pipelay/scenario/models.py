@@ -173,7 +173,7 @@ class Pipe(Table):
     grade: Annotated[str | None, Text()] = api(
         'the steel\'s grade for the design checks, "X52" … "X80" (the checks take X65 without one)'
     )
-    coatings: list[Layer] = Field(  # noqa: RUF012 (a Table is a BaseModel: pydantic copies defaults)
+    coatings: list[Layer] = Field(
         [], description="external coatings, from the steel outwards: `[[pipe.coatings]]` tables"
     )
     lining: Lining | None = api("internal lining: a `[pipe.lining]` table")
