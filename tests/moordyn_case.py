@@ -21,7 +21,7 @@ How the two models are matched:
 * weight and buoyancy: both use w = (m − ρ_w π/4 d²) g = 328.4 N/m, the line fully submerged;
 * drag: normal Cd = 1.2 on the diameter d in both; axial drag off in both (pipelay refers its axial Cd to d,
   MoorDyn to πd, so zero is the one value that means the same);
-* added mass: Ca = 1 in all directions, since pipelay's is isotropic (MoorDyn: Can = Cat = 1);
+* added mass: Ca = 1 across and along the line in both (MoorDyn: Ca = CaAx = 1); `Case.ca_axial` sets the axial one;
 * bending: MoorDyn's line has EI = 0. pipelay needs EI > 0: it gets EI = GJ = 10 N·m², whose bending length
   √(EI/T) ≤ 5 cm even at the lowest tension (≈ 5 kN) is far below the shortest element used (0.25 m at
   n = 1000), so the line behaves as a cable. GA = EA;
@@ -83,7 +83,8 @@ class Case:
     ea: float = 4.0e8  # axial stiffness (N)
     ei: float = 10.0  # pipelay's (small) bending stiffness (N·m²); MoorDyn uses 0
     cd_normal: float = 1.2  # normal drag coefficient on d (-)
-    ca: float = 1.0  # added-mass coefficient, all directions (-)
+    ca: float = 1.0  # added-mass coefficient normal to the line (-)
+    ca_axial: float | None = None  # added-mass coefficient along the line (-); None: ``ca``
     rho_water: float = 1025.0  # sea-water density (kg/m³)
     gravity: float = 9.81  # (m/s²)
     depth: float = 200.0  # depth of the fixed end A below the surface (m)
@@ -100,6 +101,11 @@ class Case:
     def omega(self) -> float:
         """Drive angular frequency (rad/s)."""
         return 2.0 * math.pi / self.period
+
+    @property
+    def axial_added_mass(self) -> float:
+        """The added-mass coefficient along the line (-)."""
+        return self.ca if self.ca_axial is None else self.ca_axial
 
     @property
     def submerged_weight(self) -> float:
@@ -175,7 +181,7 @@ def pipelay_model(n: int, case: Case = CASE, tables: tuple[np.ndarray, np.ndarra
         inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
         outer_diameter=d,
         drag=(0.0, case.cd_normal),
-        added_mass=(case.ca, case.ca),
+        added_mass=(case.axial_added_mass, case.ca),
     )
     rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, section)
     model = pl.Model(rod, sea=pl.Sea(case.depth, density=case.rho_water), gravity=case.gravity)
@@ -238,7 +244,7 @@ pipelay peer comparison: steel wire rope between a fixed point and a driven one
 ---------------------- LINE TYPES ------------------------------------------------------
 TypeName  Diam  Mass/m  EA  BA/-zeta  EI  Cd  Ca  CdAx  CaAx
 (name)  (m)  (kg/m)  (N)  (N-s/-)  (N-m^2)  (-)  (-)  (-)  (-)
-rope  {case.diameter!r}  {case.mass!r}  {case.ea!r}  {ba!r}  0.0  {case.cd_normal!r}  {case.ca!r}  0.0  {case.ca!r}
+rope  {case.diameter!r}  {case.mass!r}  {case.ea!r}  {ba!r}  0.0  {case.cd_normal!r}  {case.ca!r}  0.0  {case.axial_added_mass!r}
 ---------------------- POINTS ----------------------------------------------------------
 ID  Attachment  X  Y  Z  Mass  Volume  CdA  Ca
 (#)  (word/ID)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)

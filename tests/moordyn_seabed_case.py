@@ -182,7 +182,7 @@ def pipelay_model(n: int, case: SeabedCase = SEABED_CASE) -> pl.Model:
         inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
         outer_diameter=d,
         drag=(0.0, case.cd_normal),
-        added_mass=(case.ca, case.ca),
+        added_mass=(case.axial_added_mass, case.ca),
     )
     rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, section)
     seabed = pl.Seabed(

@@ -11,9 +11,8 @@
 //! - dissipated: drag on the relative velocity (Δt ℓ(k_a|u_t|³ + k_n|u_n|³) ≥ 0) and rotational damping
 //!   (θ·c θ/Δt ≥ 0).
 //!
-//! Added mass is isotropic here: C_a,normal ρ_w π/4 d_o² added to the translational mass per length in
-//! every direction (keeps the mass constant and the scheme exactly energy–momentum; over-estimates the
-//! axial added mass of a pipe).
+//! Added mass acts by direction ([`crate::dynamics::nodal`]): the nodal mass depends on the node's axis, and
+//! the step balances the kinetic energy's dependence on it exactly ([`crate::dynamics::rod_step`]).
 //!
 //! The integrator owns the model, the state and the step's work space, and advances them: a step predicts
 //! the increments ([`crate::dynamics::step_residual`]), solves for them by Newton's method

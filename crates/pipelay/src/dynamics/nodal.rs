@@ -1,5 +1,10 @@
 //! The rod's lumped (nodal) inertia and damping: half of each element's translational mass (added mass
 //! included), rotational inertia and rotational damping at each of its nodes.
+//!
+//! **Added mass by direction.** A node's translational mass matrix is M = (m + m_a C_an) I + m_a (C_aa − C_an)
+//! t tᵀ, with m_a = ρ_w π/4 D_h² its tributary length's displaced mass and t = Λ e1 the node's axis: the normal
+//! coefficient across the pipe, the axial one along it. The kinetic energy ½vᵀMv then depends on the node's
+//! rotation; the time step balances it exactly ([`crate::dynamics::rod_step`]).
 // Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
 #![allow(clippy::indexing_slicing)]
 use crate::dynamics::rod_step::NodeStart;
@@ -10,8 +15,11 @@ use nalgebra::{Matrix3, Vector3};
 /// Nodal (lumped) inertia and damping of the rod.
 #[derive(Debug, Clone)]
 pub struct NodalProperties {
-    /// Translational mass, added mass included (kg).
+    /// Translational mass across the pipe, the normal added mass included (kg).
     pub mass: Vec<f64>,
+    /// What the axial added mass adds along the node's axis t, m_a (C_aa − C_an) (kg; negative where the axial
+    /// coefficient is the smaller, zero without a sea).
+    pub axial_added_mass: Vec<f64>,
     /// Rotational inertia about the material axes (kg·m²).
     pub inertia: Vec<Vector3<f64>>,
     /// Rotational damping about the material axes (N·m·s).
@@ -19,14 +27,16 @@ pub struct NodalProperties {
 }
 
 impl NodalProperties {
-    /// Added mass per unit length (kg/m).
-    fn added_mass(model: &Model) -> f64 {
+    /// Added mass per unit length across the pipe, and what the axial coefficient adds along it (kg/m).
+    fn added_mass(model: &Model) -> (f64, f64) {
         let section = &model.rod.section;
-        model.sea.as_ref().map_or(0.0, |sea| {
-            section.added_mass[1]
-                * sea.density
-                * std::f64::consts::FRAC_PI_4
-                * section.hydrodynamic_diameter.powi(2)
+        model.sea.as_ref().map_or((0.0, 0.0), |sea| {
+            let displaced =
+                sea.density * std::f64::consts::FRAC_PI_4 * section.hydrodynamic_diameter.powi(2);
+            (
+                section.added_mass[1] * displaced,
+                (section.added_mass[0] - section.added_mass[1]) * displaced,
+            )
         })
     }
 
@@ -37,7 +47,9 @@ impl NodalProperties {
         let tributary = 0.5
             * (node.checked_sub(1).map_or(0.0, |e| elements[e].length)
                 + elements.get(node).map_or(0.0, |e| e.length));
-        self.mass[node] = tributary * (section.mass + Self::added_mass(model));
+        let (normal, axial) = Self::added_mass(model);
+        self.mass[node] = tributary * (section.mass + normal);
+        self.axial_added_mass[node] = tributary * axial;
         self.inertia[node] = tributary * section.inertia;
         self.damping[node] = tributary * section.rotational_damping;
     }
@@ -45,10 +57,11 @@ impl NodalProperties {
     /// The lumps of `model`'s rod: half of each element's mass, inertia and damping at each of its nodes.
     pub fn new(model: &Model) -> Self {
         let section = &model.rod.section;
-        let added = Self::added_mass(model);
+        let (added, axial) = Self::added_mass(model);
         let count = model.rod.node_count();
         let mut props = NodalProperties {
             mass: vec![0.0; count],
+            axial_added_mass: vec![0.0; count],
             inertia: vec![Vector3::zeros(); count],
             damping: vec![Vector3::zeros(); count],
         };
@@ -56,12 +69,41 @@ impl NodalProperties {
             let half = 0.5 * reference.length;
             for node in [e, e + 1] {
                 props.mass[node] += half * (section.mass + added);
+                props.axial_added_mass[node] += half * axial;
                 props.inertia[node] += half * section.inertia;
                 props.damping[node] += half * section.rotational_damping;
             }
         }
         props
     }
+
+    /// Kinetic energy of node `node` in `state` (J): ½vᵀMv + ½WᵀJW.
+    pub fn kinetic_energy(&self, state: &DynamicState, node: usize) -> f64 {
+        let (v, w) = (state.velocities[node], state.body_angular_velocities[node]);
+        let energy = 0.5 * self.mass[node] * v.norm_squared()
+            + 0.5 * w.dot(&self.inertia[node].component_mul(&w));
+        match self.axial_added_mass[node] {
+            0.0 => energy,
+            axial => energy + 0.5 * axial * axis(state, node).dot(&v).powi(2),
+        }
+    }
+
+    /// Linear momentum M v of node `node` in `state` (kg·m/s).
+    pub fn momentum(&self, state: &DynamicState, node: usize) -> Vector3<f64> {
+        let v = state.velocities[node];
+        match self.axial_added_mass[node] {
+            0.0 => v * self.mass[node],
+            axial => {
+                let t = axis(state, node);
+                v * self.mass[node] + t * (axial * t.dot(&v))
+            }
+        }
+    }
+}
+
+/// The axis t = Λ e1 of node `node` in `state`.
+fn axis(state: &DynamicState, node: usize) -> Vector3<f64> {
+    state.configuration.rotations[node] * Vector3::x()
 }
 
 /// What node `node`'s inertia and damping terms need from the step's start.
@@ -75,5 +117,6 @@ pub fn node_start(nodal: &NodalProperties, state: &DynamicState, node: usize) ->
         momentum: rotation
             * nodal.inertia[node].component_mul(&state.body_angular_velocities[node]),
         damping: spatial(&nodal.damping[node]),
+        axis: rotation.column(0).into_owned(),
     }
 }

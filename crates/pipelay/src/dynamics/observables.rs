@@ -64,11 +64,7 @@ impl<'a> Observables<'a> {
         let (c_t, c_r) = (section.c_t(), section.c_r());
         let state = &self.state;
         let kinetic = (0..self.model.rod.node_count())
-            .map(|i| {
-                let w = state.body_angular_velocities[i];
-                0.5 * self.nodal.mass[i] * state.velocities[i].norm_squared()
-                    + 0.5 * w.dot(&self.nodal.inertia[i].component_mul(&w))
-            })
+            .map(|i| self.nodal.kinetic_energy(state, i))
             .sum();
         let strain = state
             .gauss
@@ -143,13 +139,10 @@ impl<'a> Observables<'a> {
         self.rollers.map(|r| &r.forces[..])
     }
 
-    /// Linear momentum Σ M_I v_I (kg·m/s).
+    /// Linear momentum Σ M_I v_I (kg·m/s), M_I with the added mass by direction.
     pub fn linear_momentum(&self) -> Vector3<f64> {
-        self.state
-            .velocities
-            .iter()
-            .zip(&self.nodal.mass)
-            .map(|(v, m)| v * *m)
+        (0..self.model.rod.node_count())
+            .map(|i| self.nodal.momentum(self.state, i))
             .sum()
     }
 
@@ -160,8 +153,7 @@ impl<'a> Observables<'a> {
             .map(|i| {
                 let spin = state.configuration.rotations[i]
                     * self.nodal.inertia[i].component_mul(&state.body_angular_velocities[i]);
-                state.configuration.positions[i].cross(&(state.velocities[i] * self.nodal.mass[i]))
-                    + spin
+                state.configuration.positions[i].cross(&self.nodal.momentum(state, i)) + spin
             })
             .sum()
     }

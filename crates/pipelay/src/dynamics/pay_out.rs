@@ -102,13 +102,8 @@ fn element_lump_energy(
     state: &DynamicState,
     element: usize,
 ) -> f64 {
-    let kinetic = |i: usize| {
-        let w = state.body_angular_velocities[i];
-        0.5 * nodal.mass[i] * state.velocities[i].norm_squared()
-            + 0.5 * w.dot(&nodal.inertia[i].component_mul(&w))
-    };
     let positions = &state.configuration.positions;
-    kinetic(element) + kinetic(element + 1)
+    nodal.kinetic_energy(state, element) + nodal.kinetic_energy(state, element + 1)
         - 0.5
             * model.rod.elements[element].length
             * model.submerged_weight()

@@ -20,15 +20,17 @@ use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
-use std::ops::Range;
+use std::ops::{AddAssign, Range};
 
 /// What a node's inertia and damping terms need from the step's start, computed once per step: the spatial
-/// inertia I_n = Λ_n J Λ_nᵀ, the spatial angular momentum π_n = Λ_n J W_n and the damping c = Λ_n D Λ_nᵀ.
+/// inertia I_n = Λ_n J Λ_nᵀ, the spatial angular momentum π_n = Λ_n J W_n, the damping c = Λ_n D Λ_nᵀ and the
+/// node's axis t_n = Λ_n e1.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct NodeStart {
     pub inertia: Matrix3<f64>,
     pub momentum: Vector3<f64>,
     pub damping: Matrix3<f64>,
+    pub axis: Vector3<f64>,
 }
 
 /// Energy terms of one element in a step (J).
@@ -73,8 +75,10 @@ pub struct RodStep<'a> {
     pub positions: &'a [Vector3<f64>],
     pub velocities: &'a [Vector3<f64>],
     pub gauss: &'a [GaussPoint],
-    /// Nodal translational masses (kg) and what the rotational terms need.
+    /// Nodal translational masses across the pipe and what the axial added mass adds along it (kg), and what
+    /// the rotational terms need.
     pub mass: &'a [f64],
+    pub axial_added_mass: &'a [f64],
     pub node_start: &'a [NodeStart],
     /// The step's unknowns on all DOFs [Δφ_I, θ_I].
     pub increments: &'a [f64],
@@ -227,16 +231,28 @@ impl RodStep<'_> {
             }
         };
         // The waves at the element's midpoint, and their Froude–Krylov and added-mass load
-        // (1 + C_a) ρ A u̇ (isotropic, as the added mass), whose work is supplied. They are taken at the
-        // predictor's midpoint, once per step: the sum over the sea's components costs more than the rest of
-        // the element, and the position error is the predictor's, O(Δt³).
+        // ρ A [(1 + C_an)(u̇ − (t·u̇)t) + (1 + C_aa)(t·u̇)t] (t the element's direction at the step's start),
+        // whose work is supplied. They are taken at the predictor's midpoint, once per step: the sum over the
+        // sea's components costs more than the rest of the element, and the position error is the
+        // predictor's, O(Δt³).
         let waves = match (self.waves.get(e), &model.sea) {
             (Some(kinematics), Some(sea)) => {
-                let inertia = (1.0 + section.added_mass[1])
-                    * sea.density
-                    * section.displaced_area
-                    * reference.length
-                    * kinematics.acceleration;
+                let [axial, normal] = section.added_mass;
+                let inertia = if axial == normal {
+                    (1.0 + normal)
+                        * sea.density
+                        * section.displaced_area
+                        * reference.length
+                        * kinematics.acceleration
+                } else {
+                    let t = chord.normalize();
+                    let along = t * t.dot(&kinematics.acceleration);
+                    sea.density
+                        * section.displaced_area
+                        * reference.length
+                        * ((1.0 + normal) * (kinematics.acceleration - along)
+                            + (1.0 + axial) * along)
+                };
                 work.supplied += 0.5 * inertia.dot(&(dphi1 + dphi2));
                 share_force(&inertia);
                 Some(kinematics)
@@ -345,6 +361,7 @@ impl RodStep<'_> {
             inertia: inertia_n,
             momentum: momentum_n,
             damping,
+            ..
         } = self.node_start[node];
         let q = cayley(&theta);
         let momentum_next = q * (2.0 / dt * inertia_n * theta - momentum_n);
@@ -366,7 +383,65 @@ impl RodStep<'_> {
                 .copy_from(&rotation_block);
             block
         });
+        let mut tangent = tangent;
+        if self.axial_added_mass[node] != 0.0 {
+            let (force, moment) =
+                self.axial_added_mass_terms(node, &dphi, &theta, &q, tangent.as_mut());
+            forces.fixed_rows_mut::<3>(0).add_assign(&force);
+            forces.fixed_rows_mut::<3>(3).add_assign(&moment);
+        }
         sink.add_node(node, &forces, &forces.abs(), tangent.as_ref());
         theta.dot(&(damping * theta)) / dt
+    }
+
+    /// The axial added mass's part of node `node`'s inertia, and its derivatives added to `tangent`.
+    ///
+    /// With M(t) = m I + d t tᵀ (d = `axial_added_mass`, t the node's axis), the translational inertia is
+    /// (M(t_{n+1}) v_{n+1} − M(t_n) v_n)/Δt, which conserves the momentum M v; its work over the step,
+    /// v̄·(M_{n+1}v_{n+1} − M_n v_n), exceeds the change of ½vᵀMv by ½ v_nᵀ(M_{n+1} − M_n)v_{n+1} = g(t_{n+1}) −
+    /// g(t_n), g(t) = ½ d (t·v_n)(t·v_{n+1}). That g is quadratic in t, so g(t_{n+1}) − g(t_n) = d (S t̄)·Δt
+    /// exactly (S = ½(v_n v_{n+1}ᵀ + v_{n+1}v_nᵀ), t̄ the mean axis), and the Cayley update makes
+    /// Δt = θ × t̄ exactly. The moment m = −d t̄ × (S t̄) does the work −(g(t_{n+1}) − g(t_n)): the inertia's
+    /// work is then the kinetic energy's change to round-off (a discrete gradient in t).
+    fn axial_added_mass_terms(
+        &self,
+        node: usize,
+        dphi: &Vector3<f64>,
+        theta: &Vector3<f64>,
+        q: &Matrix3<f64>,
+        tangent: Option<&mut Matrix6<f64>>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let dt = self.dt;
+        let d = self.axial_added_mass[node];
+        let start = self.node_start[node].axis;
+        let v_n = self.velocities[node];
+        let v_next = 2.0 * dphi / dt - v_n;
+        let end = q * start;
+        let mean = 0.5 * (start + end);
+        let force = d * (end * end.dot(&v_next) - start * start.dot(&v_n)) / dt;
+        let s_mean = 0.5 * (v_n * v_next.dot(&mean) + v_next * v_n.dot(&mean));
+        let moment = -d * mean.cross(&s_mean);
+        if let Some(block) = tangent {
+            // ∂t_{n+1}/∂θ = −t̂_{n+1} T(θ); ∂v_{n+1}/∂Δφ = (2/Δt) I.
+            let turn = -skew(&end) * cayley_tangent(theta);
+            let force_dphi = end * end.transpose() * (2.0 * d / (dt * dt));
+            let force_theta = (Matrix3::identity() * end.dot(&v_next) + end * v_next.transpose())
+                * turn
+                * (d / dt);
+            let s = 0.5 * (v_n * v_next.transpose() + v_next * v_n.transpose());
+            let moment_theta = (skew(&s_mean) - skew(&mean) * s) * (0.5 * d) * turn;
+            let moment_dphi = -skew(&mean)
+                * (v_n * mean.transpose() + Matrix3::identity() * v_n.dot(&mean))
+                * (d / dt);
+            let mut add = |row: usize, column: usize, part: &Matrix3<f64>| {
+                let mut view = block.fixed_view_mut::<3, 3>(row, column);
+                view += part;
+            };
+            add(0, 0, &force_dphi);
+            add(0, 3, &force_theta);
+            add(3, 0, &moment_dphi);
+            add(3, 3, &moment_theta);
+        }
+        (force, moment)
     }
 }

@@ -98,6 +98,7 @@ impl Integrator {
             velocities: &state.velocities,
             gauss: &state.gauss,
             mass: &self.nodal.mass,
+            axial_added_mass: &self.nodal.axial_added_mass,
             node_start: &self.node_start,
             increments: &self.increments,
             waves: &self.wave_kinematics,
