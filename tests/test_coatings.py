@@ -70,21 +70,27 @@ def hanging(section: pl.Section, current: float) -> pl.State:
     return model.static()
 
 
+def plain_like(section: pl.Section, outer_diameter: float, displaced_area: float | None = None) -> pl.Section:
+    """A plain `pl.Section` with `section`'s stiffness, mass, inertia and coefficients on `outer_diameter`."""
+    return pl.Section(
+        EA=section.EA,
+        GA=section.GA,
+        GJ=section.GJ,
+        EI=section.EI,
+        mass=section.mass,
+        inertia=section.inertia,
+        outer_diameter=outer_diameter,
+        displaced_area=displaced_area,
+        drag=section.drag,
+        added_mass=section.added_mass,
+    )
+
+
 def test_the_engine_sees_a_coated_pipe_as_its_outer_surface() -> None:
     """The coated pipe hangs, drags and reacts exactly as a plain section with its mass, stiffness and outer
     surface: buoyancy, drag and contact all take the hydrodynamic diameter."""
     coated = concrete_pipe()
-    plain = pl.Section(
-        EA=coated.EA,
-        GA=coated.GA,
-        GJ=coated.GJ,
-        EI=coated.EI,
-        mass=coated.mass,
-        inertia=coated.inertia,
-        outer_diameter=coated.hydrodynamic_diameter,
-        drag=coated.drag,
-        added_mass=coated.added_mass,
-    )
+    plain = plain_like(coated, coated.hydrodynamic_diameter)
     a, b = hanging(coated, 0.5), hanging(plain, 0.5)
     np.testing.assert_allclose(a.positions, b.positions, rtol=0, atol=1e-9)
     np.testing.assert_allclose(a.reaction("B"), b.reaction("B"), rtol=1e-10)
@@ -101,18 +107,7 @@ def test_the_engine_sees_a_coated_pipe_as_its_outer_surface() -> None:
     still = hanging(coated, 0.0)
     assert still.reaction("B")[2] == pytest.approx(coated.submerged_weight * 500.0, rel=1e-9)
     # Were the drag on the steel's diameter, the current would push the line less far aside.
-    steel_surface = pl.Section(
-        EA=coated.EA,
-        GA=coated.GA,
-        GJ=coated.GJ,
-        EI=coated.EI,
-        mass=coated.mass,
-        inertia=coated.inertia,
-        outer_diameter=D,
-        displaced_area=coated.displaced_area,
-        drag=coated.drag,
-        added_mass=coated.added_mass,
-    )
+    steel_surface = plain_like(coated, D, displaced_area=coated.displaced_area)
     assert abs(a.positions[0, 0]) > 1.1 * abs(hanging(steel_surface, 0.5).positions[0, 0])
 
 

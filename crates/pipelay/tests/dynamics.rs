@@ -24,8 +24,21 @@ fn hat(t: f64) -> f64 {
 /// The free-flying rod of Simo, Tarnow & Doblaré (1995): L = 10 inclined by atan(4/3), EA = GA = 1e4,
 /// EI = GJ = 500, ρA = 1, J = (20, 10, 10); tip moments (0, 200, 100)·hat(t) and force (20, 0, 0)·hat(t).
 fn flying_rod(elements: usize, dt: f64, rule: StressRule) -> Integrator {
+    flying_rod_in(elements, dt, rule, None)
+}
+
+/// The same rod, in still water of no weight (gravity 0) with a 4 cm outer diameter and these added-mass
+/// coefficients (axial, normal) if `added_mass` is given.
+fn flying_rod_in(
+    elements: usize,
+    dt: f64,
+    rule: StressRule,
+    added_mass: Option<[f64; 2]>,
+) -> Integrator {
     let extras = SectionExtras {
         inertia: [20.0, 10.0, 10.0],
+        outer_diameter: added_mass.map_or(0.0, |_| 0.04),
+        added_mass: added_mass.unwrap_or_default(),
         ..SectionExtras::default()
     };
     let section = Section::new(1e4, [1e4; 2], 500.0, [500.0; 2], 1.0, extras).expect("section");
@@ -36,7 +49,8 @@ fn flying_rod(elements: usize, dt: f64, rule: StressRule) -> Integrator {
         section,
     )
     .expect("rod");
-    let mut model = Model::new(rod, None, 0.0).expect("model");
+    let sea = added_mass.map(|_| Sea::new(100.0, 1025.0, None, None).expect("sea"));
+    let mut model = Model::new(rod, sea, 0.0).expect("model");
     let scale = Arc::new(|t: f64| Ok(hat(t)));
     model
         .point_load(
@@ -98,38 +112,7 @@ fn free_flight_conserves_energy_and_momentum() {
 #[test]
 fn free_flight_in_water_conserves_energy_with_added_mass_by_direction() {
     let flight = |added_mass: [f64; 2]| {
-        let extras = SectionExtras {
-            inertia: [20.0, 10.0, 10.0],
-            outer_diameter: 0.04,
-            added_mass,
-            ..SectionExtras::default()
-        };
-        let section = Section::new(1e4, [1e4; 2], 500.0, [500.0; 2], 1.0, extras).expect("section");
-        let rod = Rod::straight(
-            Vector3::new(6.0, 0.0, 0.0),
-            Vector3::new(0.0, 0.0, 8.0),
-            10,
-            section,
-        )
-        .expect("rod");
-        let sea = Sea::new(100.0, 1025.0, None, None).expect("sea");
-        let mut model = Model::new(rod, Some(sea), 0.0).expect("model");
-        let scale = Arc::new(|t: f64| Ok(hat(t)));
-        model
-            .point_load(
-                -1,
-                Vector3::new(20.0, 0.0, 0.0),
-                Vector3::new(0.0, 200.0, 100.0),
-                Some(scale),
-            )
-            .expect("load");
-        let state =
-            DynamicState::at_rest(&model, Configuration::reference(&model), 0.0).expect("state");
-        let options = DynamicOptions {
-            time_step: 0.05,
-            ..DynamicOptions::default()
-        };
-        let mut rod = Integrator::new(model, state, options).expect("integrator");
+        let mut rod = flying_rod_in(10, 0.05, StressRule::AverageStrain, Some(added_mass));
         while rod.state().time < 5.0 - 1e-9 {
             rod.step().expect("step");
         }
