@@ -27,12 +27,12 @@ from __future__ import annotations
 import argparse
 import math
 import time
-import warnings
 from pathlib import Path
 
 import numpy as np
 import pipelay as pl
 from pipelay import plots
+from pipelay.analysis.suspect import worst_of_each_kind
 
 LENGTH, DEPTH = 1200.0, 800.0  # m
 OUTER, INNER, STEEL = 0.60, 0.57, 7850.0  # m, m, kg/m³
@@ -86,21 +86,17 @@ def run(name: str, controller: pl.PID, elements: int, dt: float) -> tuple[pl.Sta
     `main` to print as a note."""
     model = scenario(controller, elements)
     began = time.perf_counter()
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", pl.PhysicsWarning)
+    with worst_of_each_kind() as suspects:
         state = model.static()
         results = model.simulation(state=state, dt=dt).run(200.0, progress=False)
     seconds = time.perf_counter() - began
-    for warning in caught:
-        if issubclass(warning.category, pl.PhysicsWarning):
-            NOTES.setdefault(str(warning.message).split(" at t = ")[0].split(":")[0], str(warning.message))
-        else:
-            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    for kind, warning in suspects.items():
+        NOTES.setdefault(kind, str(warning))
     return state, results, seconds
 
 
 NOTES: dict[str, str] = {}
-"""The PhysicsWarnings of the runs, one per kind."""
+"""The PhysicsWarnings of the runs, the worst of each kind."""
 
 
 def main(argv: list[str] | None = None) -> int:

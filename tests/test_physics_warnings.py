@@ -82,12 +82,14 @@ def test_a_heeled_vessel_is_named_with_its_angle() -> None:
         eta=np.array([0.0, 0.0, 0.0, math.radians(9.9), 0.0, 0.0]),
     )
     assert suspect.suspect_state(sound) == []
+    messages = lambda state: [message for _, _, message in suspect.suspect_state(state)]
     heeled = SimpleNamespace(**{**vars(sound), "eta": np.array([0.0, 0, 0, math.radians(-12.5), 0.0, 0.0])})
-    assert suspect.suspect_state(heeled) == [
+    assert messages(heeled) == [
         "the vessel heels (roll) 12.5°, beyond 10° (its hydrostatics are linear in small angles)"
     ]
+    assert suspect.suspect_state(heeled)[0][:2] == ("heel", pytest.approx(math.radians(12.5)))
     trimmed = SimpleNamespace(**{**vars(sound), "eta": np.array([0.0, 0, 0, 0.0, math.radians(11.0), 0.0])})
-    assert "trims (pitch) 11.0°" in suspect.suspect_state(trimmed)[0]
+    assert "trims (pitch) 11.0°" in messages(trimmed)[0]
 
 
 def test_a_sound_lay_warns_of_nothing() -> None:
@@ -110,3 +112,12 @@ def test_pipelay_static_prints_the_warning(capsys: pytest.CaptureFixture[str]) -
     assert re.search(
         r"^warning: the pipe is in compression at the hold point: top tension -\S+ kN$", err, re.MULTILINE
     )
+
+
+def test_the_command_line_keeps_the_worst_of_each_kind(capsys: pytest.CaptureFixture[str]) -> None:
+    """A run warns once per kind, with its worst: the statics' and the run's strains give one line."""
+    with suspect.worst_of_each_kind() as worst:
+        model = overstretched()
+        model.simulation(model.static(), dt=0.1).run(0.5, progress=False)
+    assert list(worst) == ["strain"]
+    assert worst["strain"].size == pytest.approx(3.0, rel=1e-3)

@@ -30,7 +30,6 @@ import copy
 import json
 import sys
 import tomllib
-import warnings
 from pathlib import Path
 from typing import Any
 
@@ -39,7 +38,7 @@ import numpy as np
 import pipelay as pl
 from pipelay import plots
 from pipelay.analysis.lay import TARGETS, find_lay_position
-from pipelay.analysis.suspect import PhysicsWarning
+from pipelay.analysis.suspect import PhysicsWarning, worst_of_each_kind
 from pipelay.analysis.sweep import SUMMARY_TITLE, _label, sweep
 from pipelay.analysis.sweep import run as run_simulation
 from pipelay.analysis.sweep import start as start_simulation
@@ -273,23 +272,32 @@ def _write(args: argparse.Namespace, scenario: Scenario) -> None:
 
 def _run(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
-    simulation = start_simulation(scenario, args.resume)
     status = 0
-    try:
-        # Streamed to the file as the run goes: memory stays flat; the file is complete on failure or Ctrl-C.
-        if run_simulation(simulation, scenario, args.output, progress=not args.no_progress):
-            print(
-                f"pipelay: interrupted at t = {simulation.time:g} s; keeping the results so far",
-                file=sys.stderr,
-            )
-            status = INTERRUPTED
-    except pl.ConvergenceError as failure:
-        print(f"pipelay: solve failed: {failure}", file=sys.stderr)
-        status = 1
+    with worst_of_each_kind() as suspects:
+        simulation = start_simulation(scenario, args.resume)
+        try:
+            # Streamed to the file as the run goes: memory stays flat; the file is complete on failure or
+            # Ctrl-C.
+            if run_simulation(simulation, scenario, args.output, progress=not args.no_progress):
+                print(
+                    f"pipelay: interrupted at t = {simulation.time:g} s; keeping the results so far",
+                    file=sys.stderr,
+                )
+                status = INTERRUPTED
+        except pl.ConvergenceError as failure:
+            print(f"pipelay: solve failed: {failure}", file=sys.stderr)
+            status = 1
     _write(args, scenario)
+    _print_suspects(suspects)
     if args.checkpoint:
         print(f"checkpoint: {checkpoint(simulation, args.checkpoint)} (t = {simulation.time:g} s)")
     return status
+
+
+def _print_suspects(suspects: dict[str, PhysicsWarning]) -> None:
+    """The worst `PhysicsWarning` of each kind, one line each on standard error."""
+    for warning in suspects.values():
+        print(f"warning: {warning}", file=sys.stderr)
 
 
 def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
@@ -336,19 +344,14 @@ def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
 
 def _static(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", PhysicsWarning)
+    with worst_of_each_kind() as suspects:
         if args.target:
             state = _target(args, scenario)
         else:
             state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
     print(f"static equilibrium: {state.iterations} Newton iterations in {state.steps} load step(s)")
     print(_summary(state))
-    for warning in caught:
-        if issubclass(warning.category, PhysicsWarning):
-            print(f"warning: {warning.message}", file=sys.stderr)
-        else:
-            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    _print_suspects(suspects)
     if args.plots:
         path = Path(args.plots) / "tension_bending.png"
         plots.tension_and_bending(state, path=path)

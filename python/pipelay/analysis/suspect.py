@@ -13,22 +13,36 @@ A `PhysicsWarning` (a `UserWarning`) names where and how much:
 
 from __future__ import annotations
 
+import contextlib
 import math
 import warnings
+from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
 
 from pipelay.analysis.checks import DEFAULT_GRADE, GRADES
 
-__all__ = ["HEEL_LIMIT", "PhysicsWarning", "suspect_results", "suspect_state", "warn"]
+__all__ = ["HEEL_LIMIT", "PhysicsWarning", "suspect_results", "suspect_state", "warn", "worst_of_each_kind"]
 
 HEEL_LIMIT = math.radians(10.0)
 """Largest roll or pitch of the vessel (rad) within its model's small-angle hydrostatics."""
 
 
 class PhysicsWarning(UserWarning):
-    """A solution whose physics is suspect: compression at the hold point, strain beyond yield, large heel."""
+    """A solution whose physics is suspect: compression at the hold point, strain beyond yield, large heel.
+
+    `kind` is what is suspect ("compression", "strain", "heel" or "trim") and `size` how much (N of
+    compression, strain, rad), so that a caller can keep the worst of each kind."""
+
+    def __init__(self, message: str, kind: str = "", size: float = 0.0) -> None:
+        super().__init__(message)
+        self.kind = kind
+        self.size = size
+
+
+Suspect = tuple[str, float, str]
+"""What is suspect: its kind, its size and the message."""
 
 
 def _yield_strain(section: Any) -> tuple[float, str] | None:
@@ -45,36 +59,39 @@ def _messages(
     eta: np.ndarray | None,
     section: Any,
     time: np.ndarray | None,
-) -> list[str]:
+) -> list[Suspect]:
     """What is suspect: the top tension (N) and the vessel's pose η over records (first axis; one record for
     a state), and the largest strain with where it is."""
 
     def when(record: int) -> str:
         return "" if time is None else f" at t = {time[record]:.6g} s"
 
-    messages = []
+    messages: list[Suspect] = []
     # Compression beyond the round-off of the axial force (about 1e-13 EA per element).
     if top_tension is not None and np.nanmin(top_tension) < -1e-9 * section.EA:
         record = int(np.nanargmin(top_tension))
-        messages.append(
+        message = (
             f"the pipe is in compression at the hold point{when(record)}: top tension "
             f"{top_tension[record] / 1e3:.4g} kN"
         )
+        messages.append(("compression", float(-top_tension[record]), message))
     limit = _yield_strain(section)
     if limit is not None and strain is not None and strain[0] > limit[0]:
-        messages.append(
+        message = (
             f"strain {100 * strain[0]:.3g} % {strain[1]} exceeds the yield strain {100 * limit[0]:.3g} % of "
             f"{limit[1]}: the pipe model is linear elastic, so its stresses beyond yield are not real"
         )
+        messages.append(("strain", strain[0], message))
     if eta is not None:
-        for index, name in ((3, "heels (roll)"), (4, "trims (pitch)")):
+        for index, kind, name in ((3, "heel", "heels (roll)"), (4, "trim", "trims (pitch)")):
             angle = np.abs(eta[:, index])
             record = int(np.nanargmax(angle))
             if angle[record] > HEEL_LIMIT:
-                messages.append(
+                message = (
                     f"the vessel {name} {math.degrees(angle[record]):.1f}°{when(record)}, beyond "
                     f"{math.degrees(HEEL_LIMIT):.0f}° (its hydrostatics are linear in small angles)"
                 )
+                messages.append((kind, float(angle[record]), message))
     return messages
 
 
@@ -89,8 +106,8 @@ def _element_strain(state: Any, at: str = "") -> tuple[float, str] | None:
     return float(strain[element]), f"in element {element} ({middle:.1f} m from end A){at}"
 
 
-def suspect_state(state: Any) -> list[str]:
-    """What is suspect in a `pl.State` (messages; empty if nothing is)."""
+def suspect_state(state: Any) -> list[Suspect]:
+    """What is suspect in a `pl.State` (empty if nothing is)."""
     summary = state.lay_summary()
     eta = state.eta
     return _messages(
@@ -102,9 +119,8 @@ def suspect_state(state: Any) -> list[str]:
     )
 
 
-def suspect_results(results: Any, final: Any) -> list[str]:
-    """What is suspect in the records of a run that ended in the `pl.State` `final` (messages; empty if
-    nothing is). The strain is the larger of the final state's, over every element, and, with a vessel, the
+def suspect_results(results: Any, final: Any) -> list[Suspect]:
+    """What is suspect in the records of a run that ended in the `pl.State` `final` (empty if nothing is). The strain is the larger of the final state's, over every element, and, with a vessel, the
     recorded overbend and sagbend strains: the records' whole strain field is not read (it can be larger than
     the memory)."""
     summary = results.lay_summary()
@@ -126,7 +142,24 @@ def suspect_results(results: Any, final: Any) -> list[str]:
     )
 
 
-def warn(messages: list[str], stacklevel: int = 3) -> None:
-    """Each message as a `PhysicsWarning`, attributed `stacklevel` frames up (the user's call)."""
-    for message in messages:
-        warnings.warn(message, PhysicsWarning, stacklevel=stacklevel)
+def warn(suspects: list[Suspect], stacklevel: int = 3) -> None:
+    """Each suspect as a `PhysicsWarning`, attributed `stacklevel` frames up (the user's call)."""
+    for kind, size, message in suspects:
+        warnings.warn(PhysicsWarning(message, kind, size), stacklevel=stacklevel)
+
+
+@contextlib.contextmanager
+def worst_of_each_kind() -> Iterator[dict[str, PhysicsWarning]]:
+    """Collects the `PhysicsWarning`s raised inside, keeping the worst of each kind (a long run, streamed in
+    segments, raises one per segment), into the dict it yields; other warnings pass on."""
+    worst: dict[str, PhysicsWarning] = {}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", PhysicsWarning)
+        yield worst
+    for warning in caught:
+        found = warning.message
+        if isinstance(found, PhysicsWarning):
+            if found.kind not in worst or found.size > worst[found.kind].size:
+                worst[found.kind] = found
+        else:
+            warnings.warn_explicit(found, warning.category, warning.filename, warning.lineno)
