@@ -19,6 +19,7 @@ from typing import Any
 from pipelay._core import (
     PID,
     Bathymetry,
+    Clump,
     Coating,
     ConvergenceError,
     Current,
@@ -103,6 +104,7 @@ del _old, _new
 __all__ = [
     "PID",
     "Bathymetry",
+    "Clump",
     "Coating",
     "ConvergenceError",
     "Current",

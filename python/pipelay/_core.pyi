@@ -15,6 +15,7 @@ _End: TypeAlias = Literal["A", "B"]
 __all__ = [
     "PID",
     "Bathymetry",
+    "Clump",
     "Coating",
     "ConvergenceError",
     "Current",
@@ -44,6 +45,27 @@ class InputError(ValueError):
 
 class ConvergenceError(RuntimeError):
     """Newton failed: the message gives the load factor or time reached, iterations and residual."""
+
+@final
+class Clump:
+    """A body to attach at a point of the line (Model.attach): mass in air (kg), displaced volume (m³), drag
+    area C_d·A (m²) and added-mass coefficient on the displaced volume."""
+
+    def __new__(
+        cls, mass: float, volume: float = 0.0, drag_area: float = 0.0, added_mass: float = 1.0
+    ) -> Clump: ...
+    @property
+    def mass(self) -> float:
+        """Mass in air (kg)."""
+    @property
+    def volume(self) -> float:
+        """Displaced volume (m³)."""
+    @property
+    def drag_area(self) -> float:
+        """Drag area C_d·A (m²)."""
+    @property
+    def added_mass(self) -> float:
+        """Added-mass coefficient on the displaced volume."""
 
 @final
 class Coating:
@@ -382,6 +404,9 @@ class State:
     @property
     def seabed_reaction(self) -> _FloatArray | None:
         """The seabed's force on each node (n + 1, 3) (N, in e); None without a seabed."""
+    @property
+    def attachment_forces(self) -> _FloatArray:
+        """What each attachment applies to the line (k, 3) (N, in e): weight less buoyancy and drag."""
     @property
     def laid_length(self) -> float | None:
         """Reference length of pipe on the seabed (m); None without a seabed."""
@@ -761,6 +786,9 @@ class Model:
     ) -> None:
         """Pay pipe out (speed > 0, m/s) or in (< 0) at the vessel's or a driven end during a simulation; speed:
         a number, a callable of t or a table of rows [t, speed]."""
+    def attach(self, arc_length: float, attachment: Clump) -> int:
+        """Attaches a clump, buoyancy module or in-line structure at `arc_length` (m from end A along the
+        reference); returns its index (its row of State.attachment_forces)."""
     def point_load(
         self,
         node: int | _End,

@@ -23,6 +23,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "ConvergenceError",
         py.get_type::<errors::ConvergenceError>(),
     )?;
+    m.add_class::<structure::Clump>()?;
     m.add_class::<structure::Coating>()?;
     m.add_class::<structure::Section>()?;
     m.add_class::<structure::Rod>()?;

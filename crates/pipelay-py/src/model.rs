@@ -3,7 +3,7 @@ use crate::callables::{matrix_function, scalar_function, table, vector_function}
 use crate::convert::{array, matrix3, vector3};
 use crate::errors::{input, to_py};
 use crate::state::State;
-use crate::structure::{Rod, Sea};
+use crate::structure::{Clump, Rod, Sea};
 use crate::vessel::{PyForce, PyPid, Vessel};
 use nalgebra::{Matrix3, Vector3};
 use pipelay::assembly::configuration::Configuration;
@@ -112,6 +112,21 @@ impl Model {
             ),
         };
         self.0.pay_out(end, speed).map_err(to_py)
+    }
+
+    /// Attaches `attachment` (a `pl.Clump`) at `arc_length` (m from end A along the reference); returns its
+    /// index (the row of `State.attachment_forces`).
+    fn attach(&mut self, arc_length: f64, attachment: &Clump) -> PyResult<usize> {
+        let c = attachment.0;
+        let placed = pipelay::rod::attachment::Attachment::new(
+            arc_length,
+            c.mass,
+            c.volume,
+            c.drag_area,
+            c.added_mass,
+        )
+        .map_err(to_py)?;
+        self.0.attach(placed).map_err(to_py)
     }
 
     /// A fixed-direction force (3,) (N) and moment (3,) (N·m) in e at a node (index, negative from the end,

@@ -36,6 +36,8 @@ pub struct State {
     dynamic: Option<DynamicState>,
     /// With a seabed: its force on each node, the touchdown and the friction slips.
     seabed: Option<SeabedState>,
+    /// What each attachment applies to the line: weight less buoyancy and drag (N, in e).
+    attachment_forces: Vec<Vector3<f64>>,
     /// What lay engineers read: strain per element, roller forces, the lay summary; and the section and sea
     /// that design checks need.
     lay: LayState,
@@ -121,6 +123,7 @@ impl State {
         );
         State {
             lay,
+            attachment_forces: model.attachment_forces(&configuration.positions, None, 0.0),
             configuration,
             velocities: vec![Vector3::zeros(); count],
             angular_velocities: vec![Vector3::zeros(); count],
@@ -165,6 +168,11 @@ impl State {
         );
         State {
             lay,
+            attachment_forces: integrator.model().attachment_forces(
+                &state.configuration.positions,
+                Some(&state.velocities),
+                state.time,
+            ),
             configuration: state.configuration.clone(),
             velocities: state.velocities.clone(),
             angular_velocities: state.angular_velocities(),
@@ -320,6 +328,15 @@ impl State {
     #[getter]
     fn seabed_reaction<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
         self.seabed.as_ref().map(|s| points_to_numpy(py, &s.forces))
+    }
+    /// What each attachment applies to the line (k, 3) (N, in e): its weight less its buoyancy and its drag
+    /// in the current (on its velocity in a simulation's state); (0, 3) without attachments.
+    #[getter]
+    fn attachment_forces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        if self.attachment_forces.is_empty() {
+            return PyArray2::zeros(py, [0, 3], false);
+        }
+        points_to_numpy(py, &self.attachment_forces)
     }
     /// Reference length of pipe resting on the seabed (m); None without a seabed.
     #[getter]

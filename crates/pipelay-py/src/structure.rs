@@ -57,6 +57,50 @@ impl Coating {
     }
 }
 
+/// A body to attach at a point of the line (`Model.attach`): a clump weight, a buoyancy module, an in-line
+/// structure or a laydown head: mass in air (kg), displaced volume (m³), drag area C_d·A (m²) and added-mass
+/// coefficient on the displaced volume.
+#[pyclass(module = "pipelay", name = "Clump", frozen)]
+#[derive(Clone, Copy)]
+pub struct Clump(pub pipelay::rod::attachment::Attachment);
+
+#[pymethods]
+impl Clump {
+    #[new]
+    #[pyo3(signature = (mass, volume=0.0, drag_area=0.0, added_mass=1.0))]
+    fn new(mass: f64, volume: f64, drag_area: f64, added_mass: f64) -> PyResult<Self> {
+        pipelay::rod::attachment::Attachment::new(0.0, mass, volume, drag_area, added_mass)
+            .map(Clump)
+            .map_err(to_py)
+    }
+    /// Mass in air (kg).
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.0.mass
+    }
+    /// Displaced volume (m³).
+    #[getter]
+    fn volume(&self) -> f64 {
+        self.0.volume
+    }
+    /// Drag area C_d·A (m²).
+    #[getter]
+    fn drag_area(&self) -> f64 {
+        self.0.drag_area
+    }
+    /// Added-mass coefficient on the displaced volume.
+    #[getter]
+    fn added_mass(&self) -> f64 {
+        self.0.added_mass
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Clump(mass={}, volume={}, drag_area={}, added_mass={})",
+            self.0.mass, self.0.volume, self.0.drag_area, self.0.added_mass
+        )
+    }
+}
+
 /// Refuses a steel grade that the design checks do not know (`pipelay.analysis.checks.GRADES`).
 fn check_grade(py: Python<'_>, grade: &str) -> PyResult<()> {
     let grades = py.import("pipelay.analysis.checks")?.getattr("GRADES")?;

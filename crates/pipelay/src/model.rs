@@ -1,7 +1,8 @@
-//! A model: the rod, the sea, gravity, supports (eqs. 20–21) and point loads.
+//! A model: the rod, the sea, gravity, supports (eqs. 20–21), point loads and attachments.
 use crate::environment::sea::Sea;
 use crate::environment::waves::WaveField;
 use crate::error::{finite, non_negative, Error, Result};
+use crate::rod::attachment::{Attachment, Place};
 use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
 use crate::table::TimeFunction;
@@ -189,6 +190,8 @@ pub struct Model {
     pub pay_out: Option<PayOut>,
     /// The sea's waves resolved for its depth and this gravity, if it has any.
     pub waves: Option<WaveField>,
+    /// Bodies attached at points of the line.
+    pub attachments: Vec<Attachment>,
 }
 
 /// Pay-out speed (m/s of unstretched pipe; negative: pay-in).
@@ -269,6 +272,7 @@ impl Model {
             point_loads: Vec::new(),
             vessel: None,
             pay_out: None,
+            attachments: Vec::new(),
         })
     }
 
@@ -498,10 +502,80 @@ impl Model {
         Ok(())
     }
 
+    /// Attaches `attachment` to the line; returns its index. Its arc length must lie on the line.
+    pub fn attach(&mut self, attachment: Attachment) -> Result<usize> {
+        let length = self.rod.length();
+        if !(0.0..=length * (1.0 + 1e-12)).contains(&attachment.arc_length) {
+            return Err(Error::input(
+                "arc_length",
+                format!("{} m", attachment.arc_length),
+                format!("must lie on the line: in [0, {length}] m from end A"),
+            ));
+        }
+        if self.pay_out.is_some() {
+            return Err(Error::input(
+                "attach",
+                "an attachment to a line paid out",
+                "attachments and pay-out in one model are not supported yet",
+            ));
+        }
+        self.attachments.push(attachment);
+        Ok(self.attachments.len() - 1)
+    }
+
+    /// Each attachment's place on the line.
+    pub fn attachment_places(&self) -> Vec<Place> {
+        self.attachments
+            .iter()
+            .map(|a| a.place(&self.rod))
+            .collect()
+    }
+
+    /// What each attachment applies to the line at `positions` moving with `velocities` (zero if `None`) at
+    /// `time`: its weight less buoyancy and its drag in the current (N, in e).
+    // Indexing cannot go out of bounds here: element indices of the model's own rod, on its node arrays.
+    #[allow(clippy::indexing_slicing)]
+    pub fn attachment_forces(
+        &self,
+        positions: &[Vector3<f64>],
+        velocities: Option<&[Vector3<f64>]>,
+        time: f64,
+    ) -> Vec<Vector3<f64>> {
+        let density = self.water_density();
+        self.attachments
+            .iter()
+            .zip(self.attachment_places())
+            .map(|(attachment, place)| {
+                let e = place.element;
+                let mut force = Vector3::z() * attachment.net_weight(density, self.gravity);
+                if let Some(sea) = &self.sea {
+                    let point = place.point(&positions[e], &positions[e + 1]);
+                    let velocity =
+                        velocities.map_or_else(Vector3::zeros, |v| place.point(&v[e], &v[e + 1]));
+                    let (current, _) = sea.current_at(point.z, time);
+                    force += attachment.drag(density, &(current - velocity));
+                }
+                force
+            })
+            .collect()
+    }
+
+    /// The sea's density (kg/m³), 0 without a sea.
+    pub fn water_density(&self) -> f64 {
+        self.sea.as_ref().map_or(0.0, |sea| sea.density)
+    }
+
     /// Pays pipe out at `end` at `speed` (m/s; negative pays in). The end must carry the vessel or be driven:
     /// pipe cannot pass through a clamp or a pin.
     pub fn pay_out(&mut self, end: &str, speed: PayOutSpeed) -> Result<()> {
         let node = self.end_node(end)?;
+        if !self.attachments.is_empty() {
+            return Err(Error::input(
+                "pay_out",
+                "pay-out of a line with attachments",
+                "attachments and pay-out in one model are not supported yet",
+            ));
+        }
         let held = self
             .supports
             .iter()

@@ -526,6 +526,22 @@ class PointLoad(Table):
     )
 
 
+class Attachment(Table):
+    """`model.attach(arc_length, pl.Clump(...))`, one table per body at a point of the line: a clump weight, a
+    buoyancy module, an in-line structure. Its weight less buoyancy, mass with added mass and drag act there,
+    shared by its element's two nodes."""
+
+    arc_length: Annotated[float, Number("m", ge=0)] = Field(
+        description="where it sits: arc length from end A along the reference, on the line"
+    )
+    mass: Annotated[float, Number("kg", ge=0)] = Field(description="mass in air, ≥ 0")
+    volume: Annotated[float | None, Number("m³", ge=0)] = api("displaced volume, ≥ 0", 0)
+    drag_area: Annotated[float | None, Number("m²", ge=0)] = api("drag area C_d·A, ≥ 0", 0)
+    added_mass: Annotated[float | None, Number(ge=0)] = api(
+        "added-mass coefficient on the displaced volume, ≥ 0", 1
+    )
+
+
 class Solver(Table):
     """`model.static(steps, start)`, `model.simulation(dt)`, `simulation.run(t_end, record_every)`."""
 
@@ -580,6 +596,7 @@ class ScenarioFile(Table):
     controller: Controller | None = None
     pay_out: PayOut | None = None
     environment: list[Environment] = []  # noqa: RUF012 (as point_loads)
+    attachments: list[Attachment] = []  # noqa: RUF012 (as point_loads)
     solver: Solver = Solver()
     output: Output = Output()
 

@@ -327,6 +327,9 @@ def _build(file: models.ScenarioFile) -> pl.Model:
     for i, load in enumerate(file.point_loads):
         with _engine(f"point_loads[{i}]", KEYS["point_loads"]):
             model.point_load(**load.given())
+    for i, attachment in enumerate(file.attachments):
+        with _engine(f"attachments[{i}]", KEYS["attachments"]):
+            model.attach(attachment.arc_length, pl.Clump(**attachment.given("arc_length")))
     if file.vessel is not None:
         _attach(model, file)
     if file.pay_out is not None:

@@ -20,7 +20,7 @@ impl Configuration {
         }
     }
 
-    /// Gravity potential of the submerged weight, −Σ ½L0 w (z1 + z2) (J).
+    /// Gravity potential of the submerged weight, −Σ ½L0 w (z1 + z2), and of the attachments' (J).
     pub fn gravity_potential(&self, model: &Model) -> f64 {
         let weight = model.submerged_weight();
         model
@@ -30,6 +30,22 @@ impl Configuration {
             .enumerate()
             .map(|(e, r)| {
                 -0.5 * r.length * weight * (self.positions[e].z + self.positions[e + 1].z)
+            })
+            .sum::<f64>()
+            - self.attachment_potential(model)
+    }
+
+    /// Σ W (N_a z_a + N_b z_b) over the attachments, W the weight less buoyancy of each (J; 0 without).
+    fn attachment_potential(&self, model: &Model) -> f64 {
+        let density = model.water_density();
+        model
+            .attachments
+            .iter()
+            .zip(model.attachment_places())
+            .map(|(attachment, place)| {
+                let e = place.element;
+                attachment.net_weight(density, model.gravity)
+                    * place.point(&self.positions[e], &self.positions[e + 1]).z
             })
             .sum()
     }

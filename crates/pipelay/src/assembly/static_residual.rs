@@ -13,7 +13,7 @@ use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::vessel::coupling::{static_forces, StaticTarget};
 use crate::vessel::VesselAttachment;
-use nalgebra::{Matrix6, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3};
 
 /// Results of one assembly besides the residual and tangent.
 #[derive(Debug, Clone, Copy, Default)]
@@ -118,6 +118,7 @@ impl Assembler {
                 self.external[base + 3 + i] += scale * load.moment[i];
             }
         }
+        self.add_static_attachments(model, config, load_factor, with_tangent);
         let mut external_norm2 = 0.0;
         for (r, f) in self.residual.iter_mut().zip(&self.external) {
             *r -= load_factor * f;
@@ -142,6 +143,56 @@ impl Assembler {
             external_norm: external_norm2.sqrt().max(self.external_vessel_norm),
             strain_energy,
             max_element_rotation,
+        }
+    }
+
+    /// The attachments' weight less buoyancy and their drag in the current at t = 0 (the line held still) as
+    /// external loads on their elements' nodes, with the drag's tangent through a sheared current's depth.
+    fn add_static_attachments(
+        &mut self,
+        model: &Model,
+        config: &Configuration,
+        load_factor: f64,
+        with_tangent: bool,
+    ) {
+        let density = model.water_density();
+        for (attachment, place) in model.attachments.iter().zip(model.attachment_places()) {
+            let e = place.element;
+            let point = place.point(&config.positions[e], &config.positions[e + 1]);
+            let mut force = Vector3::z() * attachment.net_weight(density, model.gravity);
+            let mut stiffness = None;
+            if let Some(sea) = &model.sea {
+                let (current, shear) = sea.current_at(point.z, 0.0);
+                force += attachment.drag(density, &current);
+                if with_tangent && shear != Vector3::zeros() && attachment.drag_area > 0.0 {
+                    let speed = current.norm();
+                    let jacobian = if speed > 0.0 {
+                        (Matrix3::identity() * speed + current * current.transpose() / speed)
+                            * (0.5 * density * attachment.drag_area)
+                    } else {
+                        Matrix3::zeros()
+                    };
+                    stiffness = Some(jacobian * shear);
+                }
+            }
+            for (node, weight) in [e, e + 1].into_iter().zip(place.weights) {
+                for i in 0..3 {
+                    self.external[NODE_DOFS * node + i] += weight * force[i];
+                }
+            }
+            // r = f_int − λ f_ext: ∂F/∂x_j = (∂F/∂U)(dU/dz) e3ᵀ N_j, entering with −λ N_i.
+            if let Some(d_force) = stiffness {
+                let mut k = ElementMatrix::zeros();
+                for (a, &weight_a) in place.weights.iter().enumerate() {
+                    for (b, &weight_b) in place.weights.iter().enumerate() {
+                        for i in 0..3 {
+                            k[(NODE_DOFS * a + i, NODE_DOFS * b + 2)] -=
+                                load_factor * weight_a * weight_b * d_force[i];
+                        }
+                    }
+                }
+                self.add_element_matrix(e, &k);
+            }
         }
     }
 

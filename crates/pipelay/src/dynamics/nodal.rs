@@ -74,6 +74,15 @@ impl NodalProperties {
                 props.damping[node] += half * section.rotational_damping;
             }
         }
+        let density = model.water_density();
+        for (attachment, place) in model.attachments.iter().zip(model.attachment_places()) {
+            for (node, weight) in [place.element, place.element + 1]
+                .into_iter()
+                .zip(place.weights)
+            {
+                props.mass[node] += weight * attachment.inertial_mass(density);
+            }
+        }
         props
     }
 

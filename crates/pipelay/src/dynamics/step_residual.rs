@@ -12,9 +12,10 @@ use crate::dynamics::rod_step::{ElementOutputs, RodConstants, RodStep};
 use crate::error::Result;
 use crate::linalg::pool;
 use crate::model::SupportTarget;
+use crate::rod::element::ElementMatrix;
 use crate::so3::{cayley, cayley_parameter, cayley_tangent};
 use crate::vessel::coupling::DynamicVessel;
-use nalgebra::{Vector3, Vector6};
+use nalgebra::{Matrix3, Vector3, Vector6};
 use rayon::prelude::*;
 
 impl Integrator {
@@ -175,6 +176,11 @@ impl Integrator {
             let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
             work.supplied += force.dot(&dphi) + moment.dot(&theta);
         }
+        // Before the vessel's: what the attachments put on the vessel's node is the line's force on it.
+        if !model.attachments.is_empty() {
+            self.add_attachments(time_mid, dt, with_tangent, &mut work);
+        }
+        let (model, state) = (&self.model, &self.state);
         self.vessel_step = None;
         if let (Some(attachment), Some(motion)) = (&model.vessel, &state.vessel) {
             let node = attachment.node;
@@ -211,5 +217,58 @@ impl Integrator {
         }
         self.work = work;
         Ok(())
+    }
+
+    /// The attachments' weight less buoyancy (a dead load, its work the gravity potential's change) and drag
+    /// on their elements' nodes, at the increments. The drag f = ½ρ C_dA |u|u acts on the flow relative to the
+    /// point's mean velocity over the step, u = U − (N_a Δφ_a + N_b Δφ_b)/Δt, with the current U at the point's
+    /// start and the step's mid-time; its work splits exactly into Δt f·U supplied and Δt ½ρ C_dA |u|³
+    /// dissipated.
+    fn add_attachments(&mut self, time_mid: f64, dt: f64, with_tangent: bool, work: &mut StepWork) {
+        let model = &self.model;
+        let positions = &self.state.configuration.positions;
+        let density = model.water_density();
+        for (attachment, place) in model.attachments.iter().zip(model.attachment_places()) {
+            let e = place.element;
+            let moved = |node: usize| {
+                Vector3::from_column_slice(&self.increments[NODE_DOFS * node..NODE_DOFS * node + 3])
+            };
+            let displacement = place.point(&moved(e), &moved(e + 1));
+            let mut force = Vector3::z() * attachment.net_weight(density, model.gravity);
+            let mut d_flow = None;
+            if let Some(sea) = &model.sea {
+                let start = place.point(&positions[e], &positions[e + 1]);
+                let (current, _) = sea.current_at(start.z, time_mid);
+                let flow = current - displacement / dt;
+                let drag = attachment.drag(density, &flow);
+                let speed = flow.norm();
+                force += drag;
+                work.supplied += dt * drag.dot(&current);
+                work.dissipated += dt * drag.dot(&flow);
+                if with_tangent && speed > 0.0 {
+                    d_flow = Some(
+                        (Matrix3::identity() * speed + flow * flow.transpose() / speed)
+                            * (0.5 * density * attachment.drag_area),
+                    );
+                }
+            }
+            for (node, weight) in [e, e + 1].into_iter().zip(place.weights) {
+                for i in 0..3 {
+                    self.assembler.residual[NODE_DOFS * node + i] -= weight * force[i];
+                    self.magnitude[NODE_DOFS * node + i] += (weight * force[i]).abs();
+                }
+            }
+            // ∂r_i/∂Δφ_j = −N_i ∂f/∂u ∂u/∂Δφ_j = N_i N_j (∂f/∂u)/Δt.
+            if let Some(d_flow) = d_flow {
+                let mut k = ElementMatrix::zeros();
+                for (a, &weight_a) in place.weights.iter().enumerate() {
+                    for (b, &weight_b) in place.weights.iter().enumerate() {
+                        k.fixed_view_mut::<3, 3>(NODE_DOFS * a, NODE_DOFS * b)
+                            .copy_from(&(d_flow * (weight_a * weight_b / dt)));
+                    }
+                }
+                self.assembler.add_element_matrix(e, &k);
+            }
+        }
     }
 }

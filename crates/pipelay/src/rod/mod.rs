@@ -1,10 +1,11 @@
 //! The rod: its stress-free reference (nodes, nodal frames, elements) and the element it is made of: the
 //! cross-section ([`section`]), the element's statics ([`element`]) and its energy–momentum step
-//! ([`dynamic_element`]).
+//! ([`dynamic_element`]), and the bodies attached at points of it ([`attachment`]).
 //!
 //! May use: the basics (rotations, errors, memory).
 // Indexing cannot go out of bounds here: Node and element indices of the rod this module builds (nodes.len() = elements + 1, checked at construction).
 #![allow(clippy::indexing_slicing)]
+pub mod attachment;
 pub mod dynamic_element;
 pub mod element;
 pub mod section;
