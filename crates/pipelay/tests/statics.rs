@@ -6,6 +6,7 @@ use pipelay::environment::current::{Current, CurrentProfile};
 use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::response::configuration::Response;
+use pipelay::rod::attachment::Attachment;
 use pipelay::rod::section::{Section, SectionExtras};
 use pipelay::rod::Rod;
 use pipelay::so3::{exp_quat, log_quat};
@@ -190,10 +191,8 @@ fn steel_pipe_converges_from_the_straight_reference() {
     }
 }
 
-/// The assembled tangent (elements, drag in a sheared current) equals finite differences of the
-/// assembled residual, for every free DOF.
-#[test]
-fn assembled_tangent_matches_finite_differences() {
+/// A clamped pipe of three elements in a sheared current, and a configuration away from its reference.
+fn pipe_in_a_sheared_current() -> (Model, Configuration) {
     let section =
         Section::pipe(0.6, 0.015, 7850.0, 207e9, 0.3, 0.0, [0.3, 1.2], [0.0, 1.0]).expect("pipe");
     let rod =
@@ -219,6 +218,26 @@ fn assembled_tangent_matches_finite_differences() {
         *x += Vector3::new(0.3 * a as f64, -0.5, 0.2 * (a * a) as f64);
         *r = exp_quat(&Vector3::new(0.2, -0.4 * a as f64, 0.3)) * *r;
     }
+    (model, config)
+}
+
+/// The assembled tangent (elements, drag in a sheared current) equals finite differences of the
+/// assembled residual, for every free DOF.
+#[test]
+fn assembled_tangent_matches_finite_differences() {
+    let (model, config) = pipe_in_a_sheared_current();
+    let mut assembler = Assembler::new(&model);
+    let (worst, largest) = common::tangent_error(&model, &config, &mut assembler, 1e-6);
+    assert!(worst < 1e-6 * largest, "worst {worst:e} of {largest:e}");
+}
+
+/// So it does with a clump on the line, whose drag changes with its depth in the sheared current.
+#[test]
+fn assembled_tangent_with_an_attachment_matches_finite_differences() {
+    let (mut model, config) = pipe_in_a_sheared_current();
+    // A drag area far beyond any clump's, so that its depth derivative stands out of the elements' stiffness.
+    let clump = Attachment::new(17.0, 5e3, 1.5, 2e4, 1.0).expect("clump");
+    model.attach(clump).expect("attach");
     let mut assembler = Assembler::new(&model);
     let (worst, largest) = common::tangent_error(&model, &config, &mut assembler, 1e-6);
     assert!(worst < 1e-6 * largest, "worst {worst:e} of {largest:e}");
