@@ -523,12 +523,9 @@ impl Model {
         Ok(self.attachments.len() - 1)
     }
 
-    /// Each attachment's place on the line.
-    pub fn attachment_places(&self) -> Vec<Place> {
-        self.attachments
-            .iter()
-            .map(|a| a.place(&self.rod))
-            .collect()
+    /// Each attachment with its place on the line.
+    pub fn placed_attachments(&self) -> impl Iterator<Item = (&Attachment, Place)> + '_ {
+        self.attachments.iter().map(|a| (a, a.place(&self.rod)))
     }
 
     /// What each attachment applies to the line at `positions` moving with `velocities` (zero if `None`) at
@@ -542,9 +539,7 @@ impl Model {
         time: f64,
     ) -> Vec<Vector3<f64>> {
         let density = self.water_density();
-        self.attachments
-            .iter()
-            .zip(self.attachment_places())
+        self.placed_attachments()
             .map(|(attachment, place)| {
                 let e = place.element;
                 let mut force = Vector3::z() * attachment.net_weight(density, self.gravity);

@@ -39,9 +39,7 @@ impl Configuration {
     fn attachment_potential(&self, model: &Model) -> f64 {
         let density = model.water_density();
         model
-            .attachments
-            .iter()
-            .zip(model.attachment_places())
+            .placed_attachments()
             .map(|(attachment, place)| {
                 let e = place.element;
                 attachment.net_weight(density, model.gravity)

@@ -7,13 +7,13 @@ use crate::assembly::assembler::Assembler;
 use crate::assembly::configuration::Configuration;
 use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::rule::ContactRule;
-use crate::environment::drag::element_current_drag;
+use crate::environment::drag::{element_current_drag, quadratic_jacobian};
 use crate::model::Model;
 use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::vessel::coupling::{static_forces, StaticTarget};
 use crate::vessel::VesselAttachment;
-use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3};
+use nalgebra::{Matrix6, UnitQuaternion, Vector3};
 
 /// Results of one assembly besides the residual and tangent.
 #[derive(Debug, Clone, Copy, Default)]
@@ -156,7 +156,7 @@ impl Assembler {
         with_tangent: bool,
     ) {
         let density = model.water_density();
-        for (attachment, place) in model.attachments.iter().zip(model.attachment_places()) {
+        for (attachment, place) in model.placed_attachments() {
             let e = place.element;
             let point = place.point(&config.positions[e], &config.positions[e + 1]);
             let mut force = Vector3::z() * attachment.net_weight(density, model.gravity);
@@ -165,13 +165,8 @@ impl Assembler {
                 let (current, shear) = sea.current_at(point.z, 0.0);
                 force += attachment.drag(density, &current);
                 if with_tangent && shear != Vector3::zeros() && attachment.drag_area > 0.0 {
-                    let speed = current.norm();
-                    let jacobian = if speed > 0.0 {
-                        (Matrix3::identity() * speed + current * current.transpose() / speed)
-                            * (0.5 * density * attachment.drag_area)
-                    } else {
-                        Matrix3::zeros()
-                    };
+                    let jacobian =
+                        quadratic_jacobian(&current) * (0.5 * density * attachment.drag_area);
                     stiffness = Some(jacobian * shear);
                 }
             }

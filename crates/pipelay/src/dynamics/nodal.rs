@@ -75,7 +75,7 @@ impl NodalProperties {
             }
         }
         let density = model.water_density();
-        for (attachment, place) in model.attachments.iter().zip(model.attachment_places()) {
+        for (attachment, place) in model.placed_attachments() {
             for (node, weight) in [place.element, place.element + 1]
                 .into_iter()
                 .zip(place.weights)

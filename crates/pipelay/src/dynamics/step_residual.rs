@@ -9,13 +9,14 @@ use crate::contact::seabed::{NodeStep, PARALLEL_NODES as PARALLEL_CONTACT_NODES}
 use crate::dynamics::integrator::Integrator;
 use crate::dynamics::ledger::StepWork;
 use crate::dynamics::rod_step::{ElementOutputs, RodConstants, RodStep};
+use crate::environment::drag::quadratic_jacobian;
 use crate::error::Result;
 use crate::linalg::pool;
 use crate::model::SupportTarget;
 use crate::rod::element::ElementMatrix;
 use crate::so3::{cayley, cayley_parameter, cayley_tangent};
 use crate::vessel::coupling::DynamicVessel;
-use nalgebra::{Matrix3, Vector3, Vector6};
+use nalgebra::{Vector3, Vector6};
 use rayon::prelude::*;
 
 impl Integrator {
@@ -228,7 +229,7 @@ impl Integrator {
         let model = &self.model;
         let positions = &self.state.configuration.positions;
         let density = model.water_density();
-        for (attachment, place) in model.attachments.iter().zip(model.attachment_places()) {
+        for (attachment, place) in model.placed_attachments() {
             let e = place.element;
             let moved = |node: usize| {
                 Vector3::from_column_slice(&self.increments[NODE_DOFS * node..NODE_DOFS * node + 3])
@@ -241,15 +242,12 @@ impl Integrator {
                 let (current, _) = sea.current_at(start.z, time_mid);
                 let flow = current - displacement / dt;
                 let drag = attachment.drag(density, &flow);
-                let speed = flow.norm();
                 force += drag;
                 work.supplied += dt * drag.dot(&current);
                 work.dissipated += dt * drag.dot(&flow);
-                if with_tangent && speed > 0.0 {
-                    d_flow = Some(
-                        (Matrix3::identity() * speed + flow * flow.transpose() / speed)
-                            * (0.5 * density * attachment.drag_area),
-                    );
+                if with_tangent {
+                    d_flow =
+                        Some(quadratic_jacobian(&flow) * (0.5 * density * attachment.drag_area));
                 }
             }
             for (node, weight) in [e, e + 1].into_iter().zip(place.weights) {

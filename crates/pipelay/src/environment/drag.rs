@@ -14,7 +14,7 @@ pub struct Drag {
 }
 
 /// ∂(|v|v)/∂v = |v|I + v⊗v/|v| (zero at v = 0).
-fn quadratic_jacobian(v: &Vector3<f64>) -> Matrix3<f64> {
+pub fn quadratic_jacobian(v: &Vector3<f64>) -> Matrix3<f64> {
     let speed = v.norm();
     if speed == 0.0 {
         Matrix3::zeros()
