@@ -4,7 +4,6 @@ use crate::errors::{input, to_py};
 use numpy::PyArray2;
 use pipelay::environment::current::{self, CurrentProfile};
 use pipelay::environment::sea;
-use pipelay::error::{non_negative, positive};
 use pipelay::rod::section::{self, SectionExtras};
 use pyo3::prelude::*;
 
@@ -29,9 +28,7 @@ impl Coating {
             density,
             youngs_modulus,
         };
-        positive("thickness", thickness, "m").map_err(to_py)?;
-        non_negative("density", density, "kg/m³").map_err(to_py)?;
-        non_negative("youngs_modulus", youngs_modulus, "Pa").map_err(to_py)?;
+        layer.check("").map_err(to_py)?;
         Ok(Coating(layer))
     }
     /// Thickness (m).

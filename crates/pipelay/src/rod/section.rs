@@ -70,6 +70,19 @@ impl Coating {
             youngs_modulus: 0.0,
         }
     }
+
+    /// Refuses a layer that is not a layer: thickness ≤ 0, or a negative or non-finite density or modulus;
+    /// the errors name `prefix` + the field.
+    pub fn check(&self, prefix: &str) -> Result<()> {
+        positive(&format!("{prefix}thickness"), self.thickness, "m")?;
+        non_negative(&format!("{prefix}density"), self.density, "kg/m³")?;
+        non_negative(
+            &format!("{prefix}youngs_modulus"),
+            self.youngs_modulus,
+            "Pa",
+        )?;
+        Ok(())
+    }
 }
 
 /// An annulus between diameters `inner` and `outer` (m): its area A = π/4(D² − d²) and second moment of area
@@ -221,18 +234,11 @@ impl Section {
             ));
         }
         non_negative("contents_density", contents_density, "kg/m³")?;
-        for (name, layer) in coatings
-            .iter()
-            .map(|c| ("coatings", c))
-            .chain(lining.iter().map(|l| ("lining", l)))
-        {
-            positive(&format!("{name} thickness"), layer.thickness, "m")?;
-            non_negative(&format!("{name} density"), layer.density, "kg/m³")?;
-            non_negative(
-                &format!("{name} youngs_modulus"),
-                layer.youngs_modulus,
-                "Pa",
-            )?;
+        for coating in coatings {
+            coating.check("coatings ")?;
+        }
+        if let Some(lining) = &lining {
+            lining.check("lining ")?;
         }
         let d_o = outer_diameter;
         let d_i = outer_diameter - 2.0 * wall_thickness;
