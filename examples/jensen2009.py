@@ -81,22 +81,12 @@ def controllers() -> dict[str, pl.PID]:
 
 
 def run(name: str, controller: pl.PID, elements: int, dt: float) -> tuple[pl.State, pl.Results, float]:
-    """Static state, 200 s simulation and wall time (s) of one controller. The pipe, clamped to the vessel's
-    CO along e1 as in the paper (β = 0), is in compression there: the PhysicsWarning that says so is kept for
-    `main` to print as a note."""
+    """Static state, 200 s simulation and wall time (s) of one controller."""
     model = scenario(controller, elements)
     began = time.perf_counter()
-    with worst_of_each_kind() as suspects:
-        state = model.static()
-        results = model.simulation(state=state, dt=dt).run(200.0, progress=False)
-    seconds = time.perf_counter() - began
-    for kind, warning in suspects.items():
-        NOTES.setdefault(kind, str(warning))
-    return state, results, seconds
-
-
-NOTES: dict[str, str] = {}
-"""The PhysicsWarnings of the runs, the worst of each kind."""
+    state = model.static()
+    results = model.simulation(state=state, dt=dt).run(200.0, progress=False)
+    return state, results, time.perf_counter() - began
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -111,8 +101,14 @@ def main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
 
     np.set_printoptions(precision=3, suppress=True)
+    # The pipe, clamped to the vessel's CO along e1 as in the paper (β = 0), is in compression there: the
+    # PhysicsWarning that says so is printed as a note, once.
+    notes: dict[str, str] = {}
     for name, controller in controllers().items():
-        state, results, seconds = run(name, controller, args.elements, args.dt)
+        with worst_of_each_kind() as suspects:
+            state, results, seconds = run(name, controller, args.elements, args.dt)
+        for kind, warning in suspects.items():
+            notes.setdefault(kind, str(warning))
         if name == "PD":
             print(f"static η₀ (ours)         {state.eta}")
             print(f"static η₀ (paper)        {np.array(ETA_PAPER)}")
@@ -138,7 +134,7 @@ def main(argv: list[str] | None = None) -> int:
         plots.vessel_motion(
             results, reference=reference, path=args.out / f"jensen2009_eta_{name.lower()}.png"
         )
-    for note in NOTES.values():
+    for note in notes.values():
         print(f"note: {note} (the paper's clamp at CO, β = 0)")
     print(f"figures in {args.out}")
     return 0
