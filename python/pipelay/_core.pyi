@@ -10,6 +10,7 @@ import numpy.typing as npt
 
 _ArrayLike = npt.ArrayLike
 _FloatArray: TypeAlias = npt.NDArray[np.float64]
+_IntArray: TypeAlias = npt.NDArray[np.int64]
 _End: TypeAlias = Literal["A", "B"]
 
 __all__ = [
@@ -31,6 +32,7 @@ __all__ = [
     "Sea",
     "Seabed",
     "Section",
+    "Segment",
     "Simulation",
     "State",
     "Stinger",
@@ -119,6 +121,19 @@ class Section:
         """A pipe from its geometry (m) and material; drag and added mass default to (0, 1). `grade` (a key of
         `pipelay.analysis.checks.GRADES`) is what the design checks take by default; `coatings` (from the
         steel outwards) and `lining` add their mass and set the hydrodynamic diameter, not the steel's."""
+    @staticmethod
+    def cable(
+        diameter: float,
+        mass: float,
+        EA: float,
+        drag: Sequence[float] | None = None,
+        added_mass: Sequence[float] | None = None,
+    ) -> Section:
+        """A cable (wire rope, chain) of nominal `diameter` (m), `mass` (kg/m) and axial stiffness `EA` (N):
+        tension only, no bending or torsion; drag defaults to (0, 1.2), added mass to (0, 1)."""
+    @property
+    def is_cable(self) -> bool:
+        """Whether this is a cable's section (`Section.cable`)."""
     @property
     def EA(self) -> float:
         """Axial stiffness (N)."""
@@ -181,6 +196,21 @@ class Section:
         """Rotational damping about t1, t2, t3 (N·m·s per m)."""
 
 @final
+class Segment:
+    """One segment of a line: its unstretched `length` (m), its `section` and its number of `elements`."""
+
+    def __new__(cls, length: float, section: Section, elements: int) -> Segment: ...
+    @property
+    def length(self) -> float:
+        """Unstretched length (m)."""
+    @property
+    def section(self) -> Section:
+        """The segment's cross-section."""
+    @property
+    def elements(self) -> int:
+        """Number of elements."""
+
+@final
 class Rod:
     """A rod in its stress-free reference configuration: nodes (n + 1, 3) in m and a section."""
 
@@ -188,6 +218,10 @@ class Rod:
     @staticmethod
     def straight(start: _ArrayLike, end: _ArrayLike, elements: int, section: Section) -> Rod:
         """A straight rod of `elements` equal elements from `start` to `end` (m)."""
+    @staticmethod
+    def segments(start: _ArrayLike, direction: _ArrayLike, segments: Sequence[Segment]) -> Rod:
+        """A straight line of consecutive `segments` from `start` (m) along `direction`, continuous at the
+        joints."""
     @property
     def nodes(self) -> _FloatArray:
         """Reference node positions (n + 1, 3) (m)."""
@@ -199,7 +233,13 @@ class Rod:
         """Total reference length (m)."""
     @property
     def section(self) -> Section:
-        """The cross-section."""
+        """The cross-section of the first segment (of the whole rod for a rod of one segment)."""
+    @property
+    def sections(self) -> list[Section]:
+        """The cross-section of each segment, from end A."""
+    @property
+    def segment_of(self) -> _IntArray:
+        """The segment index of each element (n,)."""
 
 @final
 class Current:
@@ -427,7 +467,13 @@ class State:
         """Each node's arc length from end A along the stress-free reference (n + 1,) (m)."""
     @property
     def section(self) -> Section:
-        """The model's cross-section."""
+        """The model's cross-section: its first segment's (the whole line's for a line of one segment)."""
+    @property
+    def sections(self) -> list[Section]:
+        """The cross-section of each segment of the line, from end A."""
+    @property
+    def segment_of(self) -> _IntArray:
+        """The segment index of each element (n,)."""
     @property
     def water_depth(self) -> float | None:
         """The sea's depth (m); None without a sea."""

@@ -26,6 +26,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<structure::Clump>()?;
     m.add_class::<structure::Coating>()?;
     m.add_class::<structure::Section>()?;
+    m.add_class::<structure::Segment>()?;
     m.add_class::<structure::Rod>()?;
     m.add_class::<structure::Current>()?;
     m.add_class::<structure::Sea>()?;

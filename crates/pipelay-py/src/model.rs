@@ -271,9 +271,10 @@ impl Model {
     fn gravity(&self) -> f64 {
         self.0.gravity
     }
-    /// Submerged weight per unit length (N/m): (mass − ρ_w · displaced_area) g.
+    /// Submerged weight per unit length (N/m): (mass − ρ_w · displaced_area) g; for a line of segments, its
+    /// length-weighted mean.
     #[getter]
     fn submerged_weight(&self) -> f64 {
-        self.0.submerged_weight()
+        self.0.mean_submerged_weight()
     }
 }

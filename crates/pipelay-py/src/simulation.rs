@@ -37,10 +37,12 @@ impl Simulation {
     }
 }
 
-/// The rod of a checkpoint written with pay-out (arrays `mesh_nodes`, `mesh_frames`, `mesh_elements`).
+/// The rod of a checkpoint written with pay-out (arrays `mesh_nodes`, `mesh_frames`, `mesh_elements` and,
+/// for a line of segments, `mesh_segments`).
 fn restored_rod(
     model: &Model,
     get: &dyn Fn(&str) -> PyResult<Vec<f64>>,
+    segments: Option<Vec<f64>>,
 ) -> PyResult<pipelay::rod::Rod> {
     let (nodes, frames, elements) = (
         get("mesh_nodes")?,
@@ -63,6 +65,13 @@ fn restored_rod(
             "must hold n × 7, (n + 1) × 3 and (n + 1) × 4 values",
         ));
     }
+    if let Some(segments) = segments.as_ref().filter(|s| s.len() != count) {
+        return Err(input(
+            "mesh_segments",
+            format!("{} values", segments.len()),
+            &format!("must hold one per element ({count})"),
+        ));
+    }
     let vector = |v: &[f64]| Vector3::from_column_slice(v);
     Ok(pipelay::rod::Rod {
         nodes: nodes.chunks_exact(3).map(vector).collect(),
@@ -78,7 +87,25 @@ fn restored_rod(
                 curvature: vector(&e[4..7]),
             })
             .collect(),
-        section: model.rod.section.clone(),
+        segment_of: match segments {
+            // A checkpoint of a line of one segment may not carry them.
+            None => vec![0; count],
+            Some(segments) => segments
+                .iter()
+                .map(|&k| {
+                    let valid =
+                        k >= 0.0 && k.fract() == 0.0 && (k as usize) < model.rod.sections.len();
+                    valid.then_some(k as usize).ok_or_else(|| {
+                        input(
+                            "mesh_segments",
+                            k,
+                            &format!("must be segment indices in 0..{}", model.rod.sections.len()),
+                        )
+                    })
+                })
+                .collect::<PyResult<Vec<usize>>>()?,
+        },
+        sections: model.rod.sections.clone(),
     })
 }
 
@@ -274,6 +301,11 @@ impl Simulation {
                     .collect(),
                 7,
             )?;
+            rows(
+                "mesh_segments",
+                rod.segment_of.iter().map(|&k| k as f64).collect(),
+                1,
+            )?;
         }
         rows(
             "positions",
@@ -390,7 +422,14 @@ impl Simulation {
         let model = match arrays.get_item("mesh_elements")? {
             Some(_) => model
                 .0
-                .with_rod(restored_rod(&model.0, &get)?)
+                .with_rod(restored_rod(
+                    &model.0,
+                    &get,
+                    arrays
+                        .get_item("mesh_segments")?
+                        .map(|v| flat(&v, "mesh_segments"))
+                        .transpose()?,
+                )?)
                 .map_err(to_py)?,
             None => model.0.clone(),
         };

@@ -60,7 +60,9 @@ struct LayState {
     strain: Vec<f64>,
     roller_forces: Option<Vec<f64>>,
     summary: Option<LaySummary>,
-    section: pipelay::rod::section::Section,
+    /// The sections of the line's segments, and the segment of each element.
+    sections: Vec<pipelay::rod::section::Section>,
+    segment_of: Vec<usize>,
     /// The rollers' top points in e (m).
     roller_tops: Vec<Vector3<f64>>,
     /// Each node's arc length from end A along the reference (m).
@@ -78,12 +80,17 @@ impl LayState {
         roller_forces: Option<&[f64]>,
         summary: Option<LaySummary>,
     ) -> Self {
-        let section = model.rod.section.clone();
+        let rod = &model.rod;
         LayState {
-            strain: section_forces.iter().map(|f| section.strain(f)).collect(),
+            strain: section_forces
+                .iter()
+                .enumerate()
+                .map(|(e, f)| rod.section(e).strain(f))
+                .collect(),
             roller_forces: roller_forces.map(<[f64]>::to_vec),
             summary,
-            section,
+            sections: rod.sections.clone(),
+            segment_of: rod.segment_of.clone(),
             roller_tops: roller_tops(model, &configuration.positions, &configuration.rotations),
             arc_length: model.rod.arc_lengths(),
             water: model.sea.as_ref().map(|sea| (sea.depth, sea.density)),
@@ -383,10 +390,26 @@ impl State {
     fn reference_arc_length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         to_numpy(py, &self.lay.arc_length)
     }
-    /// The model's cross-section.
+    /// The model's cross-section: its first segment's (the whole line's for a line of one segment).
     #[getter]
     fn section(&self) -> crate::structure::Section {
-        crate::structure::Section(self.lay.section.clone())
+        crate::structure::Section(self.lay.sections[0].clone())
+    }
+    /// The cross-section of each segment of the line, from end A.
+    #[getter]
+    fn sections(&self) -> Vec<crate::structure::Section> {
+        self.lay
+            .sections
+            .iter()
+            .cloned()
+            .map(crate::structure::Section)
+            .collect()
+    }
+    /// The segment index of each element (n,).
+    #[getter]
+    fn segment_of<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        let indices: Vec<i64> = self.lay.segment_of.iter().map(|&k| k as i64).collect();
+        PyArray1::from_vec(py, indices)
     }
     /// The sea's depth (m), None without a sea.
     #[getter]

@@ -1,7 +1,7 @@
 //! Python classes for what a model is built from: Section, Rod, Current, Sea.
 use crate::convert::{array, points, points_to_numpy, scalar_or_array, vector, vector3};
 use crate::errors::{input, to_py};
-use numpy::PyArray2;
+use numpy::{PyArray1, PyArray2};
 use pipelay::environment::current::{self, CurrentProfile};
 use pipelay::environment::sea;
 use pipelay::rod::section::{self, SectionExtras};
@@ -217,6 +217,38 @@ impl Section {
         Ok(Section(pipe))
     }
 
+    /// A cable (wire rope, chain) of nominal `diameter` (m), `mass` (kg/m, in air) and axial stiffness `EA`
+    /// (N): tension only, no bending or torsional stiffness; its nodes have no rotation. Buoyancy area π/4 d²;
+    /// drag and added-mass coefficients (axial, normal) refer to d.
+    #[staticmethod]
+    #[pyo3(signature = (diameter, mass, EA, drag=None, added_mass=None))]
+    #[allow(non_snake_case)]
+    fn cable(
+        diameter: f64,
+        mass: f64,
+        EA: f64,
+        drag: Option<&Bound<'_, PyAny>>,
+        added_mass: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let drag = drag
+            .map(|v| array::<2>(v, "drag"))
+            .transpose()?
+            .unwrap_or([0.0, 1.2]);
+        let added_mass = added_mass
+            .map(|v| array::<2>(v, "added_mass"))
+            .transpose()?
+            .unwrap_or([0.0, 1.0]);
+        section::Section::cable(diameter, mass, EA, drag, added_mass)
+            .map(Section)
+            .map_err(to_py)
+    }
+
+    /// Whether this is a cable's section (`Section.cable`): axial stiffness only.
+    #[getter]
+    fn is_cable(&self) -> bool {
+        self.0.cable
+    }
+
     /// Diameter over the coatings (m): drag, added mass, buoyancy, seabed contact and rollers refer to it;
     /// `outer_diameter` for a section without coatings.
     #[getter]
@@ -329,6 +361,12 @@ impl Section {
 
     fn __repr__(&self) -> String {
         let s = &self.0;
+        if s.cable {
+            return format!(
+                "Section.cable(diameter={}, mass={:.4}, EA={:.4e})",
+                s.outer_diameter, s.mass, s.translational_stiffness.x
+            );
+        }
         format!(
             "Section(EA={:.4e}, GA={:?}, GJ={:.4e}, EI={:?}, mass={:.4})",
             s.translational_stiffness.x,
@@ -336,6 +374,55 @@ impl Section {
             s.rotational_stiffness.x,
             (s.rotational_stiffness.y, s.rotational_stiffness.z),
             s.mass
+        )
+    }
+}
+
+/// One segment of a line: its unstretched `length` (m), its `section` and its number of `elements`.
+#[pyclass(module = "pipelay", name = "Segment", frozen, from_py_object)]
+#[derive(Clone)]
+pub struct Segment(pub pipelay::rod::Segment);
+
+#[pymethods]
+impl Segment {
+    #[new]
+    #[pyo3(signature = (length, section, elements))]
+    fn new(length: f64, section: &Section, elements: i64) -> PyResult<Self> {
+        if !(length.is_finite() && length > 0.0) {
+            return Err(crate::errors::input("length", length, "must be > 0 m"));
+        }
+        if elements < 1 {
+            return Err(crate::errors::input(
+                "elements",
+                elements,
+                "must be an integer >= 1",
+            ));
+        }
+        Ok(Segment(pipelay::rod::Segment {
+            length,
+            section: section.0.clone(),
+            elements: elements as usize,
+        }))
+    }
+    /// Unstretched length (m).
+    #[getter]
+    fn length(&self) -> f64 {
+        self.0.length
+    }
+    /// The segment's cross-section.
+    #[getter]
+    fn section(&self) -> Section {
+        Section(self.0.section.clone())
+    }
+    /// Number of elements.
+    #[getter]
+    fn elements(&self) -> usize {
+        self.0.elements
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Segment(length={} m, elements={}, cable={})",
+            self.0.length, self.0.elements, self.0.section.cable
         )
     }
 }
@@ -392,10 +479,37 @@ impl Rod {
     fn length(&self) -> f64 {
         self.0.length()
     }
-    /// The cross-section.
+    /// A straight line of consecutive `segments` (a list of `Segment`) from `start` (m) along `direction`,
+    /// continuous at the joints.
+    #[staticmethod]
+    fn segments(
+        start: &Bound<'_, PyAny>,
+        direction: &Bound<'_, PyAny>,
+        segments: Vec<Segment>,
+    ) -> PyResult<Self> {
+        let start = vector3(start, "start")?;
+        let direction = vector3(direction, "direction")?;
+        let segments: Vec<pipelay::rod::Segment> = segments.into_iter().map(|s| s.0).collect();
+        pipelay::rod::Rod::segments(start, direction, &segments)
+            .map(Rod)
+            .map_err(to_py)
+    }
+
+    /// The cross-section of the first segment (of the whole rod for a rod of one segment).
     #[getter]
     fn section(&self) -> Section {
-        Section(self.0.section.clone())
+        Section(self.0.section(0).clone())
+    }
+    /// The cross-section of each segment, from end A.
+    #[getter]
+    fn sections(&self) -> Vec<Section> {
+        self.0.sections.iter().cloned().map(Section).collect()
+    }
+    /// The segment index of each element (n,).
+    #[getter]
+    fn segment_of<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<i64>> {
+        let indices: Vec<i64> = self.0.segment_of.iter().map(|&k| k as i64).collect();
+        PyArray1::from_vec(py, indices)
     }
 
     fn __repr__(&self) -> String {

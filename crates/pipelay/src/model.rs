@@ -658,14 +658,20 @@ impl Model {
         Ok(model)
     }
 
-    /// Submerged weight per unit reference length (N/m, along +e3): (m − ρ_w A_b) g (text under eq. 17).
-    pub fn submerged_weight(&self) -> f64 {
-        let section = &self.rod.section;
-        let buoyancy_mass = self
-            .sea
-            .as_ref()
-            .map_or(0.0, |sea| sea.density * section.displaced_area);
-        (section.mass - buoyancy_mass) * self.gravity
+    /// Submerged weight per unit reference length of a section (N/m, along +e3): (m − ρ_w A_b) g (text under
+    /// eq. 17).
+    pub fn submerged_weight_of(&self, section: &crate::rod::section::Section) -> f64 {
+        (section.mass - self.water_density() * section.displaced_area) * self.gravity
+    }
+
+    /// Submerged weight per unit reference length of element `element` (N/m).
+    pub fn submerged_weight(&self, element: usize) -> f64 {
+        self.submerged_weight_of(self.rod.section(element))
+    }
+
+    /// The length-weighted mean submerged weight of the line (N/m).
+    pub fn mean_submerged_weight(&self) -> f64 {
+        self.rod.mean(|section| self.submerged_weight_of(section))
     }
 
     /// The seabed, if the model has one.
@@ -673,15 +679,10 @@ impl Model {
         self.sea.as_ref().and_then(|sea| sea.seabed.as_ref())
     }
 
-    /// Morison drag coefficients k = ½ρ_w C_D d_o (axial, normal), zero without a sea.
-    pub fn drag_coefficients(&self) -> (f64, f64) {
-        let section = &self.rod.section;
-        match &self.sea {
-            Some(sea) => {
-                let k = 0.5 * sea.density * section.hydrodynamic_diameter;
-                (k * section.drag[0], k * section.drag[1])
-            }
-            None => (0.0, 0.0),
-        }
+    /// Morison drag coefficients k = ½ρ_w C_D D_h (axial, normal) of element `element`, zero without a sea.
+    pub fn drag_coefficients(&self, element: usize) -> (f64, f64) {
+        let section = self.rod.section(element);
+        let k = 0.5 * self.water_density() * section.hydrodynamic_diameter;
+        (k * section.drag[0], k * section.drag[1])
     }
 }

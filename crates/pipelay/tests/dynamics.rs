@@ -266,7 +266,7 @@ fn energy_balance_holds_every_step_with_drag_and_a_driven_top() {
         sim.ledger().supplied_work(),
         sim.ledger().dissipated(),
     );
-    let scale = sim.model().submerged_weight() * 100.0 * 100.0;
+    let scale = sim.model().submerged_weight(0) * 100.0 * 100.0;
     let mut worst: f64 = 0.0;
     for _ in 0..400 {
         sim.step().expect("step");

@@ -114,8 +114,8 @@ fn elastica_invariant_error(x: f64, n: usize) -> (f64, f64) {
         "{forces:?}"
     );
     assert!(forces.iter().all(|f| *f >= 0.0));
-    let w = model.submerged_weight();
-    let ei = model.rod.section.rotational_stiffness.y;
+    let w = model.submerged_weight(0);
+    let ei = model.rod.section(0).rotational_stiffness.y;
     let positions = &solution.configuration.positions;
     let invariant = |e: usize| {
         let f = response.section_forces[e];

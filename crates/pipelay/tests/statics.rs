@@ -106,7 +106,7 @@ fn small_tip_load_matches_timoshenko_beam_theory() {
 
 fn hanging_pipe(n: usize, ei: f64, clamped: bool) -> Model {
     let mut model = common::flooded_pipe(n);
-    model.rod.section.rotational_stiffness = Vector3::new(ei, ei, ei);
+    model.rod.sections[0].rotational_stiffness = Vector3::new(ei, ei, ei);
     let top = Vector3::new(850.0, 0.0, -800.0);
     if clamped {
         model.clamp("A", None, None).expect("clamp");
@@ -126,8 +126,8 @@ fn slack_pipe_matches_the_elastic_catenary() {
         Vector3::zeros(),
         Vector3::new(850.0, 0.0, -800.0),
         1200.0,
-        model.submerged_weight(),
-        model.rod.section.translational_stiffness.x,
+        model.submerged_weight(0),
+        model.rod.section(0).translational_stiffness.x,
     )
     .expect("catenary");
     for start in [Start::Auto, Start::Reference] {
@@ -166,7 +166,7 @@ fn steel_pipe_converges_from_the_straight_reference() {
             let solution =
                 solve(&model, &options).unwrap_or_else(|e| panic!("n {n} clamped {clamped}: {e}"));
             let response = Response::new(&model, &solution.configuration);
-            let weight = model.submerged_weight() * 1200.0;
+            let weight = model.submerged_weight(0) * 1200.0;
             let carried = response.nodal_reactions[0] + response.nodal_reactions[n];
             assert!(
                 (carried.z - weight).abs() < 1e-6 * weight,

@@ -8,7 +8,7 @@ use crate::assembly::pattern::TangentPattern;
 use crate::assembly::scatter::{Entries, RodSink, Scatter, ScatterMap, FIXED};
 use crate::contact::rollers::RollerContact;
 use crate::contact::rule::ContactRule;
-use crate::contact::seabed::SeabedContact;
+use crate::contact::seabed::{ContactElement, SeabedContact};
 use crate::contact::sinks::{EntrySink, TangentSink};
 use crate::linalg::largest::largest_magnitude;
 use crate::linalg::tangent_lu::TangentLu;
@@ -72,11 +72,7 @@ impl Assembler {
         let elements = model.rod.element_count();
         let global = |e: usize, local: usize| NODE_DOFS * e + local;
         let rollers = model.vessel.as_ref().and_then(|attachment| {
-            RollerContact::new(
-                attachment,
-                model.rod.section.hydrodynamic_diameter,
-                &model.rod.arc_lengths(),
-            )
+            RollerContact::new(attachment, &model.rod, &model.rod.arc_lengths())
         });
         let TangentPattern {
             pattern,
@@ -127,13 +123,12 @@ impl Assembler {
             map
         }));
         let contact = model.seabed().map(|seabed| {
-            let lengths: Vec<f64> = model.rod.elements.iter().map(|e| e.length).collect();
-            SeabedContact::new(
-                seabed,
-                &lengths,
-                model.rod.section.hydrodynamic_diameter,
-                model.submerged_weight(),
-            )
+            let elements = (0..elements).map(|e| ContactElement {
+                length: model.rod.elements[e].length,
+                diameter: model.rod.section(e).hydrodynamic_diameter,
+                weight: model.submerged_weight(e),
+            });
+            SeabedContact::new(seabed, elements.collect(), model.rod.cable_nodes())
         });
         Assembler {
             rollers,

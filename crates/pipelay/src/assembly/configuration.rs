@@ -22,14 +22,15 @@ impl Configuration {
 
     /// Gravity potential of the submerged weight, −Σ ½L0 w (z1 + z2), and of the attachments' (J).
     pub fn gravity_potential(&self, model: &Model) -> f64 {
-        let weight = model.submerged_weight();
         model
             .rod
             .elements
             .iter()
             .enumerate()
             .map(|(e, r)| {
-                -0.5 * r.length * weight * (self.positions[e].z + self.positions[e + 1].z)
+                -0.5 * r.length
+                    * model.submerged_weight(e)
+                    * (self.positions[e].z + self.positions[e + 1].z)
             })
             .sum::<f64>()
             - self.attachment_potential(model)

@@ -1,4 +1,5 @@
-//! The rod's degrees of freedom: six per node, and which of them are free (not prescribed by a support).
+//! The rod's degrees of freedom: six per node, and which of them are free (not prescribed by a support, and
+//! not the rotation of a cable node, which has none).
 // Indexing cannot go out of bounds here: DOF indices of the model's own nodes (supports are checked against them).
 #![allow(clippy::indexing_slicing)]
 use crate::model::Model;
@@ -18,9 +19,13 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    /// Free DOFs of a model: all but those its supports prescribe.
+    /// Free DOFs of a model: all but those its supports prescribe and the rotations of its cable nodes.
     pub fn new(model: &Model) -> Self {
         let mut fixed = vec![false; NODE_DOFS * model.rod.node_count()];
+        for node in (0..model.rod.node_count()).filter(|&a| model.rod.is_cable_node(a)) {
+            let base = NODE_DOFS * node;
+            fixed[base + 3..base + 6].iter_mut().for_each(|f| *f = true);
+        }
         for support in &model.supports {
             let base = NODE_DOFS * support.node;
             let count = if support.holds_rotation() { 6 } else { 3 };

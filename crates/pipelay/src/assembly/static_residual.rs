@@ -9,6 +9,7 @@ use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::rule::ContactRule;
 use crate::environment::drag::{element_current_drag, quadratic_jacobian};
 use crate::model::Model;
+use crate::rod::cable;
 use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::vessel::coupling::{static_forces, StaticTarget};
@@ -41,33 +42,43 @@ impl Assembler {
         self.support_coupling.iter_mut().for_each(|r| *r = 0.0);
         self.external.iter_mut().for_each(|r| *r = 0.0);
         self.clear(with_tangent);
-        let section = &model.rod.section;
-        let (c_t, c_r) = (section.c_t(), section.c_r() * self.bending_scale);
-        let weight = model.submerged_weight();
-        let (k_axial, k_normal) = model.drag_coefficients();
-        let has_drag = model
-            .sea
-            .as_ref()
-            .is_some_and(|sea| sea.current.is_some() && k_axial + k_normal > 0.0);
+        let has_current = model.sea.as_ref().is_some_and(|sea| sea.current.is_some());
         let mut strain_energy = 0.0;
         let mut max_element_rotation: f64 = 0.0;
         let mut k = ElementMatrix::zeros();
         for (e, reference) in model.rod.elements.iter().enumerate() {
+            let section = model.rod.section(e);
+            let weight = model.submerged_weight(e);
+            let (k_axial, k_normal) = model.drag_coefficients(e);
+            let has_drag = has_current && k_axial + k_normal > 0.0;
             let (x1, x2) = (&config.positions[e], &config.positions[e + 1]);
-            let response = evaluate(
-                x1,
-                x2,
-                &config.rotations[e],
-                &config.rotations[e + 1],
-                reference,
-                &c_t,
-                &c_r,
-                with_tangent.then_some(&mut k),
-            );
-            strain_energy += response.energy;
-            max_element_rotation = max_element_rotation.max(response.relative_rotation);
+            let forces = if section.cable {
+                let response = cable::evaluate(
+                    x1,
+                    x2,
+                    reference,
+                    section.translational_stiffness.x,
+                    with_tangent.then_some(&mut k),
+                );
+                strain_energy += response.energy;
+                response.forces
+            } else {
+                let response = evaluate(
+                    x1,
+                    x2,
+                    &config.rotations[e],
+                    &config.rotations[e + 1],
+                    reference,
+                    &section.c_t(),
+                    &(section.c_r() * self.bending_scale),
+                    with_tangent.then_some(&mut k),
+                );
+                strain_energy += response.energy;
+                max_element_rotation = max_element_rotation.max(response.relative_rotation);
+                response.forces
+            };
             let base = NODE_DOFS * e;
-            for (i, f) in response.forces.iter().enumerate() {
+            for (i, f) in forces.iter().enumerate() {
                 self.residual[base + i] += f;
             }
             // Submerged weight: ½ L0 w e3 on each node (a dead load, no stiffness).

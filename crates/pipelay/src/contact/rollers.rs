@@ -27,6 +27,7 @@
 #![allow(clippy::indexing_slicing)]
 use crate::contact::rule::ContactRule;
 use crate::contact::sinks::EntrySink;
+use crate::rod::Rod;
 use crate::so3::{cayley, exp, skew};
 use crate::vessel::lay::Roller;
 use crate::vessel::VesselAttachment;
@@ -144,25 +145,12 @@ fn chord_distance(
 }
 
 impl RollerContact {
-    /// The rollers of `attachment` for a pipe of outer diameter `diameter` whose nodes lie at reference arc
-    /// lengths `arcs` from end A ([`crate::rod::Rod::arc_lengths`]); `None` without rollers.
-    pub fn new(attachment: &VesselAttachment, diameter: f64, arcs: &[f64]) -> Option<Self> {
+    /// The rollers of `attachment` for the line `rod`, whose nodes lie at reference arc lengths `arcs` from end
+    /// A ([`crate::rod::Rod::arc_lengths`]); `None` without rollers. The pipe's surface is that of the thickest
+    /// element within the rollers' reach (over its hydrodynamic diameter).
+    pub fn new(attachment: &VesselAttachment, rod: &Rod, arcs: &[f64]) -> Option<Self> {
         let lay = attachment.lay.as_ref().filter(|l| !l.rollers.is_empty())?;
         let to_end = attachment.angle;
-        let rollers = lay
-            .rollers
-            .iter()
-            .map(|r: &Roller| {
-                let axis = to_end * r.axis;
-                LocalRoller {
-                    centre: to_end * (r.centre - lay.hang_off),
-                    normal: to_end * r.normal,
-                    axis,
-                    projector: Matrix3::identity() - axis * axis.transpose(),
-                    reach: r.radius + 0.5 * diameter,
-                }
-            })
-            .collect::<Vec<_>>();
         let count = arcs.len() - 1;
         let total = arcs[count];
         let longest = arcs.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
@@ -179,6 +167,24 @@ impl RollerContact {
                 .unwrap_or(count);
             first..count
         };
+        let diameter = elements
+            .clone()
+            .map(|e| rod.section(e).hydrodynamic_diameter)
+            .fold(0.0, f64::max);
+        let rollers = lay
+            .rollers
+            .iter()
+            .map(|r: &Roller| {
+                let axis = to_end * r.axis;
+                LocalRoller {
+                    centre: to_end * (r.centre - lay.hang_off),
+                    normal: to_end * r.normal,
+                    axis,
+                    projector: Matrix3::identity() - axis * axis.transpose(),
+                    reach: r.radius + 0.5 * diameter,
+                }
+            })
+            .collect::<Vec<_>>();
         Some(RollerContact {
             forces: vec![0.0; rollers.len()],
             nearest_elements: vec![0; rollers.len()],
@@ -474,12 +480,14 @@ mod tests {
             surface: 0.0,
             lay: Some(lay.clone()),
         };
-        let contact = RollerContact::new(
-            &attachment,
-            0.6,
-            &(0..12).map(|i| 5.0 * i as f64).collect::<Vec<_>>(),
+        // A pipe 0.6 m across, 55 m in 11 elements.
+        let section = crate::rod::section::Section::pipe(
+            0.6, 0.02, 7850.0, 207e9, 0.3, 0.0, [0.0; 2], [0.0; 2],
         )
         .unwrap();
+        let rod =
+            Rod::straight(Vector3::zeros(), Vector3::new(55.0, 0.0, 0.0), 11, section).unwrap();
+        let contact = RollerContact::new(&attachment, &rod, &rod.arc_lengths()).unwrap();
         // The pipe follows the stinger's arc 1 cm too low (pressed into the rollers), then hangs straight.
         let centre = Vector3::new(-5.0, 0.0, 40.0);
         let positions = (0..12)

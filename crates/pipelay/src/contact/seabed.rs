@@ -115,8 +115,10 @@ pub struct SeabedContact {
     bathymetry: Bathymetry,
     /// ½ k d L0 per element (N/m).
     element_scale: Vec<f64>,
-    /// ½ k d (N/m²).
-    half_kd: f64,
+    /// Each element's reference length (m).
+    element_lengths: Vec<f64>,
+    /// The nodes whose friction directions follow their chords (a cable's, without a rotation).
+    cable_nodes: Vec<bool>,
     /// c d ℓ_a per node (N·s/m).
     damping: Vec<f64>,
     /// Penetration over which damping grows to its full value: the resting penetration w/(k d) (m).
@@ -153,40 +155,64 @@ pub struct SeabedContact {
     pub dissipated: f64,
 }
 
+/// What the seabed contact needs of an element: its reference length (m), the diameter it rests on (m) and its
+/// submerged weight per length (N/m).
+#[derive(Debug, Clone, Copy)]
+pub struct ContactElement {
+    pub length: f64,
+    pub diameter: f64,
+    pub weight: f64,
+}
+
 impl SeabedContact {
-    /// Contact for a rod of elements with lengths `lengths`, pipe diameter `diameter` and submerged weight
-    /// `weight` (N/m; friction's reference force per length).
-    pub fn new(seabed: &Seabed, lengths: &[f64], diameter: f64, weight: f64) -> Self {
-        let nodes = lengths.len() + 1;
+    /// Contact for a rod of `elements` (their lengths, diameters and submerged weights: the seabed's
+    /// stiffness acts over the diameter, friction's reference force is the weight); `cable_nodes` marks the
+    /// nodes without a rotation (a cable's), whose friction directions follow their chords.
+    pub fn new(seabed: &Seabed, elements: Vec<ContactElement>, cable_nodes: Vec<bool>) -> Self {
+        let nodes = elements.len() + 1;
         let mut tributary = vec![0.0; nodes];
-        for (e, l) in lengths.iter().enumerate() {
-            tributary[e] += 0.5 * l;
-            tributary[e + 1] += 0.5 * l;
+        let mut damping = vec![0.0; nodes];
+        let mut reference_force = vec![0.0; nodes];
+        for (e, element) in elements.iter().enumerate() {
+            let kd = seabed.stiffness * element.diameter;
+            // Friction's reference force per length: the weight, or for a weightless line the force that
+            // presses it by the mobilisation distance.
+            let reference_weight = if element.weight.abs() > 0.0 {
+                element.weight.abs()
+            } else {
+                kd * seabed.mobilisation
+            };
+            for node in [e, e + 1] {
+                tributary[node] += 0.5 * element.length;
+                damping[node] += seabed.damping * element.diameter * 0.5 * element.length;
+                reference_force[node] += reference_weight * 0.5 * element.length;
+            }
         }
-        let kd = seabed.stiffness * diameter;
-        let reference_weight = if weight.abs() > 0.0 {
-            weight.abs()
-        } else {
-            kd * seabed.mobilisation
-        };
         let mu = Vector2::new(seabed.friction[0], seabed.friction[1]);
+        let kd_mean = elements
+            .iter()
+            .map(|e| seabed.stiffness * e.diameter * e.length)
+            .sum::<f64>()
+            / tributary.iter().sum::<f64>();
+        let weight_mean = reference_force.iter().sum::<f64>() / tributary.iter().sum::<f64>();
         SeabedContact {
             bathymetry: seabed.bathymetry.clone(),
-            element_scale: lengths.iter().map(|l| 0.5 * kd * l).collect(),
-            half_kd: 0.5 * kd,
-            damping: tributary
+            element_scale: elements
                 .iter()
-                .map(|l| seabed.damping * diameter * l)
+                .map(|e| 0.5 * seabed.stiffness * e.diameter * e.length)
                 .collect(),
-            damping_ramp: reference_weight / kd,
-            friction_stiffness: tributary
+            element_lengths: elements.iter().map(|e| e.length).collect(),
+            damping,
+            damping_ramp: weight_mean / kd_mean,
+            friction_stiffness: reference_force
                 .iter()
-                .map(|l| mu * (reference_weight * l / seabed.mobilisation))
+                .map(|force| mu * (force / seabed.mobilisation))
                 .collect(),
-            yield_per_force: tributary
+            yield_per_force: reference_force
                 .iter()
-                .map(|l| seabed.mobilisation / (reference_weight * l))
+                .map(|force| seabed.mobilisation / force)
                 .collect(),
+            cable_nodes,
             has_friction: seabed.has_friction(),
             friction_scale: 1.0,
             nodes: vec![NodeStep::default(); nodes],
@@ -201,8 +227,8 @@ impl SeabedContact {
             ],
             gap_gradient: vec![Vector3::zeros(); nodes],
             gap_gradient_derivative: vec![Matrix3::zeros(); nodes],
-            element_jacobian: vec![Matrix2::zeros(); lengths.len()],
-            element_hessian_end: vec![Matrix2::zeros(); lengths.len()],
+            element_jacobian: vec![Matrix2::zeros(); nodes - 1],
+            element_hessian_end: vec![Matrix2::zeros(); nodes - 1],
             resultant: vec![0.0; nodes],
             normal_force: vec![0.0; nodes],
             friction_by_normal: vec![Vector3::zeros(); nodes],
@@ -211,6 +237,11 @@ impl SeabedContact {
             energy_end: 0.0,
             dissipated: 0.0,
         }
+    }
+
+    /// Whether node `node` is a cable's (no rotation: its friction directions follow its chords).
+    pub fn is_cable_node(&self, node: usize) -> bool {
+        self.cable_nodes[node]
     }
 
     /// Whether the seabed has friction.
@@ -226,15 +257,17 @@ impl SeabedContact {
         positions: &[Vector3<f64>],
         rotations: &[UnitQuaternion<f64>],
     ) {
-        for (node, ((s, p), q)) in self
-            .nodes
-            .iter_mut()
-            .zip(start.iter().zip(positions).zip(rotations))
-        {
-            *node = NodeStep {
+        for (index, ((s, p), q)) in start.iter().zip(positions).zip(rotations).enumerate() {
+            // A cable node's axis is its chords' at the load step's start, held over the step.
+            let axis = if self.cable_nodes[index] {
+                crate::rod::chord_axis(start, index)
+            } else {
+                q * Vector3::x()
+            };
+            self.nodes[index] = NodeStep {
                 start: *s,
                 displacement: p - s,
-                axis: q * Vector3::x(),
+                axis,
                 axis_map: Matrix3::identity(),
             };
         }
@@ -471,12 +504,8 @@ impl SeabedContact {
 
     /// Where the pipe at `positions` leaves the seabed (seen from end A) and how much of it lies on it.
     pub fn touchdown(&self, positions: &[Vector3<f64>]) -> Touchdown {
-        let lengths: Vec<f64> = self
-            .element_scale
-            .iter()
-            .map(|s| s / self.half_kd)
-            .collect();
-        let (point, laid_length) = touchdown(&self.penetrations(positions), &lengths);
+        let lengths = &self.element_lengths;
+        let (point, laid_length) = touchdown(&self.penetrations(positions), lengths);
         let point = point.map(|(e, xi)| {
             let arc = lengths[..e].iter().sum::<f64>() + xi * lengths[e];
             (arc, positions[e] * (1.0 - xi) + positions[e + 1] * xi)
@@ -613,6 +642,17 @@ mod tests {
 
     /// The tangent (element and node blocks) against central differences of the residual, in statics and
     /// the energy–momentum rule, on a plane and a grid, with friction (sticking and sliding) and damping.
+    /// Three elements of 2, 2.2 and 2 m, 0.5 m across, weighing 900 N/m.
+    fn test_elements() -> Vec<ContactElement> {
+        [2.0, 2.2, 2.0]
+            .map(|length| ContactElement {
+                length,
+                diameter: 0.5,
+                weight: 900.0,
+            })
+            .to_vec()
+    }
+
     #[test]
     fn tangent_matches_finite_differences() {
         let slips = start_slips();
@@ -625,9 +665,8 @@ mod tests {
                 for scale in [0.3, 1.0] {
                     let mut contact = SeabedContact::new(
                         &seabed(bathymetry.clone(), 3e3),
-                        &[2.0, 2.2, 2.0],
-                        0.5,
-                        900.0,
+                        test_elements(),
+                        vec![false; 4],
                     );
                     let steps = nodes(scale);
                     let mut sink = Dense(nalgebra::DMatrix::<f64>::zeros(24, 24));
@@ -677,9 +716,8 @@ mod tests {
             for scale in [0.01, 0.3, 1.0, 3.0] {
                 let mut contact = SeabedContact::new(
                     &seabed(bathymetry.clone(), 3e3),
-                    &[2.0, 2.2, 2.0],
-                    0.5,
-                    900.0,
+                    test_elements(),
+                    vec![false; 4],
                 );
                 let steps = nodes(scale);
                 let start: Vec<Vector3<f64>> = steps.iter().map(|s| s.start).collect();

@@ -30,7 +30,7 @@ use crate::dynamics::nodal::{node_start, NodalProperties};
 use crate::dynamics::observables::Observables;
 use crate::dynamics::pay_out::Growth;
 use crate::dynamics::remesh;
-use crate::dynamics::rod_step::{ElementWork, NodeStart};
+use crate::dynamics::rod_step::{rod_constants, ElementWork, NodeStart, RodConstants};
 use crate::dynamics::state::DynamicState;
 use crate::dynamics::vessel_waves::VesselWaves;
 use crate::environment::waves::Kinematics;
@@ -122,6 +122,8 @@ pub struct Integrator {
     pub(super) filtered_next: f64,
     /// Seabed contact, if the model has a seabed.
     pub(super) contact: Option<SeabedContact>,
+    /// Each segment's constants for the rod's terms (the sections do not change over a run).
+    pub(super) segment_constants: RodConstants,
     /// With pay-out: the growing element in the current step.
     pub(super) growth: Option<Growth>,
     /// In waves, with a vessel that has RAOs: its wave-frequency motion.
@@ -132,7 +134,7 @@ pub struct Integrator {
 /// vessel's restoring about 1e-16·G.
 fn round_off(model: &Model) -> f64 {
     1e-13
-        * (model.rod.section.translational_stiffness.max()
+        * (model.rod.largest(|s| s.translational_stiffness.max())
             * (model.rod.element_count() as f64).sqrt()
             + model
                 .vessel
@@ -182,6 +184,7 @@ impl Integrator {
         let contact = assembler.contact.take();
         let vessel_waves = VesselWaves::new(&model, state.time)?;
         Ok(Integrator {
+            segment_constants: rod_constants(&model),
             vessel_waves,
             contact,
             round_off,

@@ -4,7 +4,10 @@
 //! **Added mass by direction.** A node's translational mass matrix is M = (m + m_a C_an) I + m_a (C_aa − C_an)
 //! t tᵀ, with m_a = ρ_w π/4 D_h² its tributary length's displaced mass and t = Λ e1 the node's axis: the normal
 //! coefficient across the pipe, the axial one along it. The kinetic energy ½vᵀMv then depends on the node's
-//! rotation; the time step balances it exactly ([`crate::dynamics::rod_step`]).
+//! rotation; the time step balances it exactly ([`crate::dynamics::rod_step`]). A cable node has no rotation:
+//! its axis is its chords' at the step's start, held over the step (the kinetic energy's dependence on the
+//! neighbours' positions is lagged, so the ledger of a cable with unequal coefficients closes to O(Δt), not
+//! to round-off).
 // Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
 #![allow(clippy::indexing_slicing)]
 use crate::dynamics::rod_step::NodeStart;
@@ -24,12 +27,15 @@ pub struct NodalProperties {
     pub inertia: Vec<Vector3<f64>>,
     /// Rotational damping about the material axes (N·m·s).
     pub damping: Vec<Vector3<f64>>,
+    /// The cable nodes, which have no rotation: their axis is their chords' ([`crate::rod::chord_axis`]).
+    pub cable_nodes: Vec<bool>,
 }
 
 impl NodalProperties {
-    /// Added mass per unit length across the pipe, and what the axial coefficient adds along it (kg/m).
-    fn added_mass(model: &Model) -> (f64, f64) {
-        let section = &model.rod.section;
+    /// Added mass per unit length across element `element`, and what the axial coefficient adds along it
+    /// (kg/m).
+    fn added_mass(model: &Model, element: usize) -> (f64, f64) {
+        let section = model.rod.section(element);
         model.sea.as_ref().map_or((0.0, 0.0), |sea| {
             let displaced =
                 sea.density * std::f64::consts::FRAC_PI_4 * section.hydrodynamic_diameter.powi(2);
@@ -42,37 +48,40 @@ impl NodalProperties {
 
     /// Recomputes the lumps of `node` from the lengths of its elements.
     pub fn recompute(&mut self, model: &Model, node: usize) {
-        let section = &model.rod.section;
-        let elements = &model.rod.elements;
-        let tributary = 0.5
-            * (node.checked_sub(1).map_or(0.0, |e| elements[e].length)
-                + elements.get(node).map_or(0.0, |e| e.length));
-        let (normal, axial) = Self::added_mass(model);
-        self.mass[node] = tributary * (section.mass + normal);
-        self.axial_added_mass[node] = tributary * axial;
-        self.inertia[node] = tributary * section.inertia;
-        self.damping[node] = tributary * section.rotational_damping;
+        self.mass[node] = 0.0;
+        self.axial_added_mass[node] = 0.0;
+        self.inertia[node] = Vector3::zeros();
+        self.damping[node] = Vector3::zeros();
+        let elements = node.saturating_sub(1)..(node + 1).min(model.rod.element_count());
+        for e in elements {
+            self.add_element(model, e, node);
+        }
+    }
+
+    /// Adds half of element `element`'s mass, inertia and damping to its node `node`.
+    fn add_element(&mut self, model: &Model, element: usize, node: usize) {
+        let section = model.rod.section(element);
+        let half = 0.5 * model.rod.elements[element].length;
+        let (normal, axial) = Self::added_mass(model, element);
+        self.mass[node] += half * (section.mass + normal);
+        self.axial_added_mass[node] += half * axial;
+        self.inertia[node] += half * section.inertia;
+        self.damping[node] += half * section.rotational_damping;
     }
 
     /// The lumps of `model`'s rod: half of each element's mass, inertia and damping at each of its nodes.
     pub fn new(model: &Model) -> Self {
-        let section = &model.rod.section;
-        let (added, axial) = Self::added_mass(model);
         let count = model.rod.node_count();
         let mut props = NodalProperties {
             mass: vec![0.0; count],
             axial_added_mass: vec![0.0; count],
             inertia: vec![Vector3::zeros(); count],
             damping: vec![Vector3::zeros(); count],
+            cable_nodes: model.rod.cable_nodes(),
         };
-        for (e, reference) in model.rod.elements.iter().enumerate() {
-            let half = 0.5 * reference.length;
-            for node in [e, e + 1] {
-                props.mass[node] += half * (section.mass + added);
-                props.axial_added_mass[node] += half * axial;
-                props.inertia[node] += half * section.inertia;
-                props.damping[node] += half * section.rotational_damping;
-            }
+        for e in 0..model.rod.element_count() {
+            props.add_element(model, e, e);
+            props.add_element(model, e, e + 1);
         }
         let density = model.water_density();
         for (attachment, place) in model.placed_attachments() {
@@ -93,7 +102,16 @@ impl NodalProperties {
             + 0.5 * w.dot(&self.inertia[node].component_mul(&w));
         match self.axial_added_mass[node] {
             0.0 => energy,
-            axial => energy + 0.5 * axial * axis(state, node).dot(&v).powi(2),
+            axial => energy + 0.5 * axial * self.axis(state, node).dot(&v).powi(2),
+        }
+    }
+
+    /// The axis t of node `node` in `state`: Λ e1, or a cable node's chord direction.
+    pub fn axis(&self, state: &DynamicState, node: usize) -> Vector3<f64> {
+        if self.cable_nodes[node] {
+            crate::rod::chord_axis(&state.configuration.positions, node)
+        } else {
+            state.configuration.rotations[node] * Vector3::x()
         }
     }
 
@@ -103,16 +121,11 @@ impl NodalProperties {
         match self.axial_added_mass[node] {
             0.0 => v * self.mass[node],
             axial => {
-                let t = axis(state, node);
+                let t = self.axis(state, node);
                 v * self.mass[node] + t * (axial * t.dot(&v))
             }
         }
     }
-}
-
-/// The axis t = Λ e1 of node `node` in `state`.
-fn axis(state: &DynamicState, node: usize) -> Vector3<f64> {
-    state.configuration.rotations[node] * Vector3::x()
 }
 
 /// What node `node`'s inertia and damping terms need from the step's start.
@@ -126,6 +139,6 @@ pub fn node_start(nodal: &NodalProperties, state: &DynamicState, node: usize) ->
         momentum: rotation
             * nodal.inertia[node].component_mul(&state.body_angular_velocities[node]),
         damping: spatial(&nodal.damping[node]),
-        axis: rotation.column(0).into_owned(),
+        axis: nodal.axis(state, node),
     }
 }

@@ -60,8 +60,7 @@ impl<'a> Observables<'a> {
 
     /// Energy of the current state.
     pub fn energy(&self) -> Energy {
-        let section = &self.model.rod.section;
-        let (c_t, c_r) = (section.c_t(), section.c_r());
+        let rod = &self.model.rod;
         let state = &self.state;
         let kinetic = (0..self.model.rod.node_count())
             .map(|i| self.nodal.kinetic_energy(state, i))
@@ -69,8 +68,12 @@ impl<'a> Observables<'a> {
         let strain = state
             .gauss
             .iter()
-            .zip(&self.model.rod.elements)
-            .map(|(g, reference)| g.energy(reference, &c_t, &c_r))
+            .zip(&rod.elements)
+            .enumerate()
+            .map(|(e, (g, reference))| {
+                let section = rod.section(e);
+                g.energy(reference, &section.c_t(), &section.c_r())
+            })
             .sum();
         let (vessel_kinetic, vessel_potential) = match (&self.model.vessel, &state.vessel) {
             (Some(attachment), Some(motion)) => {
@@ -131,7 +134,7 @@ impl<'a> Observables<'a> {
         let element = attachment.node.saturating_sub(1);
         let reference = &self.model.rod.elements[element];
         let strain = self.state.gauss[element].strain - reference.strain;
-        (self.model.rod.section.c_t() * strain).x
+        (self.model.rod.section(element).c_t() * strain).x
     }
 
     /// Each roller's normal force in the current state (N); `None` without rollers.
@@ -160,12 +163,14 @@ impl<'a> Observables<'a> {
 
     /// Material force and moment [N; M] at the element Gauss points of the current state.
     pub fn section_forces(&self) -> Vec<Vector6<f64>> {
-        let section = &self.model.rod.section;
+        let rod = &self.model.rod;
         self.state
             .gauss
             .iter()
-            .zip(&self.model.rod.elements)
-            .map(|(g, reference)| {
+            .zip(&rod.elements)
+            .enumerate()
+            .map(|(e, (g, reference))| {
+                let section = rod.section(e);
                 let n = section.c_t() * (g.strain - reference.strain);
                 let m = section.c_r() * (g.curvature - reference.curvature);
                 Vector6::new(n.x, n.y, n.z, m.x, m.y, m.z)

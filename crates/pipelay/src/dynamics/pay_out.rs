@@ -82,7 +82,7 @@ impl Growth {
         state: &DynamicState,
         next_gauss: &[GaussPoint],
     ) -> f64 {
-        let section = &model.rod.section;
+        let section = model.rod.section(self.element);
         let (c_t, c_r) = (section.c_t(), section.c_r());
         let reference = model.rod.elements[self.element];
         let start = ElementReference {
@@ -106,6 +106,6 @@ fn element_lump_energy(
     nodal.kinetic_energy(state, element) + nodal.kinetic_energy(state, element + 1)
         - 0.5
             * model.rod.elements[element].length
-            * model.submerged_weight()
+            * model.submerged_weight(element)
             * (positions[element].z + positions[element + 1].z)
 }

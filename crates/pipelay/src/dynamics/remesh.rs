@@ -11,8 +11,9 @@
 //! so the tension through the split does not jump. Velocities and the seabed slips are interpolated.
 // Indexing cannot go out of bounds here: The end element and its nodes, indices of the mesh being changed (checked non-empty).
 #![allow(clippy::indexing_slicing)]
-use crate::dynamics::state::DynamicState;
+use crate::dynamics::state::{element_gauss_point, DynamicState};
 use crate::model::Model;
+use crate::rod::cable::gauss_point as cable_gauss_point;
 use crate::rod::dynamic_element::GaussPoint;
 use crate::so3::log_quat;
 use nalgebra::{UnitQuaternion, Vector2, Vector3, Vector6};
@@ -64,7 +65,7 @@ pub fn remesh(
         Some(MeshChange::Inserted(node))
     } else if length < 0.5 * nominal && model.rod.element_count() > 1 {
         let first = if at_start { 0 } else { element - 1 };
-        join(model, state, first);
+        join(model, state, first, at_start);
         reactions.remove(first + 1);
         model.renumber_nodes(first + 1, -1);
         Some(MeshChange::Removed(first + 1))
@@ -85,7 +86,8 @@ fn split(
     speed: f64,
 ) -> usize {
     let (a, b) = (element, element + 1);
-    let section = &model.rod.section;
+    let section = model.rod.section(element);
+    let cable = section.cable;
     let parent = model.rod.elements[element];
     let gauss = state.gauss[element];
     let config = &state.configuration;
@@ -101,22 +103,32 @@ fn split(
     let (xa, xb) = (config.positions[a], config.positions[b]);
     // Moved off the chord by δ, the halves' forces differ by Λ C Λᵀ δ (1/l₁ + 1/l₂): the node carries its share
     // of the submerged weight when n₁ − n₂ = ½(l₁ + l₂) w e3 (the weight acts along e3).
+    // (A cable's node stays on the chord: its halves' stiffness across it is the tension's, and small.)
     let stiffness = gauss.rotation
         * section.c_t()
         * gauss.rotation.transpose()
         * (1.0 / first_length + 1.0 / second_length);
-    let weight = Vector3::z() * (0.5 * parent.length * model.submerged_weight());
-    let offset = stiffness.lu().solve(&weight).unwrap_or_else(Vector3::zeros);
+    let weight = Vector3::z() * (0.5 * parent.length * model.submerged_weight(element));
+    let offset = if cable {
+        Vector3::zeros()
+    } else {
+        stiffness.lu().solve(&weight).unwrap_or_else(Vector3::zeros)
+    };
     let position = xa + (xb - xa) * fraction + offset;
     // Both halves take the element's Gauss point as it is. The bending moment of a sheared rod varies along it
     // (m′ = −φ′ × n), which a one-point element cannot show: the new node is left with the moment ½ l n × φ′
     // unbalanced, released as a small vibration. Giving each half the moment at its own midpoint instead
     // balanced the node but added ½ Σ l_i Δm_i²/EI of strain energy at each split, which fed back through the
     // shear force and pumped a long J-lay run unstable; this embedding changes no energy at all.
-    let half = |chord: Vector3<f64>, l: f64| GaussPoint {
-        rotation: gauss.rotation,
-        strain: gauss.rotation.transpose() * chord / l - Vector3::x(),
-        curvature: gauss.curvature,
+    let half = |chord: Vector3<f64>, l: f64| {
+        if cable {
+            return cable_gauss_point(&chord, l);
+        }
+        GaussPoint {
+            rotation: gauss.rotation,
+            strain: gauss.rotation.transpose() * chord / l - Vector3::x(),
+            curvature: gauss.curvature,
+        }
     };
     let first = half(position - xa, first_length);
     let second = half(xb - position, second_length);
@@ -149,10 +161,11 @@ fn split(
     b
 }
 
-/// Joins elements `first` and `first + 1` by removing the node between them; the joined element's Gauss
-/// point is that of its end nodes (the objective element's midpoint triad and strains).
-fn join(model: &mut Model, state: &mut DynamicState, first: usize) {
-    model.rod.join_elements(first);
+/// Joins elements `first` and `first + 1` by removing the node between them, the joined element of the
+/// segment of the one away from the end (`at_start`: the second); its Gauss point is that of its end nodes
+/// (the objective element's midpoint triad and strains).
+fn join(model: &mut Model, state: &mut DynamicState, first: usize, at_start: bool) {
+    model.rod.join_elements(first, usize::from(at_start));
     let removed = first + 1;
     let config = &mut state.configuration;
     config.positions.remove(removed);
@@ -162,11 +175,5 @@ fn join(model: &mut Model, state: &mut DynamicState, first: usize) {
     state.body_angular_velocities.remove(removed);
     state.slips.remove(removed);
     state.gauss.remove(removed);
-    state.gauss[first] = GaussPoint::from_configuration(
-        &config.positions[first],
-        &config.positions[first + 1],
-        &config.rotations[first],
-        &config.rotations[first + 1],
-        &model.rod.elements[first],
-    );
+    state.gauss[first] = element_gauss_point(model, config, first);
 }

@@ -16,6 +16,7 @@ use crate::environment::drag::{morison_drag, morison_force};
 use crate::environment::waves::Kinematics;
 use crate::linalg::pool;
 use crate::model::Model;
+use crate::rod::cable::step as cable_step;
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
@@ -44,33 +45,45 @@ pub struct ElementWork {
     pub internal: f64,
 }
 
-/// The section's and the sea's constants the elements use.
+/// A segment's section's and the sea's constants its elements use.
 #[derive(Debug, Clone, Copy)]
-pub struct RodConstants {
+pub struct SegmentConstants {
     c_t: Matrix3<f64>,
     c_r: Matrix3<f64>,
     /// Submerged weight per length (N/m).
     weight: f64,
     /// Morison drag coefficients ½ρ C_d d, axial and normal.
     drag: (f64, f64),
+    /// Whether the segment is a cable.
+    cable: bool,
 }
 
-impl RodConstants {
-    pub fn of(model: &Model) -> Self {
-        let section = &model.rod.section;
-        RodConstants {
-            c_t: section.c_t(),
-            c_r: section.c_r(),
-            weight: model.submerged_weight(),
-            drag: model.drag_coefficients(),
-        }
-    }
+/// The constants of each segment of a model's line.
+pub type RodConstants = Vec<SegmentConstants>;
+
+/// The constants of `model`'s segments.
+pub fn rod_constants(model: &Model) -> RodConstants {
+    model
+        .rod
+        .sections
+        .iter()
+        .map(|section| {
+            let k = 0.5 * model.water_density() * section.hydrodynamic_diameter;
+            SegmentConstants {
+                c_t: section.c_t(),
+                c_r: section.c_r(),
+                weight: model.submerged_weight_of(section),
+                drag: (k * section.drag[0], k * section.drag[1]),
+                cable: section.cable,
+            }
+        })
+        .collect()
 }
 
 /// The step's inputs the rod's terms read.
 pub struct RodStep<'a> {
     pub model: &'a Model,
-    pub constants: RodConstants,
+    pub constants: &'a [SegmentConstants],
     /// Positions, velocities and Gauss points at the step's start.
     pub positions: &'a [Vector3<f64>],
     pub velocities: &'a [Vector3<f64>],
@@ -180,13 +193,14 @@ impl RodStep<'_> {
     fn element(&self, e: usize, mut tangent: Option<&mut ElementMatrix>) -> ElementShare {
         let model = self.model;
         let reference = &model.rod.elements[e];
-        let section = &model.rod.section;
-        let RodConstants {
+        let section = model.rod.section(e);
+        let SegmentConstants {
             c_t,
             c_r,
             weight,
             drag: (k_axial, k_normal),
-        } = self.constants;
+            cable,
+        } = self.constants[model.rod.segment_of[e]];
         let dt = self.dt;
         let base = NODE_DOFS * e;
         let increments = ElementVector::from_column_slice(&self.increments[base..base + 12]);
@@ -196,17 +210,28 @@ impl RodStep<'_> {
             .growth
             .filter(|&(element, _)| element == e)
             .map_or(reference.length, |(_, length)| length);
-        let step = element_step(
-            &chord,
-            &increments,
-            &self.gauss[e],
-            length_start,
-            reference,
-            &c_t,
-            &c_r,
-            self.stress_rule,
-            tangent.as_deref_mut(),
-        );
+        let step = if cable {
+            cable_step(
+                &chord,
+                &increments,
+                reference,
+                c_t[(0, 0)],
+                self.stress_rule,
+                tangent.as_deref_mut(),
+            )
+        } else {
+            element_step(
+                &chord,
+                &increments,
+                &self.gauss[e],
+                length_start,
+                reference,
+                &c_t,
+                &c_r,
+                self.stress_rule,
+                tangent.as_deref_mut(),
+            )
+        };
         let mut work = ElementWork {
             internal: step.forces.dot(&increments),
             ..ElementWork::default()

@@ -6,6 +6,7 @@ use crate::assembly::configuration::Configuration;
 use crate::error::Result;
 use crate::model::Model;
 use crate::response::configuration::Response;
+use crate::rod::cable::gauss_point as cable_gauss_point;
 use crate::rod::dynamic_element::GaussPoint;
 use nalgebra::{Vector2, Vector3, Vector6};
 
@@ -53,20 +54,8 @@ pub struct VesselMotion {
 impl DynamicState {
     /// A state at rest in `configuration` at time `time`; driven nodes move with their drive's velocity.
     pub fn at_rest(model: &Model, configuration: Configuration, time: f64) -> Result<Self> {
-        let gauss = model
-            .rod
-            .elements
-            .iter()
-            .enumerate()
-            .map(|(e, reference)| {
-                GaussPoint::from_configuration(
-                    &configuration.positions[e],
-                    &configuration.positions[e + 1],
-                    &configuration.rotations[e],
-                    &configuration.rotations[e + 1],
-                    reference,
-                )
-            })
+        let gauss = (0..model.rod.element_count())
+            .map(|e| element_gauss_point(model, &configuration, e))
             .collect();
         let mut velocities = vec![Vector3::zeros(); model.rod.node_count()];
         for support in &model.supports {
@@ -128,4 +117,24 @@ impl DynamicState {
             .map(|(q, w)| q * w)
             .collect()
     }
+}
+
+/// The Gauss point of element `element` of `config`: the objective element's for a rod, the chord's strain
+/// for a cable.
+pub fn element_gauss_point(model: &Model, config: &Configuration, element: usize) -> GaussPoint {
+    let (a, b) = (element, element + 1);
+    let reference = &model.rod.elements[element];
+    if model.rod.section(element).cable {
+        return cable_gauss_point(
+            &(config.positions[b] - config.positions[a]),
+            reference.length,
+        );
+    }
+    GaussPoint::from_configuration(
+        &config.positions[a],
+        &config.positions[b],
+        &config.rotations[a],
+        &config.rotations[b],
+        reference,
+    )
 }

@@ -8,7 +8,7 @@ use crate::contact::rule::ContactRule;
 use crate::contact::seabed::{NodeStep, PARALLEL_NODES as PARALLEL_CONTACT_NODES};
 use crate::dynamics::integrator::Integrator;
 use crate::dynamics::ledger::StepWork;
-use crate::dynamics::rod_step::{ElementOutputs, RodConstants, RodStep};
+use crate::dynamics::rod_step::{ElementOutputs, RodStep};
 use crate::environment::drag::quadratic_jacobian;
 use crate::error::Result;
 use crate::linalg::pool;
@@ -95,7 +95,7 @@ impl Integrator {
         let state = &self.state;
         let rod = RodStep {
             model,
-            constants: RodConstants::of(model),
+            constants: &self.segment_constants,
             positions: &state.configuration.positions,
             velocities: &state.velocities,
             gauss: &state.gauss,

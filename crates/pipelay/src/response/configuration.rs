@@ -6,6 +6,7 @@ use crate::assembly::configuration::Configuration;
 use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
+use crate::rod::cable;
 use crate::rod::element::evaluate;
 use crate::vessel::coupling::{eta_of, pipe_force_on_vessel, vessel_pose};
 use nalgebra::{Vector2, Vector3, Vector6};
@@ -74,22 +75,27 @@ impl Response {
         config: &Configuration,
         assembler: &mut Assembler,
     ) -> Self {
-        let section = &model.rod.section;
-        let (c_t, c_r) = (section.c_t(), section.c_r());
         let section_forces = model
             .rod
             .elements
             .iter()
             .enumerate()
             .map(|(e, reference)| {
+                let section = model.rod.section(e);
+                if section.cable {
+                    let (x1, x2) = (&config.positions[e], &config.positions[e + 1]);
+                    let ea = section.translational_stiffness.x;
+                    let tension = cable::evaluate(x1, x2, reference, ea, None).tension;
+                    return Vector6::new(tension, 0.0, 0.0, 0.0, 0.0, 0.0);
+                }
                 let r = evaluate(
                     &config.positions[e],
                     &config.positions[e + 1],
                     &config.rotations[e],
                     &config.rotations[e + 1],
                     reference,
-                    &c_t,
-                    &c_r,
+                    &section.c_t(),
+                    &section.c_r(),
                     None,
                 );
                 Vector6::new(

@@ -141,14 +141,13 @@ pub fn lay_summary(
         .unwrap_or(node);
     let inflection_arc = arc_of_node[inflection];
     let layback = touchdown_point.map_or(f64::NAN, |p| (positions[node] - p).xy().norm());
-    let section = &model.rod.section;
     let liftoff_arc = arc_of_node[liftoff_node];
     let split = inflection_arc;
     let (mut overbend_strain, mut sagbend_strain, mut sagbend_moment) =
         (f64::NEG_INFINITY, f64::NEG_INFINITY, 0.0_f64);
     for (e, forces) in section_forces.iter().enumerate() {
         let middle = 0.5 * (arc_of_node[e] + arc_of_node[e + 1]);
-        let strain = section.strain(forces);
+        let strain = model.rod.section(e).strain(forces);
         let toward_hold = if node == 0 {
             middle <= split
         } else {

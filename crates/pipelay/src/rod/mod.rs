@@ -1,11 +1,13 @@
-//! The rod: its stress-free reference (nodes, nodal frames, elements) and the element it is made of: the
-//! cross-section ([`section`]), the element's statics ([`element`]) and its energy–momentum step
-//! ([`dynamic_element`]), and the bodies attached at points of it ([`attachment`]).
+//! The rod: its stress-free reference (nodes, nodal frames, elements) made of consecutive segments, each with
+//! its own cross-section ([`section`]); the rod element's statics ([`element`]) and energy–momentum step
+//! ([`dynamic_element`]); the cable element of segments without bending stiffness ([`cable`]); and the bodies
+//! attached at points of it ([`attachment`]).
 //!
 //! May use: the basics (rotations, errors, memory).
 // Indexing cannot go out of bounds here: Node and element indices of the rod this module builds (nodes.len() = elements + 1, checked at construction).
 #![allow(clippy::indexing_slicing)]
 pub mod attachment;
+pub mod cable;
 pub mod dynamic_element;
 pub mod element;
 pub mod section;
@@ -25,8 +27,18 @@ pub struct Rod {
     pub frames: Vec<UnitQuaternion<f64>>,
     /// Per-element reference data.
     pub elements: Vec<ElementReference>,
-    /// The cross-section, the same along the rod.
+    /// The cross-section of each segment, from end A.
+    pub sections: Vec<Section>,
+    /// The segment each element belongs to (an index into `sections`, non-decreasing from end A).
+    pub segment_of: Vec<usize>,
+}
+
+/// One segment of a line: its unstretched length (m), its section and its number of elements.
+#[derive(Debug, Clone)]
+pub struct Segment {
+    pub length: f64,
     pub section: Section,
+    pub elements: usize,
 }
 
 impl Rod {
@@ -141,12 +153,119 @@ impl Rod {
                 )
             })
             .collect();
+        let segment_of = vec![0; nodes.len() - 1];
         Rod {
             nodes,
             frames,
             elements,
-            section,
+            sections: vec![section],
+            segment_of,
         }
+    }
+
+    /// A straight line of consecutive `segments` from `start` along `direction`, continuous at the joints
+    /// (each joint is a node of both segments); each segment is divided into its own equal elements.
+    pub fn segments(
+        start: Vector3<f64>,
+        direction: Vector3<f64>,
+        segments: &[Segment],
+    ) -> Result<Self> {
+        finite("start", start.as_slice())?;
+        finite("direction", direction.as_slice())?;
+        if direction.norm() == 0.0 {
+            return Err(Error::input(
+                "direction",
+                format!("{:?}", direction.as_slice()),
+                "must be a non-zero vector",
+            ));
+        }
+        let Some(first) = segments.first() else {
+            return Err(Error::input(
+                "segments",
+                "an empty list",
+                "need at least one segment",
+            ));
+        };
+        let axis = direction.normalize();
+        let total: usize = segments.iter().map(|s| s.elements).sum();
+        crate::memory::check(
+            "segments",
+            format!("{total} elements"),
+            total as f64 * crate::memory::ROD_BYTES_PER_ELEMENT,
+            "the rod's reference",
+        )?;
+        let mut nodes = crate::memory::vec_with_capacity(total + 1, "the rod's nodes")?;
+        let mut segment_of = crate::memory::vec_with_capacity(total, "the rod's segments")?;
+        nodes.push(start);
+        let mut arc = 0.0;
+        for (k, segment) in segments.iter().enumerate() {
+            finite(&format!("segments[{k}].length"), &[segment.length])?;
+            if segment.length <= 0.0 {
+                return Err(Error::input(
+                    format!("segments[{k}].length"),
+                    segment.length,
+                    "must be > 0 m",
+                ));
+            }
+            if segment.elements == 0 {
+                return Err(Error::input(
+                    format!("segments[{k}].elements"),
+                    segment.elements,
+                    "must be an integer >= 1",
+                ));
+            }
+            for i in 1..=segment.elements {
+                let s = arc + segment.length * (i as f64 / segment.elements as f64);
+                nodes.push(start + axis * s);
+                segment_of.push(k);
+            }
+            arc += segment.length;
+        }
+        let mut rod = Self::new(nodes, first.section.clone())?;
+        rod.sections = segments.iter().map(|s| s.section.clone()).collect();
+        rod.segment_of = segment_of;
+        Ok(rod)
+    }
+
+    /// The section of element `element`.
+    pub fn section(&self, element: usize) -> &Section {
+        &self.sections[self.segment_of[element]]
+    }
+
+    /// Whether every element at node `node` is a cable's: its rotation is then no degree of freedom.
+    pub fn is_cable_node(&self, node: usize) -> bool {
+        let before = node.checked_sub(1).map(|e| self.section(e).cable);
+        let after = (node < self.element_count()).then(|| self.section(node).cable);
+        before.unwrap_or(true) && after.unwrap_or(true)
+    }
+
+    /// Which nodes are cable nodes ([`Rod::is_cable_node`]).
+    pub fn cable_nodes(&self) -> Vec<bool> {
+        (0..self.node_count())
+            .map(|a| self.is_cable_node(a))
+            .collect()
+    }
+
+    /// Whether any segment is a cable.
+    pub fn has_cables(&self) -> bool {
+        self.sections.iter().any(|s| s.cable)
+    }
+
+    /// The largest of a section property over the segments (e.g. the axial stiffness, for scales).
+    pub fn largest(&self, property: impl Fn(&Section) -> f64) -> f64 {
+        self.sections.iter().map(property).fold(0.0, f64::max)
+    }
+
+    /// The length-weighted mean of a section property over the elements (e.g. the submerged weight, for the
+    /// statics' catenary start).
+    pub fn mean(&self, property: impl Fn(&Section) -> f64) -> f64 {
+        let total = self.length();
+        self.elements
+            .iter()
+            .zip(&self.segment_of)
+            .map(|(e, &k)| e.length * property(&self.sections[k]))
+            .sum::<f64>()
+            / total
     }
 
     /// Number of elements n.
@@ -184,11 +303,14 @@ impl Rod {
         self.frames.insert(b, frame);
         self.elements[element] = first;
         self.elements.insert(element + 1, second);
+        self.segment_of
+            .insert(element + 1, self.segment_of[element]);
     }
 
     /// Joins elements `element` and `element + 1` into one by removing the node between them; the joined
-    /// element has their summed length and the length-weighted mean reference strains.
-    pub fn join_elements(&mut self, element: usize) {
+    /// element has their summed length, the length-weighted mean reference strains and the segment of the
+    /// first (`keep` = 0) or the second (`keep` = 1).
+    pub fn join_elements(&mut self, element: usize, keep: usize) {
         let (first, second) = (self.elements[element], self.elements[element + 1]);
         let length = first.length + second.length;
         let mean =
@@ -198,7 +320,9 @@ impl Rod {
             strain: mean(first.strain, second.strain),
             curvature: mean(first.curvature, second.curvature),
         };
+        self.segment_of[element] = self.segment_of[element + keep.min(1)];
         self.elements.remove(element + 1);
+        self.segment_of.remove(element + 1);
         self.nodes.remove(element + 1);
         self.frames.remove(element + 1);
     }
@@ -211,5 +335,22 @@ impl Rod {
                 Some(*arc)
             }))
             .collect()
+    }
+}
+
+/// The unit mean of the chords at node `node` of `positions` (a polyline): the direction of a node without a
+/// rotation of its own.
+pub fn chord_axis(positions: &[Vector3<f64>], node: usize) -> Vector3<f64> {
+    let before = node
+        .checked_sub(1)
+        .map(|a| (positions[node] - positions[a]).normalize());
+    let after = positions
+        .get(node + 1)
+        .map(|b| (b - positions[node]).normalize());
+    let sum = before.unwrap_or(Vector3::zeros()) + after.unwrap_or(Vector3::zeros());
+    if sum.norm() > 1e-8 {
+        sum.normalize()
+    } else {
+        before.or(after).unwrap_or(Vector3::x())
     }
 }

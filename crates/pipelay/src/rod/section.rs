@@ -2,7 +2,7 @@
 use crate::error::{finite, non_negative, positive, Result};
 use nalgebra::{Matrix3, Vector3};
 
-/// A rod's cross-section, constant along the rod. Axis 1 is the rod axis (t1); 2 and 3 the principal axes.
+/// A cross-section, constant along a segment of the line. Axis 1 is the rod axis (t1); 2 and 3 the principal axes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Section {
     /// C_T = diag(EA, GA2, GA3) (N).
@@ -29,6 +29,8 @@ pub struct Section {
     pub rotational_damping: Vector3<f64>,
     /// The pipe's wall, for sections built from it ([`Section::pipe`]): what design checks need.
     pub wall: Option<PipeWall>,
+    /// A cable's section ([`Section::cable`]): axial stiffness only, its elements bars ([`crate::rod::cable`]).
+    pub cable: bool,
 }
 
 /// The wall of a pipe section.
@@ -165,6 +167,42 @@ impl Section {
             added_mass: extras.added_mass,
             rotational_damping: Vector3::from(extras.rotational_damping),
             wall: None,
+            cable: false,
+        })
+    }
+
+    /// A cable (wire rope, chain, umbilical without bending stiffness) of nominal `diameter` (m), `mass`
+    /// (kg/m) and axial stiffness `ea` (N): it carries tension only. The buoyancy area is π/4 d², drag and added
+    /// mass refer to d.
+    pub fn cable(
+        diameter: f64,
+        mass: f64,
+        ea: f64,
+        drag: [f64; 2],
+        added_mass: [f64; 2],
+    ) -> Result<Self> {
+        positive("diameter", diameter, "m")?;
+        positive("EA", ea, "N")?;
+        positive("mass", mass, "kg/m")?;
+        for &c in &drag {
+            non_negative("drag", c, "(dimensionless)")?;
+        }
+        for &c in &added_mass {
+            non_negative("added_mass", c, "(dimensionless)")?;
+        }
+        Ok(Section {
+            translational_stiffness: Vector3::new(ea, 0.0, 0.0),
+            rotational_stiffness: Vector3::zeros(),
+            mass,
+            inertia: Vector3::zeros(),
+            outer_diameter: diameter,
+            hydrodynamic_diameter: diameter,
+            displaced_area: std::f64::consts::FRAC_PI_4 * diameter * diameter,
+            drag,
+            added_mass,
+            rotational_damping: Vector3::zeros(),
+            wall: None,
+            cable: true,
         })
     }
 
@@ -310,6 +348,9 @@ impl Section {
     /// (linear elastic; the tensile side in bending).
     pub fn strain(&self, forces: &nalgebra::Vector6<f64>) -> f64 {
         let axial = forces[0] / self.translational_stiffness.x;
+        if self.cable {
+            return axial;
+        }
         let curvature = nalgebra::Vector2::new(
             forces[4] / self.rotational_stiffness.y,
             forces[5] / self.rotational_stiffness.z,

@@ -245,7 +245,7 @@ fn round_off_floor(model: &Model) -> f64 {
         crate::vessel::coupling::static_round_off(attachment, extent)
     });
     per_element
-        * model.rod.section.translational_stiffness.max()
+        * model.rod.largest(|s| s.translational_stiffness.max())
         * (model.rod.element_count() as f64).sqrt()
         + vessel
 }

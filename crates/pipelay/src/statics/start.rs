@@ -22,7 +22,8 @@ pub fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Config
     let last = model.rod.element_count();
     let held = |node: usize| targets.iter().find(|s| s.node == node);
     let (a, b) = (held(0)?, held(last)?);
-    let weight = model.submerged_weight();
+    // A line of segments starts from the catenary of its mean weight and stiffness.
+    let weight = model.mean_submerged_weight();
     if targets.len() != 2 || weight == 0.0 {
         return None;
     }
@@ -33,7 +34,7 @@ pub fn catenary_guess(model: &Model, targets: &[SupportTarget]) -> Option<Config
             Vector3::new(v.x, v.y, -v.z)
         }
     };
-    let ea = model.rod.section.translational_stiffness.x;
+    let ea = model.rod.mean(|s| s.translational_stiffness.x);
     let a = mirror(a.position);
     // The line hanging from A to `top` (mirrored) with `length` of pipe: a heavy line whose end A lies on the
     // seabed rests on it up to a touchdown point.
@@ -110,7 +111,11 @@ fn roller_path(model: &Model, held: &SupportTarget) -> Vec<(f64, Vector3<f64>)> 
     };
     let body = rotation.to_rotation_matrix().into_inner() * attachment.angle;
     let hang_off = attachment.hang_off();
-    let radius = 0.5 * model.rod.section.hydrodynamic_diameter;
+    let radius = 0.5
+        * model
+            .rod
+            .section(held.node.saturating_sub(1))
+            .hydrodynamic_diameter;
     let mut path = vec![(0.0, held.position)];
     for roller in attachment.rollers() {
         let top = roller.centre + (roller.radius + radius) * roller.normal;

@@ -47,7 +47,7 @@ pub fn perturbed(config: &Configuration, dof: usize, step: f64) -> Configuration
 /// A vessel-held model from its static state with every dissipation off and the holding thrust let go (the
 /// pipe pulls the vessel), stepping by `dt`.
 pub fn released_without_dissipation(mut model: Model, dt: f64) -> Integrator {
-    model.rod.section.drag = [0.0, 0.0];
+    model.rod.sections[0].drag = [0.0, 0.0];
     if let Some(attachment) = model.vessel.as_mut() {
         attachment.vessel.damping = nalgebra::Matrix6::zeros();
     }

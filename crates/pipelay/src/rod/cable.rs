@@ -1,0 +1,318 @@
+//! The cable element: a two-node bar with axial stiffness only, for segments without bending and torsional
+//! stiffness (wire ropes, A&R cables, initiation wires). Its nodes carry positions only: a cable node's
+//! rotation is no degree of freedom, and at a joint with a rod the rod's end rotates freely (a pin: the
+//! force passes, no moment).
+//!
+//! **Energy.** With the chord d = φ2 − φ1, q = d·d and the unstretched length L, the strain is
+//! ε = √q/L − 1 and the stored energy W(q) = ½ EA L max(ε, 0)²: a cable carries tension N = EA max(ε, 0)
+//! and goes slack in compression. Then ∂W/∂φ2 = 2W′(q) d = N d/|d|, W′(q) = ½EA max(1/L − q^(−1/2), 0).
+//!
+//! **The time step** (a discrete gradient, Gonzalez 1996): with d̄ = ½(d_n + d_{n+1}) and
+//! W̄′ = (W(q_{n+1}) − W(q_n))/(q_{n+1} − q_n), the force 2W̄′d̄ on node 2 (and its opposite on node 1) does
+//! the work 2W̄′d̄·Δd = W̄′Δq = ΔW exactly, and lies along the chord: the step conserves energy, linear and
+//! angular momentum, like the rod's.
+// Indexing cannot go out of bounds here: Fixed-size 12-vectors and 3-vectors indexed by constants.
+#![allow(clippy::indexing_slicing)]
+use super::dynamic_element::{ElementStep, GaussPoint, StressRule};
+use super::element::{ElementMatrix, ElementReference, ElementVector};
+use nalgebra::{Matrix3, Vector3};
+
+/// The statics' tangent across a cable is at least this fraction of EA/L (of the axial stiffness). A cable
+/// without tension has no stiffness, and the tangent of a line that starts unstressed (statics' first load
+/// step) would be singular: the statics' tangent of a slack cable takes the taut stiffness EA/L along the chord
+/// and this floor across it. Both change Newton's steps only, not the residual or the solution (a cable under
+/// tension N has N/l ≫ 1e-6 EA/L across it).
+const STATIC_TRANSVERSE_FLOOR: f64 = 1e-6;
+
+/// Where a node's rows begin in an element's 12-vector [φ1, θ1, φ2, θ2].
+const NODE_DOFS: usize = 6;
+
+/// A cable's axial law W(q) of one element: axial stiffness EA (N) and unstretched length L (m).
+#[derive(Debug, Clone, Copy)]
+pub struct AxialLaw {
+    pub ea: f64,
+    pub length: f64,
+}
+
+impl AxialLaw {
+    /// Strain ε = |d|/L − 1 of a chord whose squared length is `q`.
+    pub fn strain(&self, q: f64) -> f64 {
+        q.sqrt() / self.length - 1.0
+    }
+
+    /// Tension N = EA max(ε, 0) (N).
+    pub fn tension(&self, q: f64) -> f64 {
+        self.ea * self.strain(q).max(0.0)
+    }
+
+    /// Stored energy W(q) = ½ EA L max(ε, 0)² (J).
+    pub fn energy(&self, q: f64) -> f64 {
+        0.5 * self.ea * self.length * self.strain(q).max(0.0).powi(2)
+    }
+
+    /// W′(q) = ½EA max(1/L − q^(−1/2), 0).
+    fn slope(&self, q: f64) -> f64 {
+        0.5 * self.ea * (1.0 / self.length - 1.0 / q.sqrt()).max(0.0)
+    }
+
+    /// The discrete gradient W̄′ = (W(q1) − W(q0))/(q1 − q0) and its derivative ∂W̄′/∂q1. Taut at both ends,
+    /// ΔW = ½EA L(ε1 − ε0)(ε1 + ε0) with ε1 − ε0 = Δq/(L(l0 + l1)) exactly, so W̄′ = ½EA(ε0 + ε1)/(l0 + l1)
+    /// and ∂W̄′/∂q1 = EA/(2 l1 (l0 + l1)²), free of the difference quotient's cancellation (as q1 → q0 they
+    /// tend to W′ and ½W″). Slack at one end, W is zero there and the quotient is taken as it is.
+    fn mean_slope(&self, q0: f64, q1: f64) -> (f64, f64) {
+        let (l0, l1) = (q0.sqrt(), q1.sqrt());
+        let (taut0, taut1) = (self.strain(q0) > 0.0, self.strain(q1) > 0.0);
+        match (taut0, taut1) {
+            (true, true) => {
+                let sum = l0 + l1;
+                (
+                    0.5 * self.ea * (self.strain(q0) + self.strain(q1)) / sum,
+                    self.ea / (2.0 * l1 * sum * sum),
+                )
+            }
+            (false, false) => (0.0, 0.0),
+            _ => {
+                let slope = (self.energy(q1) - self.energy(q0)) / (q1 - q0);
+                (slope, (self.slope(q1) - slope) / (q1 - q0))
+            }
+        }
+    }
+
+    /// W″(q) = ¼EA q^(−3/2) in tension, 0 when slack.
+    fn curvature(&self, q: f64) -> f64 {
+        if self.strain(q) > 0.0 {
+            0.25 * self.ea / (q * q.sqrt())
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The statics of one cable element at positions `x1`, `x2`.
+#[derive(Debug, Clone)]
+pub struct CableResponse {
+    /// Internal forces on [x1, θ1, x2, θ2] (the moments zero).
+    pub forces: ElementVector,
+    /// Tension N (N).
+    pub tension: f64,
+    /// Stored energy (J).
+    pub energy: f64,
+}
+
+/// Writes the 12×12 element tangent of a bar whose ∂f2/∂φ2 is `block`: ±block on the translations.
+fn bar_tangent(block: &Matrix3<f64>, tangent: &mut ElementMatrix) {
+    tangent.fill(0.0);
+    for (row, column, sign) in [(0, 0, 1.0), (0, 1, -1.0), (1, 0, -1.0), (1, 1, 1.0)] {
+        tangent
+            .fixed_view_mut::<3, 3>(NODE_DOFS * row, NODE_DOFS * column)
+            .copy_from(&(block * sign));
+    }
+}
+
+/// Forces ∓f on [x1, x2] of a 12-vector.
+fn bar_forces(force: &Vector3<f64>) -> ElementVector {
+    let mut forces = ElementVector::zeros();
+    forces.fixed_rows_mut::<3>(0).copy_from(&(-force));
+    forces.fixed_rows_mut::<3>(NODE_DOFS).copy_from(force);
+    forces
+}
+
+/// Internal forces ∂W/∂φ of the cable element between `x1` and `x2`, and with `tangent` their derivatives
+/// (all 144 entries written): ∂f2/∂φ2 = 4W″(q) d dᵀ + 2W′(q) I = EA/L d̂d̂ᵀ + N/l (I − d̂d̂ᵀ), along the chord
+/// EA/L also when slack, and across it no less than `STATIC_TRANSVERSE_FLOOR` EA/L.
+pub fn evaluate(
+    x1: &Vector3<f64>,
+    x2: &Vector3<f64>,
+    reference: &ElementReference,
+    ea: f64,
+    tangent: Option<&mut ElementMatrix>,
+) -> CableResponse {
+    let law = AxialLaw {
+        ea,
+        length: reference.length,
+    };
+    let chord = x2 - x1;
+    let q = chord.norm_squared();
+    let force = 2.0 * law.slope(q) * chord;
+    if let Some(tangent) = tangent {
+        let floor = STATIC_TRANSVERSE_FLOOR * ea / reference.length;
+        let along = chord * chord.transpose() / q;
+        let block = along * (ea / reference.length)
+            + (Matrix3::identity() - along) * (2.0 * law.slope(q)).max(floor);
+        bar_tangent(&block, tangent);
+    }
+    CableResponse {
+        forces: bar_forces(&force),
+        tension: law.tension(q),
+        energy: law.energy(q),
+    }
+}
+
+/// The Gauss point a cable element stores: no rotation, the tensile strain max(ε, 0) as its axial strain
+/// (so that the energy ½L EA Γ1² and the tension EA Γ1 read from it are the cable's).
+pub fn gauss_point(chord: &Vector3<f64>, length: f64) -> GaussPoint {
+    let law = AxialLaw { ea: 1.0, length };
+    GaussPoint {
+        rotation: Matrix3::identity(),
+        strain: Vector3::new(law.strain(chord.norm_squared()).max(0.0), 0.0, 0.0),
+        curvature: Vector3::zeros(),
+    }
+}
+
+/// One time step's internal forces of a cable element and, if asked, their tangent with respect to
+/// [Δφ1, θ1, Δφ2, θ2]. `chord` is φ2 − φ1 at step n. The energy is that at the length L_{n+1}
+/// (`reference.length`; it differs from `length_start` only for the element that grows with pay-out): the
+/// forces do the work W_{n+1}(q_{n+1}) − W_{n+1}(q_n), and the rest of the change of stored energy is what
+/// pay-out brings in.
+pub fn step(
+    chord: &Vector3<f64>,
+    increments: &ElementVector,
+    reference: &ElementReference,
+    ea: f64,
+    rule: StressRule,
+    tangent: Option<&mut ElementMatrix>,
+) -> ElementStep {
+    let law = AxialLaw {
+        ea,
+        length: reference.length,
+    };
+    let dphi1 = increments.fixed_rows::<3>(0).into_owned();
+    let dphi2 = increments.fixed_rows::<3>(NODE_DOFS).into_owned();
+    let chord_next = chord + dphi2 - dphi1;
+    let mean = 0.5 * (chord + chord_next);
+    let (q_n, q_next) = (chord.norm_squared(), chord_next.norm_squared());
+    let q_mid = mean.norm_squared();
+    let (slope, block) = match rule {
+        StressRule::AverageStrain => {
+            // ∂(2W̄′d̄)/∂Δφ2 = 4 ∂W̄′/∂q_{n+1} d̄ d_{n+1}ᵀ + W̄′ I (∂q_{n+1}/∂Δφ2 = 2d_{n+1}ᵀ, ∂d̄/∂Δφ2 = ½I).
+            let (slope, d_slope) = law.mean_slope(q_n, q_next);
+            let block = 4.0 * d_slope * mean * chord_next.transpose() + Matrix3::identity() * slope;
+            (slope, block)
+        }
+        StressRule::MidpointConfiguration => {
+            let slope = law.slope(q_mid);
+            let block =
+                2.0 * law.curvature(q_mid) * mean * mean.transpose() + Matrix3::identity() * slope;
+            (slope, block)
+        }
+    };
+    if let Some(tangent) = tangent {
+        bar_tangent(&block, tangent);
+    }
+    ElementStep {
+        forces: bar_forces(&(2.0 * slope * mean)),
+        next: gauss_point(&chord_next, reference.length),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn reference(length: f64) -> ElementReference {
+        ElementReference {
+            length,
+            strain: Vector3::zeros(),
+            curvature: Vector3::zeros(),
+        }
+    }
+
+    /// The statics' forces are the energy's gradient and their tangent its Hessian (central differences),
+    /// in tension; slack, both vanish.
+    #[test]
+    fn forces_and_tangent_match_differences() {
+        let (x1, x2) = (Vector3::new(0.1, -0.2, 0.3), Vector3::new(1.3, 0.4, -0.2));
+        let reference = reference(1.2);
+        let ea = 2.0e6;
+        let mut tangent = ElementMatrix::zeros();
+        let at = evaluate(&x1, &x2, &reference, ea, Some(&mut tangent));
+        assert!(at.tension > 0.0);
+        let h = 1e-6;
+        for j in 0..3 {
+            let mut plus = x2;
+            plus[j] += h;
+            let mut minus = x2;
+            minus[j] -= h;
+            let e_plus = evaluate(&x1, &plus, &reference, ea, None);
+            let e_minus = evaluate(&x1, &minus, &reference, ea, None);
+            let gradient = (e_plus.energy - e_minus.energy) / (2.0 * h);
+            assert!((gradient - at.forces[NODE_DOFS + j]).abs() < 1e-6 * at.tension);
+            for i in 0..3 {
+                let difference =
+                    (e_plus.forces[NODE_DOFS + i] - e_minus.forces[NODE_DOFS + i]) / (2.0 * h);
+                assert!((difference - tangent[(NODE_DOFS + i, NODE_DOFS + j)]).abs() < 1e-6 * ea);
+                assert!((difference + tangent[(i, NODE_DOFS + j)]).abs() < 1e-6 * ea);
+            }
+        }
+        let slack = evaluate(&x1, &x2, &self::reference(2.0), ea, Some(&mut tangent));
+        assert_eq!(slack.tension, 0.0);
+        assert_eq!(slack.forces.norm(), 0.0);
+        // Slack, the statics' tangent keeps EA/L along the chord and the floor across it.
+        let (floor, l) = (STATIC_TRANSVERSE_FLOOR * ea / 2.0, (x2 - x1).norm());
+        let block = tangent.fixed_view::<3, 3>(NODE_DOFS, NODE_DOFS);
+        let along = block * (x2 - x1) / l;
+        assert!((along - (x2 - x1) / l * (ea / 2.0)).norm() < 1e-9 * ea);
+        assert!((block.trace() - ea / 2.0 - 2.0 * floor).abs() < 1e-9 * ea);
+    }
+
+    /// The step's forces do the work of the energy's change exactly (to round-off), across the slack limit
+    /// too, and their tangent matches central differences.
+    #[test]
+    fn step_is_a_discrete_gradient_with_a_consistent_tangent() {
+        let chord = Vector3::new(1.0, 0.2, -0.1);
+        let reference = reference(0.98);
+        let ea = 5.0e5;
+        let law = AxialLaw {
+            ea,
+            length: reference.length,
+        };
+        for increments in [
+            [
+                0.01, -0.02, 0.03, 0.0, 0.0, 0.0, -0.02, 0.01, 0.04, 0.0, 0.0, 0.0,
+            ],
+            [
+                0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.06, -0.01, 0.01, 0.0, 0.0, 0.0,
+            ],
+            [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1e-9, 0.0, 0.0, 0.0, 0.0, 0.0],
+        ] {
+            let increments = ElementVector::from_row_slice(&increments);
+            let mut tangent = ElementMatrix::zeros();
+            let step = step(
+                &chord,
+                &increments,
+                &reference,
+                ea,
+                StressRule::AverageStrain,
+                Some(&mut tangent),
+            );
+            let chord_next = chord + increments.fixed_rows::<3>(6) - increments.fixed_rows::<3>(0);
+            let change = law.energy(chord_next.norm_squared()) - law.energy(chord.norm_squared());
+            let work = step.forces.dot(&increments);
+            assert!(
+                (work - change).abs() <= 1e-12 * law.energy(chord.norm_squared()),
+                "work {work} vs ΔW {change}"
+            );
+            // Momentum: the forces sum to zero.
+            let total = step.forces.fixed_rows::<3>(0) + step.forces.fixed_rows::<3>(6);
+            assert!(total.norm() < 1e-12 * step.forces.norm());
+            let h = 1e-7;
+            for j in [0, 1, 2, 6, 7, 8] {
+                let mut plus = increments;
+                plus[j] += h;
+                let mut minus = increments;
+                minus[j] -= h;
+                let rule = StressRule::AverageStrain;
+                let f_plus = super::step(&chord, &plus, &reference, ea, rule, None).forces;
+                let f_minus = super::step(&chord, &minus, &reference, ea, rule, None).forces;
+                for i in 0..12 {
+                    let difference = (f_plus[i] - f_minus[i]) / (2.0 * h);
+                    assert!(
+                        (difference - tangent[(i, j)]).abs() < 1e-5 * ea,
+                        "{increments:?} ({i}, {j}): {difference} vs {}",
+                        tangent[(i, j)]
+                    );
+                }
+            }
+        }
+    }
+}
