@@ -96,7 +96,7 @@ attributes, so it also loads from its file without the engine).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -191,6 +191,13 @@ class Utilisation:
         The choices made.
     notes : tuple of str
         Where the state lies outside the stated validity of the criteria.
+    segment_of : ndarray (n,) of int or None
+        For a line of several segments, each element's segment; None for a line of one.
+    segments : tuple of Utilisation or None
+        For a line of several segments, each segment's own checks (over its elements alone; None for a
+        cable's segment, which has no steel wall to check). The scalars above (capacities, factors, grade)
+        are then those of the governing segment, the one holding the largest load-controlled utilisation;
+        the per-element arrays cover the whole line, a cable's elements with utilisations 0.
     """
 
     load_controlled: FloatArray
@@ -228,6 +235,8 @@ class Utilisation:
     fabrication: str
     condition: str
     notes: tuple[str, ...] = field(default=())
+    segment_of: NDArray[np.int64] | None = None
+    segments: tuple[Utilisation | None, ...] = field(default=())
 
     def max(self) -> dict[str, float]:
         """Largest utilisation of each check, {"load_controlled": …, "displacement_controlled": …}."""
@@ -335,27 +344,171 @@ def dnv_st_f101(
     positions = _state_array(state, "positions", (n + 1, 3))
     strain = np.abs(_state_array(state, "strain", (n,)))
 
-    section = _attribute(state, "section", "state")
+    options = _Options(grade_key, wall_thickness, safety, fab, cond, p_i, t_corr, f0, f_temp, limit)
+    p_e = _external_pressure(state, positions)
+    segment_of = _attribute(state, "segment_of", "state", required=False)
+    sections = _attribute(state, "sections", "state", required=False)
+    if segment_of is None or sections is None or len(sections) <= 1:
+        section = _attribute(state, "section", "state")
+        return _check_section(section, "state.section", forces, tension, strain, p_e, options)
+    return _check_segments(list(sections), np.asarray(segment_of), forces, tension, strain, p_e, options)
+
+
+@dataclass(frozen=True)
+class _Options:
+    """The checked arguments of `dnv_st_f101`, as the per-section checks take them."""
+
+    grade: str | None
+    wall_thickness: float | None
+    safety_class: str
+    fabrication: str
+    condition: str
+    internal_pressure: float
+    corrosion_allowance: float
+    ovality: float
+    temperature_derating: float
+    strain_limit: float | None
+
+
+def _check_segments(
+    sections: list[Any],
+    segment_of: NDArray[Any],
+    forces: FloatArray,
+    tension: FloatArray,
+    strain: FloatArray,
+    p_e: FloatArray,
+    options: _Options,
+) -> Utilisation:
+    """The checks of a line of segments: each steel segment with its own section, joined element by element."""
+    n = forces.shape[0]
+    if segment_of.shape != (n,) or np.any(segment_of < 0) or np.any(segment_of >= len(sections)):
+        raise _input_error(
+            "state.segment_of",
+            _Described(f"an array of shape {segment_of.shape}"),
+            f"({n},) segment indices in 0..{len(sections) - 1}",
+        )
+    parts: list[Utilisation | None] = []
+    for k, section in enumerate(sections):
+        elements = segment_of == k
+        if getattr(section, "is_cable", False) or not np.any(elements):
+            parts.append(None)
+            continue
+        parts.append(
+            _check_section(
+                section,
+                f"state.sections[{k}]",
+                forces[elements],
+                tension[elements],
+                strain[elements],
+                p_e[elements],
+                options,
+            )
+        )
+    checked = [(k, part) for k, part in enumerate(parts) if part is not None]
+    if not checked:
+        raise _input_error(
+            "state.sections", _Described(f"{len(sections)} cable segments"), "at least one steel pipe segment"
+        )
+    moment = np.hypot(forces[:, 4], forces[:, 5])
+    arrays = {
+        "load_controlled": np.zeros(n),
+        "displacement_controlled": np.zeros(n),
+        "moment": moment,
+        "effective_axial_force": tension,
+        "wall_tension": tension.copy(),
+        "external_pressure": p_e,
+        "strain": strain,
+        "allowable_strain": np.full(n, np.inf),
+        "alpha_p": np.zeros(n),
+    }
+    for k, part in checked:
+        elements = segment_of == k
+        for name in (
+            "load_controlled",
+            "displacement_controlled",
+            "wall_tension",
+            "allowable_strain",
+            "alpha_p",
+        ):
+            arrays[name][elements] = getattr(part, name)
+    governing_segment = max(checked, key=lambda item: float(np.max(item[1].load_controlled)))
+    governing = governing_segment[1]
+    notes = [f"segment {k}: {note}" for k, part in checked for note in part.notes]
+    cables = [k for k, part in enumerate(parts) if part is None and np.any(segment_of == k)]
+    if cables:
+        notes.append(f"segments {cables} are cables: no steel wall, not checked (utilisation 0)")
+    frozen = {name: _frozen(values) for name, values in arrays.items()}
+    return replace(
+        governing,
+        load_controlled=frozen["load_controlled"],
+        displacement_controlled=frozen["displacement_controlled"],
+        moment=frozen["moment"],
+        effective_axial_force=frozen["effective_axial_force"],
+        wall_tension=frozen["wall_tension"],
+        external_pressure=frozen["external_pressure"],
+        strain=frozen["strain"],
+        allowable_strain=frozen["allowable_strain"],
+        alpha_p=frozen["alpha_p"],
+        notes=tuple(notes),
+        segment_of=_frozen_indices(segment_of),
+        segments=tuple(parts),
+    )
+
+
+def _frozen_indices(values: NDArray[Any]) -> NDArray[np.int64]:
+    """A read-only int64 copy of `values`."""
+    result = np.array(values, dtype=np.int64)
+    result.setflags(write=False)
+    return result
+
+
+def _check_section(
+    section: Any,
+    prefix: str,
+    forces: FloatArray,
+    tension: FloatArray,
+    strain: FloatArray,
+    p_e: FloatArray,
+    options: _Options,
+) -> Utilisation:
+    """The checks of elements of one steel `section` (named `prefix` in errors) under their forces."""
+    grade_key, wall_thickness, safety, fab, cond = (
+        options.grade,
+        options.wall_thickness,
+        options.safety_class,
+        options.fabrication,
+        options.condition,
+    )
+    p_i, t_corr, f0, f_temp, limit = (
+        options.internal_pressure,
+        options.corrosion_allowance,
+        options.ovality,
+        options.temperature_derating,
+        options.strain_limit,
+    )
+    n = forces.shape[0]
     if grade_key is None:
         section_grade = _attribute(section, "grade", required=False) or DEFAULT_GRADE
-        grade_key = _choice("state.section.grade", section_grade, list(GRADES), "is not a known grade")
-    diameter = _number("state.section.outer_diameter", _attribute(section, "outer_diameter"), positive=True)
+        grade_key = _choice(f"{prefix}.grade", section_grade, list(GRADES), "is not a known grade")
+    diameter = _number(f"{prefix}.outer_diameter", _attribute(section, "outer_diameter"), positive=True)
     if wall_thickness is None:
-        section_t = _attribute(section, "wall_thickness", "state.section", required=False)
+        section_t = _attribute(section, "wall_thickness", prefix, required=False)
         if section_t is None:
             raise _input_error(
                 "wall_thickness",
                 None,
-                "a wall thickness > 0 in m, as this argument or as state.section.wall_thickness",
-                "is given neither as argument nor by state.section",
+                f"a wall thickness > 0 in m, as this argument or as {prefix}.wall_thickness",
+                f"is given neither as argument nor by {prefix}",
             )
-        t = _number("state.section.wall_thickness", section_t, positive=True)
+        t = _number(f"{prefix}.wall_thickness", section_t, positive=True)
     else:
         t = _number("wall_thickness", wall_thickness, positive=True)
     if t >= diameter / 2:
         raise _input_error("wall_thickness", t, f"less than half the outer diameter ({diameter / 2!r} m)")
-    youngs = _optional_number(section, "youngs_modulus", DEFAULT_YOUNGS_MODULUS, positive=True)
-    poisson = _optional_number(section, "poisson_ratio", DEFAULT_POISSON_RATIO, minimum=0.0, maximum=0.5)
+    youngs = _optional_number(section, "youngs_modulus", DEFAULT_YOUNGS_MODULUS, prefix, positive=True)
+    poisson = _optional_number(
+        section, "poisson_ratio", DEFAULT_POISSON_RATIO, prefix, minimum=0.0, maximum=0.5
+    )
 
     t2 = t - t_corr if cond == "operation" else t
     if t2 <= 0:
@@ -383,7 +536,6 @@ def dnv_st_f101(
 
     # Load effects per element.
     moment = np.hypot(forces[:, 4], forces[:, 5])
-    p_e = _external_pressure(state, positions)
     area_e = math.pi * diameter**2 / 4.0
     area_i = math.pi * (diameter - 2.0 * t) ** 2 / 4.0
     wall_tension = tension + p_i * area_i - p_e * area_e
@@ -638,6 +790,7 @@ def _optional_number(
     section: Any,
     name: str,
     default: float,
+    prefix: str,
     *,
     positive: bool = False,
     minimum: float | None = None,
@@ -647,7 +800,7 @@ def _optional_number(
     value = _attribute(section, name, required=False)
     if value is None:
         return default
-    return _number(f"state.section.{name}", value, positive=positive, minimum=minimum, maximum=maximum)
+    return _number(f"{prefix}.{name}", value, positive=positive, minimum=minimum, maximum=maximum)
 
 
 def _state_array(state: Any, name: str, shape: tuple[int | None, ...]) -> FloatArray:
