@@ -17,7 +17,7 @@ Imports of pipelay: `pipelay.scenario.values` and `pipelay.scenario.models_vesse
 
 from __future__ import annotations
 
-from typing import Annotated, ClassVar, Literal
+from typing import Annotated, ClassVar, Literal, cast
 
 from pydantic import Discriminator, Field, Tag, model_validator
 
@@ -220,6 +220,68 @@ class Section(Table):
     rotational_damping: Annotated[
         float | list[float] | None, number_or_vector(3, Number("N·m·s/m", ge=0), "[t1, t2, t3]")
     ] = api("a number or [t1, t2, t3], ≥ 0", 0)
+
+
+class Cable(Table):
+    """`pl.Section.cable`: a cable segment's section (wire rope, chain): tension only, no bending or torsion."""
+
+    diameter: Annotated[float, POSITIVE_LENGTH] = Field(description="nominal diameter, > 0")
+    mass: Annotated[float, Number("kg/m", gt=0)] = Field(description="mass per unit length in air, > 0")
+    EA: Annotated[float, Number("N", gt=0)] = Field(description="axial stiffness, > 0")
+    drag: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "Morison drag coefficients [axial, normal] on the diameter, ≥ 0", [0, 1.2]
+    )
+    added_mass: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "added-mass coefficients [axial, normal], ≥ 0", [0, 1]
+    )
+
+
+class LineSegment(Table):
+    """`pl.Segment`: one segment of a `[line]`, with exactly one of `[line.segments.pipe]`,
+    `[line.segments.section]` and `[line.segments.cable]`."""
+
+    length: Annotated[float, POSITIVE_LENGTH] = Field(description="unstretched length, > 0")
+    elements: Annotated[int, Integer(1, MAX_ELEMENTS)] = Field(
+        description="number of equal elements, an integer in [1, 1000000]"
+    )
+    pipe: Pipe | None = api("the segment's pipe: a `[line.segments.pipe]` table")
+    section: Section | None = api("the segment's section: a `[line.segments.section]` table")
+    cable: Cable | None = api("the segment's cable: a `[line.segments.cable]` table")
+
+    @model_validator(mode="after")
+    def one_section(self) -> LineSegment:
+        """Exactly one of pipe, section and cable."""
+        given = [name for name in ("pipe", "section", "cable") if getattr(self, name) is not None]
+        if len(given) != 1:
+            got = "none" if not given else " and ".join(given)
+            raise rule(f"needs exactly one of pipe, section and cable, got {got}", "pipe")
+        return self
+
+
+class Line(Table):
+    """`pl.Rod.segments`: a straight line of consecutive segments (each its own section and element count),
+    instead of `[rod]` with `[pipe]` or `[section]`."""
+
+    start: Annotated[list[float], POINT] = Field(description="the line's first node (end A) [x, y, z]")
+    direction: Annotated[list[float], POINT] = Field(
+        description="the direction from end A to end B [x, y, z], non-zero"
+    )
+    length: Annotated[float | None, POSITIVE_LENGTH] = api(
+        "the line's total unstretched length, if given: the segments' lengths must sum to it (within 1e-9)"
+    )
+    segments: list[LineSegment] = Field(
+        description="the segments from end A: `[[line.segments]]` tables, at least one"
+    )
+
+    @model_validator(mode="after")
+    def lengths_sum(self) -> Line:
+        """The segments, if the line's length is given, sum to it."""
+        if not self.segments:
+            raise rule("needs at least one [[line.segments]] table", "segments")
+        total = sum(segment.length for segment in self.segments)
+        if self.length is not None and abs(total - self.length) > 1e-9 * self.length:
+            raise rule(f"must equal the segments' total length {total:g} m, got {self.length:g}", "length")
+        return self
 
 
 class StraightRod(Table):
@@ -588,7 +650,8 @@ class ScenarioFile(Table):
     ) = api("acceleration of gravity along +e3, ≥ 0 (or a `[gravity]` table)", 9.81)
     pipe: Pipe | None = None
     section: Section | None = None
-    rod: Rod
+    rod: Rod | None = None
+    line: Line | None = None
     sea: Sea | None = None
     supports: Supports | None = None
     point_loads: list[PointLoad] = []  # noqa: RUF012 (a Table is a BaseModel: pydantic copies defaults)
@@ -611,6 +674,16 @@ class ScenarioFile(Table):
         return self
 
     def _one_cross_section(self) -> None:
+        if self.line is not None:
+            for name in ("rod", "pipe", "section"):
+                if getattr(self, name) is not None:
+                    raise rule(f"conflicts with [line]: a line of segments has no [{name}]", name)
+            return
+        if self.rod is None:
+            raise rule(
+                "missing required section; give [rod] with [pipe] or [section], or a [line] of segments",
+                "rod",
+            )
         if self.pipe is not None and self.section is not None:
             raise rule("conflicts with [pipe]: give exactly one of [pipe] and [section]", "section")
         if self.pipe is None and self.section is None:
@@ -619,7 +692,12 @@ class ScenarioFile(Table):
             )
 
     def _nodes_exist(self) -> None:
-        n = self.rod.elements if isinstance(self.rod, StraightRod) else len(self.rod.nodes) - 1
+        if self.line is not None:
+            n = sum(segment.elements for segment in self.line.segments)
+        elif isinstance(self.rod, StraightRod):
+            n = self.rod.elements
+        else:
+            n = len(cast(NodesRod, self.rod).nodes) - 1
         for i, load in enumerate(self.point_loads):
             if isinstance(load.node, int) and not -(n + 1) <= load.node <= n:
                 range_ = f"[{-(n + 1)}, {n}] (n = {n})"

@@ -177,22 +177,38 @@ def _harmonic_drive(
     return position, velocity
 
 
-def _rod(file: models.ScenarioFile) -> pl.Rod:
-    """The cross-section (`[pipe]` or `[section]`) and the rod."""
-    if file.pipe is not None:
-        with _engine("pipe", KEYS["pipe"]):
+def _section(table: models.Pipe | models.Section | models.Cable, path: str, shown: str) -> pl.Section:
+    """The cross-section of a `[pipe]`, `[section]` or `[cable]` table at `path` (in errors: `shown`)."""
+    with _engine(shown, KEYS[path]):
+        if isinstance(table, models.Pipe):
             layers = {
-                "coatings": [pl.Coating(**layer.given()) for layer in file.pipe.coatings],
-                "lining": None if file.pipe.lining is None else pl.Coating(**file.pipe.lining.given()),
+                "coatings": [pl.Coating(**layer.given()) for layer in table.coatings],
+                "lining": None if table.lining is None else pl.Coating(**table.lining.given()),
             }
-            section = pl.Section.pipe(**file.pipe.given("coatings", "lining"), **layers)
-    else:
-        with _engine("section", KEYS["section"]):
-            section = pl.Section(**cast(models.Section, file.section).given())
+            return pl.Section.pipe(**table.given("coatings", "lining"), **layers)
+        if isinstance(table, models.Cable):
+            return pl.Section.cable(**table.given())
+        return pl.Section(**table.given())
+
+
+def _rod(file: models.ScenarioFile) -> pl.Rod:
+    """The rod: a `[line]` of segments, or `[rod]` with its cross-section (`[pipe]` or `[section]`)."""
+    if file.line is not None:
+        segments = []
+        for k, segment in enumerate(file.line.segments):
+            kind = next(name for name in ("pipe", "section", "cable") if getattr(segment, name) is not None)
+            section = _section(getattr(segment, kind), f"line.segments.{kind}", f"line.segments[{k}].{kind}")
+            with _engine(f"line.segments[{k}]", KEYS["line.segments"]):
+                segments.append(pl.Segment(segment.length, section, segment.elements))
+        with _engine("line", KEYS["line"]):
+            return pl.Rod.segments(file.line.start, file.line.direction, segments)
+    table = "pipe" if file.pipe is not None else "section"
+    section = _section(cast(models.Pipe | models.Section, getattr(file, table)), table, table)
+    rod = cast(models.StraightRod | models.NodesRod, file.rod)
     with _engine("rod", KEYS["rod"]):
-        if isinstance(file.rod, models.NodesRod):
-            return pl.Rod(file.rod.nodes, section)
-        return pl.Rod.straight(section=section, **file.rod.given())
+        if isinstance(rod, models.NodesRod):
+            return pl.Rod(rod.nodes, section)
+        return pl.Rod.straight(section=section, **rod.given())
 
 
 def _seabed(seabed: models.Seabed) -> pl.Seabed:
