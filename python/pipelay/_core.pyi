@@ -732,6 +732,9 @@ class Results:
     def section_forces(self) -> _FloatArray:
         """Material force and moment at element midpoints (T, n, 6)."""
     @property
+    def segment(self) -> _FloatArray:
+        """The segment of each element (T, n), as a float: NaN where a record had fewer elements."""
+    @property
     def tension(self) -> _FloatArray:
         """Axial force at element midpoints (T, n) (N)."""
     def reaction(self, end: _End) -> _FloatArray:
@@ -828,10 +831,14 @@ class Model:
     def simulation(self, state: State | None = None, dt: float = 0.05) -> Simulation:
         """A time simulation from `state` (default: self.static()) with time step `dt` (s)."""
     def pay_out(
-        self, end: _End = "B", speed: float | Callable[[float], float] | _ArrayLike | None = None
+        self,
+        end: _End = "B",
+        speed: float | Callable[[float], float] | _ArrayLike | None = None,
+        feed: Sequence[tuple[float, Section]] | None = None,
     ) -> None:
         """Pay pipe out (speed > 0, m/s) or in (< 0) at the vessel's or a driven end during a simulation; speed:
-        a number, a callable of t or a table of rows [t, speed]."""
+        a number, a callable of t or a table of rows [t, speed]. `feed`: the line still on board, (length (m),
+        Section) parts in the order they are paid out after the end's segment."""
     def attach(self, arc_length: float, attachment: Clump) -> int:
         """Attaches a clump, buoyancy module or in-line structure at `arc_length` (m from end A along the
         reference); returns its index (its row of State.attachment_forces)."""

@@ -91,9 +91,16 @@ impl Model {
 
     /// Pays pipe out at `end` ("A" or "B") during a simulation at `speed` (m/s of unstretched pipe; a number, a
     /// callable of t or a table of rows [t, speed] interpolated in the engine; negative pays in). The end must be held by the vessel (through its tensioner or tower)
-    /// or driven; new elements have the end element's present length.
-    #[pyo3(signature = (end="B", speed=None))]
-    fn pay_out(&mut self, end: &str, speed: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
+    /// or driven; new elements have the end element's present length. `feed`: the line still on board, a list
+    /// of (length (m), Section) in the order it is paid out after the end's segment (each new element takes
+    /// the section of the material at its midpoint); None: paid-out pipe continues the end's segment.
+    #[pyo3(signature = (end="B", speed=None, feed=None))]
+    fn pay_out(
+        &mut self,
+        end: &str,
+        speed: Option<&Bound<'_, PyAny>>,
+        feed: Option<Vec<(f64, crate::structure::Section)>>,
+    ) -> PyResult<()> {
         const ALLOWED: &str = "a number (m/s), a callable of t or a table of rows [t, speed]";
         let Some(speed) = speed else {
             return Err(input(
@@ -111,7 +118,15 @@ impl Model {
                 },
             ),
         };
-        self.0.pay_out(end, speed).map_err(to_py)
+        self.0.pay_out(end, speed).map_err(to_py)?;
+        if let Some(feed) = feed {
+            let feed = feed
+                .into_iter()
+                .map(|(length, section)| (length, section.0))
+                .collect();
+            self.0.feed_pay_out(feed).map_err(to_py)?;
+        }
+        Ok(())
     }
 
     /// Attaches `attachment` (a `pl.Clump`) at `arc_length` (m from end A along the reference); returns its

@@ -73,6 +73,15 @@ impl Results {
             &[self.history.len(), self.last_node, 6],
         )
     }
+    /// The segment of each element (T, n), as a float: NaN where a record had fewer elements (pay-out).
+    #[getter]
+    fn segment<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        shaped(
+            py,
+            &self.history.segment,
+            &[self.history.len(), self.last_node],
+        )
+    }
     /// Axial force at element midpoints (T, n) (N).
     #[getter]
     fn tension<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -257,6 +266,15 @@ impl Results {
         h.rotations = get("rotations")?;
         h.velocities = get("velocities")?;
         h.section_forces = get("section_forces")?;
+        // Results written before lines of segments existed have none: one segment.
+        h.segment = optional("segment")?;
+        if h.segment.is_empty() {
+            h.segment = h
+                .section_forces
+                .chunks_exact(6)
+                .map(|f| if f[0].is_nan() { f64::NAN } else { 0.0 })
+                .collect();
+        }
         h.reaction_a = get("reaction_A")?;
         h.reaction_b = get("reaction_B")?;
         h.kinetic = get("pipe_kinetic")?;

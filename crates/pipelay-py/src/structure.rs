@@ -116,7 +116,7 @@ fn check_grade(py: Python<'_>, grade: &str) -> PyResult<()> {
 }
 
 /// Cross-section properties (SI units). GA, EI: one number (both principal axes) or a pair (axis 2, axis 3).
-#[pyclass(module = "pipelay", name = "Section", frozen)]
+#[pyclass(module = "pipelay", name = "Section", frozen, from_py_object)]
 #[derive(Clone)]
 pub struct Section(pub section::Section);
 

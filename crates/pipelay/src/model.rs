@@ -220,9 +220,31 @@ pub struct PayOut {
     pub speed: PayOutSpeed,
     /// The length of the elements pay-out adds (m): that of the end element when pay-out was set.
     pub element_length: f64,
+    /// The line's length when pay-out was set (m): the length paid out since is the rod's length less it.
+    pub initial_length: f64,
+    /// The line still on board, in the order it is paid out: each part's length (m) and its section (an index
+    /// into the rod's sections). Empty: paid-out pipe continues the end's segment.
+    pub feed: Vec<(f64, usize)>,
 }
 
 impl PayOut {
+    /// The segment of the material `paid` metres along the feed from where the line ended when pay-out was
+    /// set; `None` for material of the line as it was then (`paid` < 0) or without a feed. Past the feed's
+    /// end, its last part continues.
+    pub fn fed_segment(&self, paid: f64) -> Option<usize> {
+        if paid < 0.0 {
+            return None;
+        }
+        let mut end = 0.0;
+        for &(length, segment) in &self.feed {
+            end += length;
+            if paid < end {
+                return Some(segment);
+            }
+        }
+        self.feed.last().map(|&(_, segment)| segment)
+    }
+
     /// The speed at time t (s), checked finite.
     pub fn speed_at(&self, time: f64) -> Result<f64> {
         let speed = match &self.speed {
@@ -603,9 +625,41 @@ impl Model {
                 .elements
                 .get(node.saturating_sub(1))
                 .map_or(0.0, |e| e.length),
+            initial_length: self.rod.length(),
+            feed: Vec::new(),
         };
         pay_out.speed_at(0.0)?;
         self.pay_out = Some(pay_out);
+        Ok(())
+    }
+
+    /// The line still on board for the pay-out set by [`Model::pay_out`]: parts of `length` (m) and section, in
+    /// the order they are paid out after the end's segment. Each element pay-out adds takes the section of the
+    /// material at its midpoint, so a joint passes the end within half an element of its place.
+    pub fn feed_pay_out(&mut self, feed: Vec<(f64, crate::rod::section::Section)>) -> Result<()> {
+        if self.pay_out.is_none() {
+            return Err(Error::input(
+                "feed",
+                format!("{} part(s)", feed.len()),
+                "needs a pay-out to feed: set pay_out first",
+            ));
+        }
+        let mut parts = Vec::with_capacity(feed.len());
+        for (k, (length, section)) in feed.into_iter().enumerate() {
+            finite(&format!("feed[{k}] length"), &[length])?;
+            if length <= 0.0 {
+                return Err(Error::input(
+                    format!("feed[{k}] length"),
+                    length,
+                    "must be > 0 m",
+                ));
+            }
+            self.rod.sections.push(section);
+            parts.push((length, self.rod.sections.len() - 1));
+        }
+        if let Some(pay_out) = self.pay_out.as_mut() {
+            pay_out.feed = parts;
+        }
         Ok(())
     }
 

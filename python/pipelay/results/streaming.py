@@ -347,7 +347,7 @@ def _segment(
 
 
 # The node and element series: fetched from the engine, written and dropped one at a time.
-_LARGE = ("positions", "rotations", "velocities", "section_forces", "tension")
+_LARGE = ("positions", "rotations", "velocities", "section_forces", "tension", "segment")
 
 
 def _append(

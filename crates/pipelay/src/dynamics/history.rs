@@ -21,6 +21,8 @@ pub struct Snapshot<'a> {
     pub velocities: &'a [Vector3<f64>],
     /// Material force and moment at the elements' Gauss points.
     pub section_forces: Vec<Vector6<f64>>,
+    /// The segment of each element.
+    pub segment_of: &'a [usize],
     /// Force and moment the rod exerts on each node's support (N, N·m).
     pub reactions: &'a [Vector6<f64>],
     pub energy: Energy,
@@ -61,6 +63,8 @@ pub struct History {
     pub velocities: Vec<f64>,
     /// Section forces at element midpoints, (T, n, 6): [N; M] material (N, N·m).
     pub section_forces: Vec<f64>,
+    /// The segment of each element, (T, n) (NaN where a record had fewer elements).
+    pub segment: Vec<f64>,
     /// Force and moment the rod exerts on the supports at ends A and B, (T, 6) each.
     pub reaction_a: Vec<f64>,
     pub reaction_b: Vec<f64>,
@@ -146,7 +150,8 @@ impl History {
         let n = self.nodes;
         let vessel = !self.eta.is_empty();
         let seabed = !self.touchdown_arc_length.is_empty();
-        let fields: [(&str, usize, usize); 28] = [
+        let fields: [(&str, usize, usize); 29] = [
+            ("segment", self.segment.len(), n.saturating_sub(1)),
             ("length", self.length.len(), 1),
             ("pay_out_energy", self.pay_out_energy.len(), 1),
             ("seabed_energy", self.seabed.len(), 1),
@@ -251,6 +256,11 @@ impl History {
         pad(&mut self.rotations, 9 * old, 9 * nodes)?;
         let elements = |n: usize| 6 * n.saturating_sub(1);
         pad(&mut self.section_forces, elements(old), elements(nodes))?;
+        pad(
+            &mut self.segment,
+            old.saturating_sub(1),
+            nodes.saturating_sub(1),
+        )?;
         self.nodes = nodes;
         Ok(())
     }
@@ -266,6 +276,7 @@ impl History {
         reserve(&mut self.velocities, 3 * self.nodes, what)?;
         reserve(&mut self.rotations, 9 * self.nodes, what)?;
         reserve(&mut self.section_forces, 6 * self.nodes, what)?;
+        reserve(&mut self.segment, self.nodes, what)?;
         let missing = self.nodes - nodes;
         for (p, v) in snapshot.positions.iter().zip(snapshot.velocities) {
             self.positions.extend_from_slice(p.as_slice());
@@ -282,11 +293,14 @@ impl History {
         for f in &snapshot.section_forces {
             self.section_forces.extend_from_slice(f.as_slice());
         }
+        self.segment
+            .extend(snapshot.segment_of.iter().map(|&k| k as f64));
         let nan = |data: &mut Vec<f64>, count: usize| data.resize(data.len() + count, f64::NAN);
         nan(&mut self.positions, 3 * missing);
         nan(&mut self.velocities, 3 * missing);
         nan(&mut self.rotations, 9 * missing);
         nan(&mut self.section_forces, 6 * missing);
+        nan(&mut self.segment, missing);
         self.time.push(snapshot.time);
         self.length.push(snapshot.length);
         self.pay_out_energy

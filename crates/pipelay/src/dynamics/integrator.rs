@@ -269,6 +269,7 @@ impl Integrator {
             velocities: &state.velocities,
             lay: observables.lay_summary(&section_forces),
             section_forces,
+            segment_of: &self.model.rod.segment_of,
             reactions: &self.reactions,
             energy: observables.energy(),
             vessel: observables.vessel_values(),

@@ -60,6 +60,7 @@ pub fn remesh(
             nominal / length
         };
         let node = split(model, state, element, fraction, at_start, speed);
+        take_fed_segments(model, state, node);
         reactions.insert(node, Vector6::zeros());
         model.renumber_nodes(node, 1);
         Some(MeshChange::Inserted(node))
@@ -176,4 +177,49 @@ fn join(model: &mut Model, state: &mut DynamicState, first: usize, at_start: boo
     state.slips.remove(removed);
     state.gauss.remove(removed);
     state.gauss[first] = element_gauss_point(model, config, first);
+}
+
+/// After a split that inserted node `node` at the paying end: the two elements at it take the section of the
+/// material at their midpoints from the pay-out's feed (the material paid out most recently lies at the end);
+/// an element whose kind changes (rod or cable) gets the Gauss point of its kind, and a node that becomes a
+/// cable's loses its spin.
+fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
+    let Some(pay_out) = model.pay_out.as_ref() else {
+        return;
+    };
+    if pay_out.feed.is_empty() {
+        return;
+    }
+    let paid = model.rod.length() - pay_out.initial_length;
+    let count = model.rod.element_count();
+    // The two elements at the new node, and each one's midpoint's distance from the paying end.
+    let arcs = model.rod.arc_lengths();
+    let total = arcs[count];
+    let mut changed = false;
+    for element in [node - 1, node] {
+        let middle = 0.5 * (arcs[element] + arcs[element + 1]);
+        let from_end = if pay_out.at_start {
+            middle
+        } else {
+            total - middle
+        };
+        let Some(segment) = pay_out.fed_segment(paid - from_end) else {
+            continue;
+        };
+        let was_cable = model.rod.section(element).cable;
+        if model.rod.segment_of[element] != segment {
+            model.rod.segment_of[element] = segment;
+            changed = true;
+            if model.rod.sections[segment].cable != was_cable {
+                state.gauss[element] = element_gauss_point(model, &state.configuration, element);
+            }
+        }
+    }
+    if changed {
+        for a in node - 1..=node + 1 {
+            if model.rod.is_cable_node(a) {
+                state.body_angular_velocities[a] = Vector3::zeros();
+            }
+        }
+    }
 }

@@ -29,7 +29,8 @@ pub struct Rod {
     pub elements: Vec<ElementReference>,
     /// The cross-section of each segment, from end A.
     pub sections: Vec<Section>,
-    /// The segment each element belongs to (an index into `sections`, non-decreasing from end A).
+    /// The segment each element belongs to (an index into `sections`; a pay-out feed adds sections that the
+    /// elements it pays out take).
     pub segment_of: Vec<usize>,
 }
 
