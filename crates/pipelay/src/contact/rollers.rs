@@ -46,8 +46,8 @@ struct LocalRoller {
     /// The axis a (unit) and the projector I − a aᵀ onto the plane normal to it.
     axis: Vector3<f64>,
     projector: Matrix3<f64>,
-    /// r_r + d_o/2 (m).
-    reach: f64,
+    /// The roller's radius r_r (m).
+    radius: f64,
 }
 
 /// The rollers of a model and their state at the last evaluation.
@@ -56,6 +56,8 @@ pub struct RollerContact {
     rollers: Vec<LocalRoller>,
     stiffness: f64,
     end_node: usize,
+    /// Half the hydrodynamic diameter of each element of the rod (m).
+    half_diameters: Vec<f64>,
     /// The elements that may touch a roller (those within reach of the held end).
     elements: std::ops::Range<usize>,
     /// Normal force of each roller at the evaluated (end) state (N, ≥ 0).
@@ -83,19 +85,24 @@ impl Pose {
 }
 
 /// The element nearest `roller` among those whose nodes have local coordinates `locals` (the first
-/// element's index is `first`), by [`chord_distance`].
+/// element's index is `first`): the one whose surface is nearest, by [`chord_distance`] less its radius
+/// (`half_diameters`, per element of the rod).
 ///
 /// Every point of a chord lies within half the chord's length h of one of its ends, so its distance from
-/// the axis is at least ρ − h, ρ the nearer end's distance. A chord with ρ − h above both the best distance so
-/// far and 2(r_r + d_o/2) (beyond which a chord on the far side is out of reach) cannot be nearer, and its
-/// [`chord_distance`] is skipped: the same element is found for a fraction of the cost.
-fn nearest(roller: &LocalRoller, first: usize, locals: &[Vector3<f64>]) -> usize {
+/// the axis is at least ρ − h, ρ the nearer end's distance. A chord with ρ − h above both the best gap so
+/// far plus its radius and 2(r_r + d/2) (beyond which a chord on the far side is out of reach) cannot be
+/// nearer, and its [`chord_distance`] is skipped: the same element is found for a fraction of the cost.
+fn nearest(
+    roller: &LocalRoller,
+    half_diameters: &[f64],
+    first: usize,
+    locals: &[Vector3<f64>],
+) -> usize {
     // Squared distance of a node from the axis, |(I − a aᵀ)(y − c)|² = |y − c|² − (a·(y − c))².
     let axis_distance2 = |y: &Vector3<f64>| {
         let v = y - roller.centre;
         v.norm_squared() - roller.axis.dot(&v).powi(2)
     };
-    let far = 2.0 * roller.reach;
     let mut best = (f64::INFINITY, first);
     let mut start_distance2 = locals.first().map_or(0.0, axis_distance2);
     for (e, chord) in (first..).zip(locals.windows(2)) {
@@ -103,13 +110,15 @@ fn nearest(roller: &LocalRoller, first: usize, locals: &[Vector3<f64>]) -> usize
         let nearer_end = start_distance2.min(end_distance2).max(0.0).sqrt();
         start_distance2 = end_distance2;
         let half_length = 0.5 * (chord[1] - chord[0]).norm();
+        let half_diameter = half_diameters[e];
+        let reach = roller.radius + half_diameter;
         // A relative margin of 1e-9 keeps the bound below the rounded chord_distance.
-        if (nearer_end - half_length) * (1.0 - 1e-9) > best.0.max(far) {
+        if (nearer_end - half_length) * (1.0 - 1e-9) > (best.0 + half_diameter).max(2.0 * reach) {
             continue;
         }
-        let (d, _, _) = chord_distance(roller, &chord[0], &chord[1]);
-        if d < best.0 {
-            best = (d, e);
+        let (d, _, _) = chord_distance(roller, reach, &chord[0], &chord[1]);
+        if d - half_diameter < best.0 {
+            best = (d - half_diameter, e);
         }
     }
     best.1
@@ -118,9 +127,10 @@ fn nearest(roller: &LocalRoller, first: usize, locals: &[Vector3<f64>]) -> usize
 /// Distance from the roller's axis to the chord (y0, y1) in the plane normal to the axis, with ∂d/∂y0 and
 /// ∂d/∂y1. Negative where the chord has passed the axis to the far side (against the roller's normal) and
 /// is still within twice the contact distance: the contact then pushes it back. Far beyond, the chord is
-/// out of the roller's reach (infinite distance).
+/// out of the roller's reach r_r + d/2 (infinite distance).
 fn chord_distance(
     roller: &LocalRoller,
+    reach: f64,
     y0: &Vector3<f64>,
     y1: &Vector3<f64>,
 ) -> (f64, Vector3<f64>, Vector3<f64>) {
@@ -137,7 +147,7 @@ fn chord_distance(
     let normal = if d > 0.0 { foot / d } else { Vector3::zeros() };
     if foot.dot(&roller.normal) >= 0.0 {
         (d, (1.0 - s) * normal, s * normal)
-    } else if d < 2.0 * roller.reach {
+    } else if d < 2.0 * reach {
         (-d, -(1.0 - s) * normal, -s * normal)
     } else {
         (f64::INFINITY, Vector3::zeros(), Vector3::zeros())
@@ -147,7 +157,7 @@ fn chord_distance(
 impl RollerContact {
     /// The rollers of `attachment` for the line `rod`, whose nodes lie at reference arc lengths `arcs` from end
     /// A ([`crate::rod::Rod::arc_lengths`]); `None` without rollers. The pipe's surface is that of the thickest
-    /// element within the rollers' reach (over its hydrodynamic diameter).
+    /// element's surface (its hydrodynamic diameter).
     pub fn new(attachment: &VesselAttachment, rod: &Rod, arcs: &[f64]) -> Option<Self> {
         let lay = attachment.lay.as_ref().filter(|l| !l.rollers.is_empty())?;
         let to_end = attachment.angle;
@@ -167,10 +177,6 @@ impl RollerContact {
                 .unwrap_or(count);
             first..count
         };
-        let diameter = elements
-            .clone()
-            .map(|e| rod.section(e).hydrodynamic_diameter)
-            .fold(0.0, f64::max);
         let rollers = lay
             .rollers
             .iter()
@@ -181,7 +187,7 @@ impl RollerContact {
                     normal: to_end * r.normal,
                     axis,
                     projector: Matrix3::identity() - axis * axis.transpose(),
-                    reach: r.radius + 0.5 * diameter,
+                    radius: r.radius,
                 }
             })
             .collect::<Vec<_>>();
@@ -192,6 +198,9 @@ impl RollerContact {
             stiffness: lay.roller_stiffness,
             end_node,
             locals: std::array::from_fn(|_| Vec::with_capacity(elements.len() + 1)),
+            half_diameters: (0..count)
+                .map(|e| 0.5 * rod.section(e).hydrodynamic_diameter)
+                .collect(),
             elements,
             energy_end: 0.0,
         })
@@ -218,21 +227,24 @@ impl RollerContact {
         y: &[Vector3<f64>],
     ) -> (f64, [Vector3<f64>; MAX_NODES]) {
         let roller = &self.rollers[k];
+        // The chord whose surface is nearest: the smallest gap d − D/2.
         let mut best: Option<(f64, usize, Vector3<f64>, Vector3<f64>)> = None;
         for i in 0..nodes.len().saturating_sub(1) {
             if nodes[i + 1] != nodes[i] + 1 {
                 continue;
             }
-            let (d, g0, g1) = chord_distance(roller, &y[i], &y[i + 1]);
-            if best.is_none_or(|b| d < b.0) {
-                best = Some((d, i, g0, g1));
+            let half_diameter = self.half_diameters[nodes[i]];
+            let reach = roller.radius + half_diameter;
+            let (d, g0, g1) = chord_distance(roller, reach, &y[i], &y[i + 1]);
+            if best.is_none_or(|b| d - half_diameter < b.0) {
+                best = Some((d - half_diameter, i, g0, g1));
             }
         }
         let mut gradient = [Vector3::zeros(); MAX_NODES];
-        let Some((d, i, g0, g1)) = best else {
+        let Some((gap, i, g0, g1)) = best else {
             return (0.0, gradient);
         };
-        let overlap = roller.reach - d;
+        let overlap = roller.radius - gap;
         if overlap <= 0.0 {
             return (0.0, gradient);
         }
@@ -295,10 +307,11 @@ impl RollerContact {
         for k in 0..self.rollers.len() {
             // The nodes R: elements nearest at the end (and, in a step, at the start and midpoint).
             let roller = &self.rollers[k];
-            let mut elements = [nearest(roller, first, &self.locals[0]); 3];
+            let diameters = &self.half_diameters;
+            let mut elements = [nearest(roller, diameters, first, &self.locals[0]); 3];
             if stepping {
-                elements[1] = nearest(roller, first, &self.locals[1]);
-                elements[2] = nearest(roller, first, &self.locals[2]);
+                elements[1] = nearest(roller, diameters, first, &self.locals[1]);
+                elements[2] = nearest(roller, diameters, first, &self.locals[2]);
             }
             let mut nodes = [0usize; MAX_NODES];
             let mut count = 0;
@@ -515,12 +528,15 @@ mod tests {
     #[test]
     fn pruned_nearest_is_the_full_scan() {
         let (contact, positions, _) = pipe_over_stinger();
+        // Half-diameters alternating along the refined polyline, as at joints of a line of segments.
+        let half_diameters: Vec<f64> = (0..400).map(|e| [0.3, 0.04, 0.3][e % 3]).collect();
         let full_scan = |roller: &LocalRoller, locals: &[Vector3<f64>]| {
             let mut best = (f64::INFINITY, 0);
             for e in 0..locals.len() - 1 {
-                let (d, _, _) = chord_distance(roller, &locals[e], &locals[e + 1]);
-                if d < best.0 {
-                    best = (d, e);
+                let reach = roller.radius + half_diameters[e];
+                let (d, _, _) = chord_distance(roller, reach, &locals[e], &locals[e + 1]);
+                if d - half_diameters[e] < best.0 {
+                    best = (d - half_diameters[e], e);
                 }
             }
             best.1
@@ -538,7 +554,10 @@ mod tests {
                 }
                 locals.push(positions[positions.len() - 1] + Vector3::z() * lift);
                 for roller in &contact.rollers {
-                    assert_eq!(nearest(roller, 0, &locals), full_scan(roller, &locals));
+                    assert_eq!(
+                        nearest(roller, &half_diameters, 0, &locals),
+                        full_scan(roller, &locals)
+                    );
                     checked += 1;
                 }
             }
