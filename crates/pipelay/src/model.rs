@@ -534,15 +534,35 @@ impl Model {
                 format!("must lie on the line: in [0, {length}] m from end A"),
             ));
         }
-        if self.pay_out.is_some() {
-            return Err(Error::input(
-                "attach",
-                "an attachment to a line paid out",
-                "attachments and pay-out in one model are not supported yet",
-            ));
+        if let Some(pay_out) = &self.pay_out {
+            if pay_out.at_start {
+                return Err(Error::input(
+                    "attach",
+                    "an attachment to a line paid out at end A",
+                    "attachments are placed from end A: pay out at end B",
+                ));
+            }
+            let place = attachment.place(&self.rod);
+            if place.element + 1 == self.rod.element_count() && place.weights[0] < 1.0 {
+                return Err(Error::input(
+                    "arc_length",
+                    format!(
+                        "{} m, on the end element pay-out grows",
+                        attachment.arc_length
+                    ),
+                    "must lie on an element that pay-out does not grow (before the last)",
+                ));
+            }
         }
         self.attachments.push(attachment);
         Ok(self.attachments.len() - 1)
+    }
+
+    /// The arc length (m) of an attachment that element `element` carries (not merely at its first node).
+    pub fn attachment_on_element(&self, element: usize) -> Option<f64> {
+        self.placed_attachments()
+            .find(|(_, place)| place.element == element && place.weights[0] < 1.0)
+            .map(|(attachment, _)| attachment.arc_length)
     }
 
     /// Each attachment with its place on the line.
@@ -586,11 +606,18 @@ impl Model {
     /// pipe cannot pass through a clamp or a pin.
     pub fn pay_out(&mut self, end: &str, speed: PayOutSpeed) -> Result<()> {
         let node = self.end_node(end)?;
-        if !self.attachments.is_empty() {
+        if node == 0 && !self.attachments.is_empty() {
             return Err(Error::input(
-                "pay_out",
-                "pay-out of a line with attachments",
-                "attachments and pay-out in one model are not supported yet",
+                "end",
+                "\"A\" of a line with attachments",
+                "attachments are placed from end A: pay out at end B",
+            ));
+        }
+        if let Some(arc) = self.attachment_on_element(self.rod.element_count() - 1) {
+            return Err(Error::input(
+                "end",
+                format!("\"{end}\", whose end element carries an attachment at {arc} m"),
+                "pay-out grows the end element: attach on the elements before it",
             ));
         }
         let held = self

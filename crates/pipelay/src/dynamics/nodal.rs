@@ -56,6 +56,17 @@ impl NodalProperties {
         for e in elements {
             self.add_element(model, e, node);
         }
+        let density = model.water_density();
+        for (attachment, place) in model.placed_attachments() {
+            for (at, weight) in [place.element, place.element + 1]
+                .into_iter()
+                .zip(place.weights)
+            {
+                if at == node {
+                    self.mass[node] += weight * attachment.inertial_mass(density);
+                }
+            }
+        }
     }
 
     /// Adds half of element `element`'s mass, inertia and damping to its node `node`.

@@ -52,6 +52,15 @@ impl Growth {
                 reason,
             ));
         }
+        // Attachments are placed from end A, so pay-out at end B leaves them on their material; pay-in must
+        // not reach one.
+        if let Some(arc) = model.attachment_on_element(element) {
+            return Err(Error::input(
+                "pay_out speed",
+                format!("{speed} m/s at t = {time} s"),
+                format!("pay-in has reached the attachment at {arc} m from end A: it cannot pass the end"),
+            ));
+        }
         let before = element_lump_energy(model, nodal, state, element);
         model.rod.elements[element].length = length_next;
         nodal.recompute(model, element);
