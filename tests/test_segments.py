@@ -277,7 +277,7 @@ def test_pay_out_through_segment_joints_keeps_the_ledger(
     """Paying out through two joints (pipe → heavy wall → wire): the new elements take the fed sections, the
     ledger closes (E − E0 = supplied − dissipated, pay-out's energy in the supplied work) and the line settles to
     the statics of the same line built whole. Measured when written: balance 1.5e-5 J of 4.3e6 J; the settled
-    top tension within 2e-5 of the statics'."""
+    top tension within 8e-6 of the statics'."""
     simulation, results = paid_through_joints
     state = simulation.state
     np.testing.assert_array_equal(state.segment_of, [0] * 20 + [1] + [2] * 2)
@@ -298,7 +298,7 @@ def test_pay_out_through_segment_joints_keeps_the_ledger(
     expected = np.linalg.norm(whole.static().reaction("B")[:3])
     late = results.time > 70.0
     top = np.linalg.norm(results.reaction("B")[late, :3], axis=1).mean()
-    assert top == pytest.approx(expected, rel=1e-4)
+    assert top == pytest.approx(expected, rel=5e-5)
     # The record keeps each element's segment; the rows of the shorter meshes end in NaN.
     np.testing.assert_array_equal(results.segment[-1], state.segment_of)
     np.testing.assert_array_equal(results.segment[0], [0] * 20 + [np.nan] * 3)
