@@ -120,6 +120,18 @@ fn check_grade(py: Python<'_>, grade: &str) -> PyResult<()> {
 #[derive(Clone)]
 pub struct Section(pub section::Section);
 
+/// A pair of coefficients (axial, normal) named `name`, or `default` where not given.
+fn coefficients(
+    value: Option<&Bound<'_, PyAny>>,
+    name: &str,
+    default: [f64; 2],
+) -> PyResult<[f64; 2]> {
+    Ok(value
+        .map(|v| array::<2>(v, name))
+        .transpose()?
+        .unwrap_or(default))
+}
+
 #[pymethods]
 impl Section {
     #[new]
@@ -185,14 +197,8 @@ impl Section {
         coatings: Option<Vec<Coating>>,
         lining: Option<Coating>,
     ) -> PyResult<Self> {
-        let drag = drag
-            .map(|v| array::<2>(v, "drag"))
-            .transpose()?
-            .unwrap_or([0.0, 1.0]);
-        let added_mass = added_mass
-            .map(|v| array::<2>(v, "added_mass"))
-            .transpose()?
-            .unwrap_or([0.0, 1.0]);
+        let drag = coefficients(drag, "drag", [0.0, 1.0])?;
+        let added_mass = coefficients(added_mass, "added_mass", [0.0, 1.0])?;
         if let Some(grade) = &grade {
             check_grade(py, grade)?;
         }
@@ -230,14 +236,8 @@ impl Section {
         drag: Option<&Bound<'_, PyAny>>,
         added_mass: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let drag = drag
-            .map(|v| array::<2>(v, "drag"))
-            .transpose()?
-            .unwrap_or([0.0, 1.2]);
-        let added_mass = added_mass
-            .map(|v| array::<2>(v, "added_mass"))
-            .transpose()?
-            .unwrap_or([0.0, 1.0]);
+        let drag = coefficients(drag, "drag", [0.0, 1.2])?;
+        let added_mass = coefficients(added_mass, "added_mass", [0.0, 1.0])?;
         section::Section::cable(diameter, mass, EA, drag, added_mass)
             .map(Section)
             .map_err(to_py)
