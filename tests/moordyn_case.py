@@ -22,9 +22,11 @@ How the two models are matched:
 * drag: normal Cd = 1.2 on the diameter d in both; axial drag off in both (pipelay refers its axial Cd to d,
   MoorDyn to πd, so zero is the one value that means the same);
 * added mass: Ca = 1 across and along the line in both (MoorDyn: Ca = CaAx = 1); `Case.ca_axial` sets the axial one;
-* bending: MoorDyn's line has EI = 0. pipelay needs EI > 0: it gets EI = GJ = 10 N·m², whose bending length
-  √(EI/T) ≤ 5 cm even at the lowest tension (≈ 5 kN) is far below the shortest element used (0.25 m at
-  n = 1000), so the line behaves as a cable. GA = EA;
+* bending: MoorDyn's line has EI = 0. pipelay's rod needs EI > 0: it gets EI = GJ = 10 N·m², whose bending
+  length √(EI/T) ≤ 5 cm even at the lowest tension (≈ 5 kN) is far below the shortest element used (0.25 m at
+  n = 1000), so the line behaves as a cable. GA = EA. With ``Case(cable=True)`` pipelay uses its cable element
+  instead (``pl.Section.cable``: tension only, no bending or torsion, 3 DOFs per node, as MoorDyn's line),
+  with the same d, mass, EA, drag and added mass;
 * internal damping: none. MoorDyn's default RK2 scheme is unstable without internal damping (BA = 0 blows up
   within 3 s), so MoorDyn runs with its RK4 scheme and BA = 0, the same undamped physics as pipelay. (MoorDyn's
   usual BA/-zeta = −0.8 changes the top tension by at most 0.10 % of the mean at n = 50, with RK2 or RK4.);
@@ -81,7 +83,8 @@ class Case:
     diameter: float = 0.09  # outer (volume-equivalent) diameter (m)
     mass: float = 40.0  # mass per unit length in air (kg/m)
     ea: float = 4.0e8  # axial stiffness (N)
-    ei: float = 10.0  # pipelay's (small) bending stiffness (N·m²); MoorDyn uses 0
+    ei: float = 10.0  # pipelay's (small) bending stiffness (N·m²) of the rod; MoorDyn uses 0
+    cable: bool = False  # pipelay: the cable element (pl.Section.cable) instead of the rod with EI = ``ei``
     cd_normal: float = 1.2  # normal drag coefficient on d (-)
     ca: float = 1.0  # added-mass coefficient normal to the line (-)
     ca_axial: float | None = None  # added-mass coefficient along the line (-); None: ``ca``
@@ -169,20 +172,25 @@ def drive_tables(dt: float, t_end: float, case: Case = CASE) -> tuple[np.ndarray
 
 
 def pipelay_model(n: int, case: Case = CASE, tables: tuple[np.ndarray, np.ndarray] | None = None) -> pl.Model:
-    """The pipelay model with ``n`` elements: A pinned at the origin, B driven along ``top_position`` (by the
-    callables, or by ``tables`` from ``drive_tables``, which the engine interpolates without calling Python)."""
+    """The pipelay model with ``n`` elements (of cable if ``case.cable``, else of rod): A pinned at the origin,
+    B driven along ``top_position`` (by the callables, or by ``tables`` from ``drive_tables``, which the engine
+    interpolates without calling Python)."""
     d, m = case.diameter, case.mass
-    section = pl.Section(
-        EA=case.ea,
-        GA=case.ea,
-        GJ=case.ei,
-        EI=case.ei,
-        mass=m,
-        inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
-        outer_diameter=d,
-        drag=(0.0, case.cd_normal),
-        added_mass=(case.axial_added_mass, case.ca),
-    )
+    drag, added_mass = (0.0, case.cd_normal), (case.axial_added_mass, case.ca)
+    if case.cable:
+        section = pl.Section.cable(d, m, case.ea, drag=drag, added_mass=added_mass)
+    else:
+        section = pl.Section(
+            EA=case.ea,
+            GA=case.ea,
+            GJ=case.ei,
+            EI=case.ei,
+            mass=m,
+            inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
+            outer_diameter=d,
+            drag=drag,
+            added_mass=added_mass,
+        )
     rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, section)
     model = pl.Model(rod, sea=pl.Sea(case.depth, density=case.rho_water), gravity=case.gravity)
     model.pin("A")
