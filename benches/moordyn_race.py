@@ -28,7 +28,7 @@ Newton iteration against n, for the cable and the rod, to show it grows linearly
 
 Usage::
 
-    python benches/moordyn_race.py [--quick]     # --quick: n = 50, 100 only (the full run takes ≈ 6 min)
+    python benches/moordyn_race.py [--quick]     # --quick: n = 50, 100 only (the full run takes ≈ 5 min)
 """
 
 from __future__ import annotations
