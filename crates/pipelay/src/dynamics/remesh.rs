@@ -216,6 +216,7 @@ fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
         }
     }
     if changed {
+        model.rod.unstrain_cables();
         for a in node - 1..=node + 1 {
             if model.rod.is_cable_node(a) {
                 state.body_angular_velocities[a] = Vector3::zeros();

@@ -101,7 +101,9 @@ impl Rod {
             frame = minimal_rotation(&pair[0], &pair[1]) * frame;
             frames.push(quat_from_matrix(&frame));
         }
-        Ok(Self::with_frames(nodes, frames, section))
+        let mut rod = Self::with_frames(nodes, frames, section);
+        rod.unstrain_cables();
+        Ok(rod)
     }
 
     /// A straight rod of `elements` equal elements from `start` to `end`.
@@ -225,7 +227,19 @@ impl Rod {
         let mut rod = Self::new(nodes, first.section.clone())?;
         rod.sections = segments.iter().map(|s| s.section.clone()).collect();
         rod.segment_of = segment_of;
+        rod.unstrain_cables();
         Ok(rod)
+    }
+
+    /// Gives the cable elements zero reference strain and curvature: a cable's stress-free state is its
+    /// unstretched length alone (the frames' round-off would otherwise leave a strain of ~1e-16 in it).
+    pub fn unstrain_cables(&mut self) {
+        for (element, &segment) in self.elements.iter_mut().zip(&self.segment_of) {
+            if self.sections[segment].cable {
+                element.strain = Vector3::zeros();
+                element.curvature = Vector3::zeros();
+            }
+        }
     }
 
     /// The section of element `element`.
