@@ -4,10 +4,9 @@
 //! **Added mass by direction.** A node's translational mass matrix is M = (m + m_a C_an) I + m_a (C_aa − C_an)
 //! t tᵀ, with m_a = ρ_w π/4 D_h² its tributary length's displaced mass and t = Λ e1 the node's axis: the normal
 //! coefficient across the pipe, the axial one along it. The kinetic energy ½vᵀMv then depends on the node's
-//! rotation; the time step balances it exactly ([`crate::dynamics::rod_step`]). A cable node has no rotation:
-//! its axis is its chords' at the step's start, held over the step (the kinetic energy's dependence on the
-//! neighbours' positions is lagged, so the ledger of a cable with unequal coefficients closes to O(Δt), not
-//! to round-off).
+//! rotation; the time step balances it exactly ([`crate::dynamics::rod_step`]). A cable has no rotation: what
+//! its axial coefficient adds acts along each element's chord t_e on the element's mean velocity ū_e, with
+//! kinetic energy ½ d_e (t_e·ū_e)², d_e = L_e m_a (C_aa − C_an), balanced exactly by the element's step.
 // Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
 #![allow(clippy::indexing_slicing)]
 use crate::dynamics::rod_step::NodeStart;
@@ -27,8 +26,9 @@ pub struct NodalProperties {
     pub inertia: Vec<Vector3<f64>>,
     /// Rotational damping about the material axes (N·m·s).
     pub damping: Vec<Vector3<f64>>,
-    /// The cable nodes, which have no rotation: their axis is their chords' ([`crate::rod::chord_axis`]).
-    pub cable_nodes: Vec<bool>,
+    /// What the axial added mass adds along each cable element's chord, d_e (kg; zero for a rod's element,
+    /// whose nodes carry it).
+    pub element_axial: Vec<f64>,
 }
 
 impl NodalProperties {
@@ -55,6 +55,7 @@ impl NodalProperties {
         let elements = node.saturating_sub(1)..(node + 1).min(model.rod.element_count());
         for e in elements {
             self.add_element(model, e, node);
+            self.element_axial[e] = Self::cable_axial(model, e);
         }
         let density = model.water_density();
         for (attachment, place) in model.placed_attachments() {
@@ -75,9 +76,20 @@ impl NodalProperties {
         let half = 0.5 * model.rod.elements[element].length;
         let (normal, axial) = Self::added_mass(model, element);
         self.mass[node] += half * (section.mass + normal);
-        self.axial_added_mass[node] += half * axial;
+        if !section.cable {
+            self.axial_added_mass[node] += half * axial;
+        }
         self.inertia[node] += half * section.inertia;
         self.damping[node] += half * section.rotational_damping;
+    }
+
+    /// d_e of element `element`: L_e m_a (C_aa − C_an) for a cable's, zero for a rod's.
+    fn cable_axial(model: &Model, element: usize) -> f64 {
+        if model.rod.section(element).cable {
+            model.rod.elements[element].length * Self::added_mass(model, element).1
+        } else {
+            0.0
+        }
     }
 
     /// The lumps of `model`'s rod: half of each element's mass, inertia and damping at each of its nodes.
@@ -88,7 +100,9 @@ impl NodalProperties {
             axial_added_mass: vec![0.0; count],
             inertia: vec![Vector3::zeros(); count],
             damping: vec![Vector3::zeros(); count],
-            cable_nodes: model.rod.cable_nodes(),
+            element_axial: (0..model.rod.element_count())
+                .map(|e| Self::cable_axial(model, e))
+                .collect(),
         };
         for e in 0..model.rod.element_count() {
             props.add_element(model, e, e);
@@ -113,16 +127,30 @@ impl NodalProperties {
             + 0.5 * w.dot(&self.inertia[node].component_mul(&w));
         match self.axial_added_mass[node] {
             0.0 => energy,
-            axial => energy + 0.5 * axial * self.axis(state, node).dot(&v).powi(2),
+            axial => energy + 0.5 * axial * axis(state, node).dot(&v).powi(2),
         }
     }
 
-    /// The axis t of node `node` in `state`: Λ e1, or a cable node's chord direction.
-    pub fn axis(&self, state: &DynamicState, node: usize) -> Vector3<f64> {
-        if self.cable_nodes[node] {
-            crate::rod::chord_axis(&state.configuration.positions, node)
-        } else {
-            state.configuration.rotations[node] * Vector3::x()
+    /// The kinetic energy the axial added mass of cable element `element` adds, ½ d_e (t_e·ū_e)² (J).
+    pub fn element_kinetic_energy(&self, state: &DynamicState, element: usize) -> f64 {
+        match self.element_axial[element] {
+            0.0 => 0.0,
+            d => {
+                let (t, u) = chord_and_mean_velocity(state, element);
+                0.5 * d * t.dot(&u).powi(2)
+            }
+        }
+    }
+
+    /// The momentum the axial added mass of cable element `element` adds, d_e t_e (t_e·ū_e) (kg·m/s), half
+    /// of it at each of its nodes.
+    pub fn element_momentum(&self, state: &DynamicState, element: usize) -> Vector3<f64> {
+        match self.element_axial[element] {
+            0.0 => Vector3::zeros(),
+            d => {
+                let (t, u) = chord_and_mean_velocity(state, element);
+                t * (d * t.dot(&u))
+            }
         }
     }
 
@@ -132,11 +160,24 @@ impl NodalProperties {
         match self.axial_added_mass[node] {
             0.0 => v * self.mass[node],
             axial => {
-                let t = self.axis(state, node);
+                let t = axis(state, node);
                 v * self.mass[node] + t * (axial * t.dot(&v))
             }
         }
     }
+}
+
+/// The axis t = Λ e1 of node `node` in `state`.
+fn axis(state: &DynamicState, node: usize) -> Vector3<f64> {
+    state.configuration.rotations[node] * Vector3::x()
+}
+
+/// The unit chord t_e and the mean velocity ū_e of element `element` in `state`.
+fn chord_and_mean_velocity(state: &DynamicState, element: usize) -> (Vector3<f64>, Vector3<f64>) {
+    let positions = &state.configuration.positions;
+    let t = (positions[element + 1] - positions[element]).normalize();
+    let u = 0.5 * (state.velocities[element] + state.velocities[element + 1]);
+    (t, u)
 }
 
 /// What node `node`'s inertia and damping terms need from the step's start.
@@ -150,6 +191,6 @@ pub fn node_start(nodal: &NodalProperties, state: &DynamicState, node: usize) ->
         momentum: rotation
             * nodal.inertia[node].component_mul(&state.body_angular_velocities[node]),
         damping: spatial(&nodal.damping[node]),
-        axis: nodal.axis(state, node),
+        axis: rotation.column(0).into_owned(),
     }
 }

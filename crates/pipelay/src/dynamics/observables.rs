@@ -64,7 +64,10 @@ impl<'a> Observables<'a> {
         let state = &self.state;
         let kinetic = (0..self.model.rod.node_count())
             .map(|i| self.nodal.kinetic_energy(state, i))
-            .sum();
+            .sum::<f64>()
+            + (0..self.model.rod.element_count())
+                .map(|e| self.nodal.element_kinetic_energy(state, e))
+                .sum::<f64>();
         let strain = state
             .gauss
             .iter()
@@ -146,7 +149,10 @@ impl<'a> Observables<'a> {
     pub fn linear_momentum(&self) -> Vector3<f64> {
         (0..self.model.rod.node_count())
             .map(|i| self.nodal.momentum(self.state, i))
-            .sum()
+            .sum::<Vector3<f64>>()
+            + (0..self.model.rod.element_count())
+                .map(|e| self.nodal.element_momentum(self.state, e))
+                .sum::<Vector3<f64>>()
     }
 
     /// Angular momentum about the origin Σ (φ_I × M_I v_I + Λ_I J_I W_I) (kg·m²/s).
@@ -158,7 +164,14 @@ impl<'a> Observables<'a> {
                     * self.nodal.inertia[i].component_mul(&state.body_angular_velocities[i]);
                 state.configuration.positions[i].cross(&self.nodal.momentum(state, i)) + spin
             })
-            .sum()
+            .sum::<Vector3<f64>>()
+            + (0..self.model.rod.element_count())
+                .map(|e| {
+                    let positions = &state.configuration.positions;
+                    let middle = 0.5 * (positions[e] + positions[e + 1]);
+                    middle.cross(&self.nodal.element_momentum(state, e))
+                })
+                .sum::<Vector3<f64>>()
     }
 
     /// Material force and moment [N; M] at the element Gauss points of the current state.

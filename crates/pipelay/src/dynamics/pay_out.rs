@@ -112,7 +112,9 @@ fn element_lump_energy(
     element: usize,
 ) -> f64 {
     let positions = &state.configuration.positions;
-    nodal.kinetic_energy(state, element) + nodal.kinetic_energy(state, element + 1)
+    nodal.kinetic_energy(state, element)
+        + nodal.kinetic_energy(state, element + 1)
+        + nodal.element_kinetic_energy(state, element)
         - 0.5
             * model.rod.elements[element].length
             * model.submerged_weight(element)

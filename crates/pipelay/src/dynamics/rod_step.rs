@@ -92,6 +92,8 @@ pub struct RodStep<'a> {
     /// the rotational terms need.
     pub mass: &'a [f64],
     pub axial_added_mass: &'a [f64],
+    /// What the axial added mass adds along each cable element's chord (kg; zero for a rod's).
+    pub element_axial: &'a [f64],
     pub node_start: &'a [NodeStart],
     /// The step's unknowns on all DOFs [Δφ_I, θ_I].
     pub increments: &'a [f64],
@@ -246,6 +248,16 @@ impl RodStep<'_> {
         magnitude[8] += nodal_weight.abs();
         let dphi1 = increments.fixed_rows::<3>(0).into_owned();
         let dphi2 = increments.fixed_rows::<3>(6).into_owned();
+        if self.element_axial[e] != 0.0 {
+            self.cable_axial_inertia(
+                e,
+                &dphi1,
+                &dphi2,
+                &mut forces,
+                &mut magnitude,
+                tangent.as_deref_mut(),
+            );
+        }
         // Half of a force on the element's midpoint to each node.
         let mut share_force = |force: &Vector3<f64>| {
             for a in 0..2 {
@@ -340,6 +352,66 @@ impl RodStep<'_> {
             magnitude,
             next: step.next,
             work,
+        }
+    }
+
+    /// The inertia of cable element `e`'s axial added mass: with P(t, ū) = d t (t·ū) (t the unit chord, ū the
+    /// element's mean velocity), the force ½(P_{n+1} − P_n)/Δt on each node conserves the momentum; its work
+    /// ū̄·ΔP exceeds the change of ½d(t·ū)² by Δg = d (S t̄)·Δt (S = ½(ū_n ū_{n+1}ᵀ + ū_{n+1} ū_nᵀ), as at a rod's
+    /// node). The chord forces ∓∇̄h, ∇̄h the discrete gradient (Gonzalez) of h(c) = w·c/|c| with w = d S t̄, do
+    /// the work −Δg: the inertia's work is the kinetic energy's change to round-off. Its tangent holds the
+    /// momentum's derivatives; the chord forces' (of order d|ū|²/l) are left out, which Newton absorbs.
+    fn cable_axial_inertia(
+        &self,
+        e: usize,
+        dphi1: &Vector3<f64>,
+        dphi2: &Vector3<f64>,
+        forces: &mut ElementVector,
+        magnitude: &mut ElementVector,
+        tangent: Option<&mut ElementMatrix>,
+    ) {
+        let dt = self.dt;
+        let d = self.element_axial[e];
+        let chord_n = self.positions[e + 1] - self.positions[e];
+        let chord_next = chord_n + dphi2 - dphi1;
+        let (length_n, length_next) = (chord_n.norm(), chord_next.norm());
+        let (t_n, t_next) = (chord_n / length_n, chord_next / length_next);
+        let u_n = 0.5 * (self.velocities[e] + self.velocities[e + 1]);
+        let u_next = (dphi1 + dphi2) / dt - u_n;
+        let half_force = 0.5 * d * (t_next * t_next.dot(&u_next) - t_n * t_n.dot(&u_n)) / dt;
+        let t_mean = 0.5 * (t_n + t_next);
+        let w = d * 0.5 * (u_n * u_next.dot(&t_mean) + u_next * u_n.dot(&t_mean));
+        // ∇̄h: ∇h at the mean chord, plus the part along Δc that makes ∇̄h·Δc = h(c_{n+1}) − h(c_n) exactly.
+        let chord_mean = 0.5 * (chord_n + chord_next);
+        let length_mean = chord_mean.norm();
+        let t_mid = chord_mean / length_mean;
+        let mut gradient = (w - t_mid * t_mid.dot(&w)) / length_mean;
+        let change = chord_next - chord_n;
+        let change2 = change.norm_squared();
+        if change2 > 1e-24 * length_mean * length_mean {
+            let exact = w.dot(&(t_next - t_n));
+            gradient += change * ((exact - gradient.dot(&change)) / change2);
+        }
+        for (node, sign) in [(0, 1.0), (NODE_DOFS, -1.0)] {
+            for i in 0..3 {
+                let value = half_force[i] + sign * gradient[i];
+                forces[node + i] += value;
+                magnitude[node + i] += value.abs();
+            }
+        }
+        if let Some(tangent) = tangent {
+            // ∂(½P_{n+1}/Δt)/∂Δφ_a: through ū_{n+1} (∂/∂Δφ_a = I/Δt) and t_{n+1} (∓(I − t tᵀ)/|c|).
+            let by_velocity = t_next * t_next.transpose() * (0.5 * d / (dt * dt));
+            let by_chord = (Matrix3::identity() * t_next.dot(&u_next)
+                + t_next * u_next.transpose())
+                * (Matrix3::identity() - t_next * t_next.transpose())
+                * (0.5 * d / (dt * length_next));
+            for row in [0, NODE_DOFS] {
+                let mut first = tangent.fixed_view_mut::<3, 3>(row, 0);
+                first += by_velocity - by_chord;
+                let mut second = tangent.fixed_view_mut::<3, 3>(row, NODE_DOFS);
+                second += by_velocity + by_chord;
+            }
         }
     }
 

@@ -101,6 +101,7 @@ impl Integrator {
             gauss: &state.gauss,
             mass: &self.nodal.mass,
             axial_added_mass: &self.nodal.axial_added_mass,
+            element_axial: &self.nodal.element_axial,
             node_start: &self.node_start,
             increments: &self.increments,
             waves: &self.wave_kinematics,
