@@ -275,8 +275,10 @@ def test_pay_out_through_segment_joints_keeps_the_ledger(
 ) -> None:
     """Paying out through two joints (pipe → heavy wall → wire): the new elements take the fed sections, the
     ledger closes (E − E0 = supplied − dissipated, pay-out's energy in the supplied work) and the line settles to
-    the statics of the same line built whole. Measured when written: balance 1.5e-5 J of 4.3e6 J; the settled
-    top tension within 8e-6 of the statics'."""
+    the statics of the same line built whole. An element that changes section keeps its axial force (its
+    unstretched length set for the new stiffness), so the joints pass without ringing. Measured when written:
+    balance at most 1.2e-7 J of 4.3e6 J; the settled top tension within 2.1e-6 of the statics' and swinging by 0.14 %
+    (rms; 6.8 % when a changed element kept its strain instead); 2.0 Newton iterations a step."""
     simulation, results = paid_through_joints
     state = simulation.state
     np.testing.assert_array_equal(state.segment_of, [0] * 20 + [1] + [2] * 2)
@@ -296,8 +298,10 @@ def test_pay_out_through_segment_joints_keeps_the_ledger(
     whole.pin("B", (0.0, 0.0, 0.0))
     expected = np.linalg.norm(whole.static().reaction("B")[:3])
     late = results.time > 70.0
-    top = np.linalg.norm(results.reaction("B")[late, :3], axis=1).mean()
-    assert top == pytest.approx(expected, rel=5e-5)
+    top = np.linalg.norm(results.reaction("B")[late, :3], axis=1)
+    assert top.mean() == pytest.approx(expected, rel=2e-5)
+    assert top.std() < 5e-3 * expected
+    assert np.mean(results.iterations[1:]) < 2.5
     # The record keeps each element's segment; the rows of the shorter meshes end in NaN.
     np.testing.assert_array_equal(results.segment[-1], state.segment_of)
     np.testing.assert_array_equal(results.segment[0], [0] * 20 + [np.nan] * 3)
@@ -356,3 +360,36 @@ def test_a_cable_in_water_keeps_its_energy_with_added_mass_by_direction() -> Non
     assert np.linalg.norm(np.array(simulation.linear_momentum()) - linear) < 1e-12 * np.linalg.norm(linear)
     assert np.linalg.norm(np.array(simulation.angular_momentum()) - angular) < 1e-3 * np.linalg.norm(angular)
     assert results.supplied_work[-1] == 0.0 and results.dissipated[-1] == 0.0
+
+
+def test_a_wire_paid_out_from_its_end_keeps_the_ledger_and_settles() -> None:
+    """100 m of pipe hanging on 50 m of wire, the wire paid out 15 m at its top (a winch: a drive at the
+    origin). The ledger closes, the line settles to the statics of the same line with 65 m of wire, and the
+    energy pay-out brings in is the winch's work −∫T v dt; Newton takes two iterations a step, as for a pipe.
+    Measured when written: balance 3.1e-8 J of 7.9e6 J; top tension within 2.2e-6 of the statics'; pay-out
+    energy within 6e-6 of the winch's work; 2.0 iterations a step (7.9 when both levels' strains were taken
+    at the growing length, which slackened the growing element's start)."""
+    wire = pl.Section.cable(0.08, 28.0, 5.5e8)
+
+    def line(wire_length: float, elements: int) -> pl.Rod:
+        segments = [pl.Segment(100.0, PAID, 20), pl.Segment(wire_length, wire, elements)]
+        return pl.Rod.segments((0.0, 0.0, 100.0 + wire_length), (0.0, 0.0, -1.0), segments)
+
+    model = pl.Model(line(50.0, 10), sea=pl.Sea(400.0))
+    model.drive("B", position=lambda t: np.zeros(3))
+    model.pay_out("B", speed=_pulse)
+    results = model.simulation(model.static(), dt=0.05).run(90.0, progress=False)
+    energy = results.energy["total"]
+    balance = energy - energy[0] - results.supplied_work + results.dissipated
+    assert np.abs(balance).max() < 1e-12 * np.abs(energy).max()
+    assert results.length[-1] == pytest.approx(165.0, abs=1e-9)
+    assert np.nanmax(results.segment[-1]) == 1.0 and np.sum(results.segment[-1] == 1.0) == 13
+    assert np.mean(results.iterations[1:]) < 2.5
+    longer = pl.Model(line(65.0, 13), sea=pl.Sea(400.0))
+    longer.pin("B", (0.0, 0.0, 0.0))
+    expected = np.linalg.norm(longer.static().reaction("B")[:3])
+    top = np.linalg.norm(results.reaction("B")[:, :3], axis=1)
+    assert top[results.time > 70.0].mean() == pytest.approx(expected, rel=2e-5)
+    speed = np.array([_pulse(t) for t in 0.5 * (results.time[1:] + results.time[:-1])])
+    winch_work = -np.sum(top[1:] * speed * np.diff(results.time))
+    assert results.pay_out_energy[-1] == pytest.approx(winch_work, rel=5e-5)

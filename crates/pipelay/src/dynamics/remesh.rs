@@ -180,9 +180,9 @@ fn join(model: &mut Model, state: &mut DynamicState, first: usize, at_start: boo
 }
 
 /// After a split that inserted node `node` at the paying end: the two elements at it take the section of the
-/// material at their midpoints from the pay-out's feed (the material paid out most recently lies at the end);
-/// an element whose kind changes (rod or cable) gets the Gauss point of its kind, and a node that becomes a
-/// cable's loses its spin.
+/// material at their midpoints from the pay-out's feed (the material paid out most recently lies at the end).
+/// An element that changes section keeps its axial force (its unstretched length set for the new stiffness)
+/// and gets the Gauss point of its configuration; a node that becomes a cable's loses its spin.
 fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
     let Some(pay_out) = model.pay_out.as_ref() else {
         return;
@@ -206,17 +206,29 @@ fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
         let Some(segment) = pay_out.fed_segment(paid - from_end) else {
             continue;
         };
-        let was_cable = model.rod.section(element).cable;
-        if model.rod.segment_of[element] != segment {
-            model.rod.segment_of[element] = segment;
-            changed = true;
-            if model.rod.sections[segment].cable != was_cable {
-                state.gauss[element] = element_gauss_point(model, &state.configuration, element);
-            }
+        if model.rod.segment_of[element] == segment {
+            continue;
+        }
+        // The element's axial force under its old section, which the new one is to carry on: its unstretched
+        // length becomes l/(1 + N/EA) of the new section's EA (a joint passes the tensioner under tension,
+        // not by a jump of the strain's stiffness), and its Gauss point that of the configuration.
+        let old = model.rod.section(element);
+        let reference = model.rod.elements[element];
+        let force = (old.c_t() * (state.gauss[element].strain - reference.strain)).x;
+        model.rod.segment_of[element] = segment;
+        changed = true;
+        let positions = &state.configuration.positions;
+        let chord = (positions[element + 1] - positions[element]).norm();
+        let stretch = 1.0 + force / model.rod.sections[segment].translational_stiffness.x;
+        if stretch > 0.0 {
+            model.rod.elements[element].length = chord / stretch;
         }
     }
     if changed {
         model.rod.unstrain_cables();
+        for element in [node - 1, node] {
+            state.gauss[element] = element_gauss_point(model, &state.configuration, element);
+        }
         for a in node - 1..=node + 1 {
             if model.rod.is_cable_node(a) {
                 state.body_angular_velocities[a] = Vector3::zeros();

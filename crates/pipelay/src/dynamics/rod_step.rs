@@ -216,6 +216,7 @@ impl RodStep<'_> {
             cable_step(
                 &chord,
                 &increments,
+                length_start,
                 reference,
                 c_t[(0, 0)],
                 self.stress_rule,

@@ -55,25 +55,18 @@ impl AxialLaw {
         0.5 * self.ea * (1.0 / self.length - 1.0 / q.sqrt()).max(0.0)
     }
 
-    /// The discrete gradient W̄′ = (W(q1) − W(q0))/(q1 − q0) and its derivative ∂W̄′/∂q1. Taut at both ends,
-    /// ΔW = ½EA L(ε1 − ε0)(ε1 + ε0) with ε1 − ε0 = Δq/(L(l0 + l1)) exactly, so W̄′ = ½EA(ε0 + ε1)/(l0 + l1)
-    /// and ∂W̄′/∂q1 = EA/(2 l1 (l0 + l1)²), free of the difference quotient's cancellation (as q1 → q0 they
-    /// tend to W′ and ½W″). Slack at one end, W is zero there and the quotient is taken as it is.
-    fn mean_slope(&self, q0: f64, q1: f64) -> (f64, f64) {
-        let (l0, l1) = (q0.sqrt(), q1.sqrt());
-        let (taut0, taut1) = (self.strain(q0) > 0.0, self.strain(q1) > 0.0);
-        match (taut0, taut1) {
-            (true, true) => {
-                let sum = l0 + l1;
-                (
-                    0.5 * self.ea * (self.strain(q0) + self.strain(q1)) / sum,
-                    self.ea / (2.0 * l1 * sum * sum),
-                )
-            }
+    /// The discrete gradient of the energy per length w(ε) = ½EA max(ε, 0)² between the strains `e0` and
+    /// `e1`, N̄ = (w(ε1) − w(ε0))/(ε1 − ε0), and ∂N̄/∂ε1. Taut at both, N̄ = ½EA(ε0 + ε1) exactly (no
+    /// difference quotient to lose digits) and ∂N̄/∂ε1 = ½EA; slack at both, 0; slack at one, the quotient of
+    /// the other's energy, taken as it is.
+    fn mean_tension(&self, e0: f64, e1: f64) -> (f64, f64) {
+        let w = |e: f64| 0.5 * self.ea * e.max(0.0).powi(2);
+        match (e0 > 0.0, e1 > 0.0) {
+            (true, true) => (0.5 * self.ea * (e0 + e1), 0.5 * self.ea),
             (false, false) => (0.0, 0.0),
             _ => {
-                let slope = (self.energy(q1) - self.energy(q0)) / (q1 - q0);
-                (slope, (self.slope(q1) - slope) / (q1 - q0))
+                let tension = (w(e1) - w(e0)) / (e1 - e0);
+                (tension, (self.ea * e1.max(0.0) - tension) / (e1 - e0))
             }
         }
     }
@@ -160,13 +153,19 @@ pub fn gauss_point(chord: &Vector3<f64>, length: f64) -> GaussPoint {
 }
 
 /// One time step's internal forces of a cable element and, if asked, their tangent with respect to
-/// [Δφ1, θ1, Δφ2, θ2]. `chord` is φ2 − φ1 at step n. The energy is that at the length L_{n+1}
-/// (`reference.length`; it differs from `length_start` only for the element that grows with pay-out): the
-/// forces do the work W_{n+1}(q_{n+1}) − W_{n+1}(q_n), and the rest of the change of stored energy is what
-/// pay-out brings in.
+/// [Δφ1, θ1, Δφ2, θ2]. `chord` is φ2 − φ1 at step n; `length_start` the unstretched length L_n at step n and
+/// `reference.length` L_{n+1} (they differ only for the element that grows with pay-out).
+///
+/// Each level's strain is its own, ε_n = l_n/L_n − 1 and ε_{n+1} = l_{n+1}/L_{n+1} − 1, as in the rod's step:
+/// with N̄ their discrete-gradient tension, the force N̄ 2d̄/(l_n + l_{n+1}) on node 2 (its opposite on node 1)
+/// does the work N̄ (l_{n+1} − l_n). At a fixed length that is L(w(ε_{n+1}) − w(ε_n)) = ΔW exactly; for the
+/// growing element the rest of the change of stored energy is what pay-out brings in. (Taking both levels at
+/// L_{n+1} instead would slacken a taut growing wire's start strain, ε̃_n = l_n/L_{n+1} − 1 < 0, whenever a
+/// step pays out more than its stretch.)
 pub fn step(
     chord: &Vector3<f64>,
     increments: &ElementVector,
+    length_start: f64,
     reference: &ElementReference,
     ea: f64,
     rule: StressRule,
@@ -182,25 +181,34 @@ pub fn step(
     let mean = 0.5 * (chord + chord_next);
     let (q_n, q_next) = (chord.norm_squared(), chord_next.norm_squared());
     let q_mid = mean.norm_squared();
-    let (slope, block) = match rule {
+    let (force, block) = match rule {
         StressRule::AverageStrain => {
-            // ∂(2W̄′d̄)/∂Δφ2 = 4 ∂W̄′/∂q_{n+1} d̄ d_{n+1}ᵀ + W̄′ I (∂q_{n+1}/∂Δφ2 = 2d_{n+1}ᵀ, ∂d̄/∂Δφ2 = ½I).
-            let (slope, d_slope) = law.mean_slope(q_n, q_next);
-            let block = 4.0 * d_slope * mean * chord_next.transpose() + Matrix3::identity() * slope;
-            (slope, block)
+            let (l_n, l_next) = (q_n.sqrt(), q_next.sqrt());
+            let strain_n = l_n / length_start - 1.0;
+            let strain_next = l_next / reference.length - 1.0;
+            let (tension, d_tension) = law.mean_tension(strain_n, strain_next);
+            // f = N̄ 2d̄/(l_n + l_{n+1}); with t_{n+1} = d_{n+1}/l_{n+1}, ∂ε_{n+1}/∂Δφ2 = t_{n+1}ᵀ/L_{n+1},
+            // ∂l_{n+1}/∂Δφ2 = t_{n+1}ᵀ and ∂d̄/∂Δφ2 = ½I.
+            let sum = l_n + l_next;
+            let direction = 2.0 * mean / sum;
+            let t_next = chord_next / l_next;
+            let block = direction * t_next.transpose() * (d_tension / reference.length)
+                + (Matrix3::identity() / sum - 2.0 * mean * t_next.transpose() / (sum * sum))
+                    * tension;
+            (direction * tension, block)
         }
         StressRule::MidpointConfiguration => {
             let slope = law.slope(q_mid);
             let block =
                 2.0 * law.curvature(q_mid) * mean * mean.transpose() + Matrix3::identity() * slope;
-            (slope, block)
+            (2.0 * slope * mean, block)
         }
     };
     if let Some(tangent) = tangent {
         bar_tangent(&block, tangent);
     }
     ElementStep {
-        forces: bar_forces(&(2.0 * slope * mean)),
+        forces: bar_forces(&force),
         next: gauss_point(&chord_next, reference.length),
     }
 }
@@ -256,7 +264,8 @@ mod tests {
     }
 
     /// The step's forces do the work of the energy's change exactly (to round-off), across the slack limit
-    /// too, and their tangent matches central differences.
+    /// too; for an element that grows (pay-out) they do the work N̄ (l_{n+1} − l_n) of the mean tension of the
+    /// two levels' own strains; their tangent matches central differences in both cases.
     #[test]
     fn step_is_a_discrete_gradient_with_a_consistent_tangent() {
         let chord = Vector3::new(1.0, 0.2, -0.1);
@@ -266,51 +275,69 @@ mod tests {
             ea,
             length: reference.length,
         };
-        for increments in [
-            [
-                0.01, -0.02, 0.03, 0.0, 0.0, 0.0, -0.02, 0.01, 0.04, 0.0, 0.0, 0.0,
-            ],
-            [
-                0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.06, -0.01, 0.01, 0.0, 0.0, 0.0,
-            ],
-            [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1e-9, 0.0, 0.0, 0.0, 0.0, 0.0],
-        ] {
-            let increments = ElementVector::from_row_slice(&increments);
-            let mut tangent = ElementMatrix::zeros();
-            let step = step(
-                &chord,
-                &increments,
-                &reference,
-                ea,
-                StressRule::AverageStrain,
-                Some(&mut tangent),
-            );
-            let chord_next = chord + increments.fixed_rows::<3>(6) - increments.fixed_rows::<3>(0);
-            let change = law.energy(chord_next.norm_squared()) - law.energy(chord.norm_squared());
-            let work = step.forces.dot(&increments);
-            assert!(
-                (work - change).abs() <= 1e-12 * law.energy(chord.norm_squared()),
-                "work {work} vs ΔW {change}"
-            );
-            // Momentum: the forces sum to zero.
-            let total = step.forces.fixed_rows::<3>(0) + step.forces.fixed_rows::<3>(6);
-            assert!(total.norm() < 1e-12 * step.forces.norm());
-            let h = 1e-7;
-            for j in [0, 1, 2, 6, 7, 8] {
-                let mut plus = increments;
-                plus[j] += h;
-                let mut minus = increments;
-                minus[j] -= h;
-                let rule = StressRule::AverageStrain;
-                let f_plus = super::step(&chord, &plus, &reference, ea, rule, None).forces;
-                let f_minus = super::step(&chord, &minus, &reference, ea, rule, None).forces;
-                for i in 0..12 {
-                    let difference = (f_plus[i] - f_minus[i]) / (2.0 * h);
-                    assert!(
-                        (difference - tangent[(i, j)]).abs() < 1e-5 * ea,
-                        "{increments:?} ({i}, {j}): {difference} vs {}",
-                        tangent[(i, j)]
-                    );
+        let rule = StressRule::AverageStrain;
+        for length_start in [0.98, 0.97] {
+            for increments in [
+                [
+                    0.01, -0.02, 0.03, 0.0, 0.0, 0.0, -0.02, 0.01, 0.04, 0.0, 0.0, 0.0,
+                ],
+                [
+                    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -0.06, -0.01, 0.01, 0.0, 0.0, 0.0,
+                ],
+                [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1e-9, 0.0, 0.0, 0.0, 0.0, 0.0],
+            ] {
+                let increments = ElementVector::from_row_slice(&increments);
+                let mut tangent = ElementMatrix::zeros();
+                let at = |increments: &ElementVector, tangent: Option<&mut ElementMatrix>| {
+                    step(
+                        &chord,
+                        increments,
+                        length_start,
+                        &reference,
+                        ea,
+                        rule,
+                        tangent,
+                    )
+                };
+                let forces = at(&increments, Some(&mut tangent)).forces;
+                let chord_next =
+                    chord + increments.fixed_rows::<3>(6) - increments.fixed_rows::<3>(0);
+                let (l_n, l_next) = (chord.norm(), chord_next.norm());
+                let work = forces.dot(&increments);
+                let start = AxialLaw {
+                    ea,
+                    length: length_start,
+                };
+                let strain = |l: f64, law: &AxialLaw| l / law.length - 1.0;
+                let (tension, _) = law.mean_tension(strain(l_n, &start), strain(l_next, &law));
+                let expected = if length_start == reference.length {
+                    law.energy(chord_next.norm_squared()) - law.energy(chord.norm_squared())
+                } else {
+                    tension * (l_next - l_n)
+                };
+                let scale = law.energy(chord.norm_squared());
+                assert!(
+                    (work - expected).abs() <= 1e-12 * scale,
+                    "work {work} vs {expected}"
+                );
+                // Momentum: the forces sum to zero.
+                let total = forces.fixed_rows::<3>(0) + forces.fixed_rows::<3>(6);
+                assert!(total.norm() < 1e-12 * forces.norm());
+                let h = 1e-7;
+                for j in [0, 1, 2, 6, 7, 8] {
+                    let mut plus = increments;
+                    plus[j] += h;
+                    let mut minus = increments;
+                    minus[j] -= h;
+                    let (f_plus, f_minus) = (at(&plus, None).forces, at(&minus, None).forces);
+                    for i in 0..12 {
+                        let difference = (f_plus[i] - f_minus[i]) / (2.0 * h);
+                        assert!(
+                            (difference - tangent[(i, j)]).abs() < 1e-5 * ea,
+                            "{increments:?} ({i}, {j}): {difference} vs {}",
+                            tangent[(i, j)]
+                        );
+                    }
                 }
             }
         }
