@@ -393,3 +393,38 @@ def test_a_wire_paid_out_from_its_end_keeps_the_ledger_and_settles() -> None:
     speed = np.array([_pulse(t) for t in 0.5 * (results.time[1:] + results.time[:-1])])
     winch_work = -np.sum(top[1:] * speed * np.diff(results.time))
     assert results.pay_out_energy[-1] == pytest.approx(winch_work, rel=5e-5)
+
+
+def test_a_wire_swept_across_the_seabed_feels_the_lateral_friction() -> None:
+    """A 100 m wire lying on the seabed along e1, pinned at A, its end B driven round A at 0.01 rad/s until it
+    lies along e2: it then slides sideways, so the seabed's friction is its lateral coefficient (1.0), not the
+    axial one (0.2), and the force B needs to turn it is about μ_l w L/2 (the wire bows under the friction it
+    drags, having no bending stiffness, which lowers it a little). A cable node has no rotation of its own, so
+    the friction's directions follow its chords. Measured when written: 10 591 N against μ_l w L/2 = 11 207 N
+    (2 205 N, the axial friction, when the directions stayed with the nodes' reference frames); ledger balance
+    1.4e-7 J."""
+    wire = pl.Section.cable(0.08, 28.0, 5.5e8, drag=(0.0, 0.0), added_mass=(0.0, 0.0))
+    length = 100.0
+    rod = pl.Rod.straight((0.0, 0.0, 0.0), (length, 0.0, 0.0), 20, wire)
+    model = pl.Model(rod, sea=pl.Sea(100.0, seabed=pl.Seabed(stiffness=1e6, friction=(0.2, 1.0))))
+    model.pin("A", (0.0, 0.0, 0.0))
+    omega, ramp = 0.01, 20.0
+
+    def angle(t: float) -> float:
+        """Turned by ω(t − ramp/2) after a smooth start over `ramp` s (rad)."""
+        s = min(t / ramp, 1.0)
+        return omega * (t - ramp / 2.0) if t > ramp else omega * ramp * s**3 * (1.0 - s / 2.0)
+
+    model.drive("B", lambda t: (length * math.cos(angle(t)), length * math.sin(angle(t)), 0.0))
+    results = model.simulation(model.static(), dt=0.1).run(180.0, progress=False)
+    turned = np.array([angle(t) for t in results.time])
+    force = results.reaction("B")[:, :3]
+    # The force B's drive applies across the line, against the friction (the rod's on B is its opposite).
+    across = force[:, 0] * np.sin(turned) - force[:, 1] * np.cos(turned)
+    late = results.time > 150.0
+    lateral = 1.0 * wire.submerged_weight * length / 2.0
+    assert math.degrees(turned[-1]) > 90.0
+    assert across[late].mean() == pytest.approx(lateral, rel=0.1)
+    energy = results.energy["total"]
+    balance = energy - energy[0] - results.supplied_work + results.dissipated
+    assert np.abs(balance).max() < 1e-10 * results.dissipated[-1]

@@ -239,9 +239,10 @@ impl SeabedContact {
         }
     }
 
-    /// Whether node `node` is a cable's (no rotation: its friction directions follow its chords).
-    pub fn is_cable_node(&self, node: usize) -> bool {
-        self.cable_nodes[node]
+    /// The nodes' step inputs to set, and which nodes are a cable's (no rotation: their friction directions
+    /// follow their chords).
+    pub fn steps_and_cable_nodes(&mut self) -> (&mut [NodeStep], &[bool]) {
+        (&mut self.nodes, &self.cable_nodes)
     }
 
     /// Whether the seabed has friction.

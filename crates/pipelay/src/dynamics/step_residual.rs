@@ -128,20 +128,32 @@ impl Integrator {
         }
         if let Some(mut contact) = self.contact.take() {
             let increments = &self.increments;
-            contact
-                .nodes
+            let positions = &state.configuration.positions;
+            let (nodes, cable_nodes) = contact.steps_and_cable_nodes();
+            nodes
                 .par_iter_mut()
                 .with_min_len(PARALLEL_CONTACT_NODES)
                 .enumerate()
                 .for_each(|(node, step)| {
                     let base = NODE_DOFS * node;
+                    let displacement = Vector3::from_column_slice(&increments[base..base + 3]);
+                    // A cable node's axis is its chords' at the step's start, held over the step.
+                    if cable_nodes[node] {
+                        *step = NodeStep {
+                            start: positions[node],
+                            displacement,
+                            axis: crate::rod::chord_axis(positions, node),
+                            axis_map: nalgebra::Matrix3::zeros(),
+                        };
+                        return;
+                    }
                     let half_theta =
                         0.5 * Vector3::from_column_slice(&increments[base + 3..base + 6]);
                     let rotation_mid = cayley(&half_theta)
                         * state.configuration.rotations[node].to_rotation_matrix();
                     *step = NodeStep {
-                        start: state.configuration.positions[node],
-                        displacement: Vector3::from_column_slice(&increments[base..base + 3]),
+                        start: positions[node],
+                        displacement,
                         axis: rotation_mid.column(0).into_owned(),
                         axis_map: 0.5 * cayley_tangent(&half_theta),
                     };

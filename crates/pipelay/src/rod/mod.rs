@@ -261,11 +261,6 @@ impl Rod {
             .collect()
     }
 
-    /// Whether any segment is a cable.
-    pub fn has_cables(&self) -> bool {
-        self.sections.iter().any(|s| s.cable)
-    }
-
     /// The largest of a section property over the segments (e.g. the axial stiffness, for scales).
     pub fn largest(&self, property: impl Fn(&Section) -> f64) -> f64 {
         self.sections.iter().map(property).fold(0.0, f64::max)
