@@ -64,6 +64,7 @@ __all__ = [
     "Case",
     "Run",
     "initial_condition",
+    "line_section",
     "max_relative_error",
     "moordyn_initial",
     "moordyn_input",
@@ -171,27 +172,31 @@ def drive_tables(dt: float, t_end: float, case: Case = CASE) -> tuple[np.ndarray
     return position, velocity
 
 
+def line_section(case: Case) -> pl.Section:
+    """The line's section: a cable's if ``case.cable``, else the rod with EI = GJ = ``case.ei`` (GA = EA) that
+    behaves as one; normal drag and added mass (axial, normal) as the case gives them."""
+    d, m = case.diameter, case.mass
+    drag, added_mass = (0.0, case.cd_normal), (case.axial_added_mass, case.ca)
+    if case.cable:
+        return pl.Section.cable(d, m, case.ea, drag=drag, added_mass=added_mass)
+    return pl.Section(
+        EA=case.ea,
+        GA=case.ea,
+        GJ=case.ei,
+        EI=case.ei,
+        mass=m,
+        inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
+        outer_diameter=d,
+        drag=drag,
+        added_mass=added_mass,
+    )
+
+
 def pipelay_model(n: int, case: Case = CASE, tables: tuple[np.ndarray, np.ndarray] | None = None) -> pl.Model:
     """The pipelay model with ``n`` elements (of cable if ``case.cable``, else of rod): A pinned at the origin,
     B driven along ``top_position`` (by the callables, or by ``tables`` from ``drive_tables``, which the engine
     interpolates without calling Python)."""
-    d, m = case.diameter, case.mass
-    drag, added_mass = (0.0, case.cd_normal), (case.axial_added_mass, case.ca)
-    if case.cable:
-        section = pl.Section.cable(d, m, case.ea, drag=drag, added_mass=added_mass)
-    else:
-        section = pl.Section(
-            EA=case.ea,
-            GA=case.ea,
-            GJ=case.ei,
-            EI=case.ei,
-            mass=m,
-            inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
-            outer_diameter=d,
-            drag=drag,
-            added_mass=added_mass,
-        )
-    rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, section)
+    rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, line_section(case))
     model = pl.Model(rod, sea=pl.Sea(case.depth, density=case.rho_water), gravity=case.gravity)
     model.pin("A")
     if tables is None:

@@ -78,6 +78,7 @@ from moordyn_case import (
     _quiet,
     _to_moordyn,
     initial_condition,
+    line_section,
     max_relative_error,
     top_position,
     top_velocity,
@@ -171,20 +172,8 @@ def rms_relative_error(run: Run, reference: Run) -> float:
 def pipelay_model(n: int, case: SeabedCase = SEABED_CASE) -> pl.Model:
     """The pipelay model with ``n`` elements: A pinned at the origin, on the seabed plane z = 0, B driven along
     ``top_position``; seabed stiffness ``case.kbot`` (Pa/m) and damping ``case.cbot`` (Pa·s/m), both on the
-    outer diameter, no friction."""
-    d, m = case.diameter, case.mass
-    section = pl.Section(
-        EA=case.ea,
-        GA=case.ea,
-        GJ=case.ei,
-        EI=case.ei,
-        mass=m,
-        inertia=(m * d * d / 4.0, m * d * d / 8.0, m * d * d / 8.0),
-        outer_diameter=d,
-        drag=(0.0, case.cd_normal),
-        added_mass=(case.axial_added_mass, case.ca),
-    )
-    rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, section)
+    outer diameter, no friction. The line's section is the driven wire rope's (``line_section``)."""
+    rod = pl.Rod.straight((0.0, 0.0, 0.0), (case.length, 0.0, 0.0), n, line_section(case))
     seabed = pl.Seabed(
         stiffness=case.kbot, damping=case.cbot, friction=0.0, mobilisation=0.01, bathymetry=None
     )

@@ -388,9 +388,7 @@ impl Segment {
     #[new]
     #[pyo3(signature = (length, section, elements))]
     fn new(length: f64, section: &Section, elements: i64) -> PyResult<Self> {
-        if !(length.is_finite() && length > 0.0) {
-            return Err(crate::errors::input("length", length, "must be > 0 m"));
-        }
+        // A Python int below 1 (negative ones included) is refused before it becomes a count.
         if elements < 1 {
             return Err(crate::errors::input(
                 "elements",
@@ -398,11 +396,13 @@ impl Segment {
                 "must be an integer >= 1",
             ));
         }
-        Ok(Segment(pipelay::rod::Segment {
+        let segment = pipelay::rod::Segment {
             length,
             section: section.0.clone(),
             elements: elements as usize,
-        }))
+        };
+        segment.check("").map_err(to_py)?;
+        Ok(Segment(segment))
     }
     /// Unstretched length (m).
     #[getter]

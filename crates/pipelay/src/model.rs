@@ -760,10 +760,14 @@ impl Model {
         self.sea.as_ref().and_then(|sea| sea.seabed.as_ref())
     }
 
-    /// Morison drag coefficients k = ½ρ_w C_D D_h (axial, normal) of element `element`, zero without a sea.
-    pub fn drag_coefficients(&self, element: usize) -> (f64, f64) {
-        let section = self.rod.section(element);
+    /// Morison drag coefficients k = ½ρ_w C_D D_h (axial, normal) of a section, zero without a sea.
+    pub fn drag_coefficients_of(&self, section: &crate::rod::section::Section) -> (f64, f64) {
         let k = 0.5 * self.water_density() * section.hydrodynamic_diameter;
         (k * section.drag[0], k * section.drag[1])
+    }
+
+    /// Morison drag coefficients of element `element`.
+    pub fn drag_coefficients(&self, element: usize) -> (f64, f64) {
+        self.drag_coefficients_of(self.rod.section(element))
     }
 }

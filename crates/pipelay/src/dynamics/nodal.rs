@@ -57,15 +57,9 @@ impl NodalProperties {
             self.add_element(model, e, node);
             self.element_axial[e] = Self::cable_axial(model, e);
         }
-        let density = model.water_density();
-        for (attachment, place) in model.placed_attachments() {
-            for (at, weight) in [place.element, place.element + 1]
-                .into_iter()
-                .zip(place.weights)
-            {
-                if at == node {
-                    self.mass[node] += weight * attachment.inertial_mass(density);
-                }
+        for (at, mass) in attachment_lumps(model) {
+            if at == node {
+                self.mass[node] += mass;
             }
         }
     }
@@ -108,14 +102,8 @@ impl NodalProperties {
             props.add_element(model, e, e);
             props.add_element(model, e, e + 1);
         }
-        let density = model.water_density();
-        for (attachment, place) in model.placed_attachments() {
-            for (node, weight) in [place.element, place.element + 1]
-                .into_iter()
-                .zip(place.weights)
-            {
-                props.mass[node] += weight * attachment.inertial_mass(density);
-            }
+        for (node, mass) in attachment_lumps(model) {
+            props.mass[node] += mass;
         }
         props
     }
@@ -165,6 +153,20 @@ impl NodalProperties {
             }
         }
     }
+}
+
+/// Each attachment's inertial mass (its added mass included) shared by its element's nodes: (node, kg) pairs.
+fn attachment_lumps(model: &Model) -> impl Iterator<Item = (usize, f64)> + '_ {
+    let density = model.water_density();
+    model
+        .placed_attachments()
+        .flat_map(move |(attachment, place)| {
+            let mass = attachment.inertial_mass(density);
+            [place.element, place.element + 1]
+                .into_iter()
+                .zip(place.weights)
+                .map(move |(node, weight)| (node, weight * mass))
+        })
 }
 
 /// The axis t = Λ e1 of node `node` in `state`.

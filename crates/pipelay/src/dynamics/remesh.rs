@@ -105,14 +105,14 @@ fn split(
     // Moved off the chord by δ, the halves' forces differ by Λ C Λᵀ δ (1/l₁ + 1/l₂): the node carries its share
     // of the submerged weight when n₁ − n₂ = ½(l₁ + l₂) w e3 (the weight acts along e3).
     // (A cable's node stays on the chord: its halves' stiffness across it is the tension's, and small.)
-    let stiffness = gauss.rotation
-        * section.c_t()
-        * gauss.rotation.transpose()
-        * (1.0 / first_length + 1.0 / second_length);
-    let weight = Vector3::z() * (0.5 * parent.length * model.submerged_weight(element));
     let offset = if cable {
         Vector3::zeros()
     } else {
+        let stiffness = gauss.rotation
+            * section.c_t()
+            * gauss.rotation.transpose()
+            * (1.0 / first_length + 1.0 / second_length);
+        let weight = Vector3::z() * (0.5 * parent.length * model.submerged_weight(element));
         stiffness.lu().solve(&weight).unwrap_or_else(Vector3::zeros)
     };
     let position = xa + (xb - xa) * fraction + offset;

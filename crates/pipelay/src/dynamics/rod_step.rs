@@ -67,15 +67,12 @@ pub fn rod_constants(model: &Model) -> RodConstants {
         .rod
         .sections
         .iter()
-        .map(|section| {
-            let k = 0.5 * model.water_density() * section.hydrodynamic_diameter;
-            SegmentConstants {
-                c_t: section.c_t(),
-                c_r: section.c_r(),
-                weight: model.submerged_weight_of(section),
-                drag: (k * section.drag[0], k * section.drag[1]),
-                cable: section.cable,
-            }
+        .map(|section| SegmentConstants {
+            c_t: section.c_t(),
+            c_r: section.c_r(),
+            weight: model.submerged_weight_of(section),
+            drag: model.drag_coefficients_of(section),
+            cable: section.cable,
         })
         .collect()
 }

@@ -42,6 +42,28 @@ pub struct Segment {
     pub elements: usize,
 }
 
+impl Segment {
+    /// Checks the segment: a finite length > 0 and at least one element, named `prefix` + the field.
+    pub fn check(&self, prefix: &str) -> Result<()> {
+        finite(&format!("{prefix}length"), &[self.length])?;
+        if self.length <= 0.0 {
+            return Err(Error::input(
+                format!("{prefix}length"),
+                self.length,
+                "must be > 0 m",
+            ));
+        }
+        if self.elements == 0 {
+            return Err(Error::input(
+                format!("{prefix}elements"),
+                self.elements,
+                "must be an integer >= 1",
+            ));
+        }
+        Ok(())
+    }
+}
+
 impl Rod {
     /// A rod through `nodes` (a polyline). Nodal frames: t1 along the average of the adjacent chords;
     /// the first frame is the smallest rotation of e1 onto t1, the others follow by parallel transport.
@@ -202,21 +224,7 @@ impl Rod {
         nodes.push(start);
         let mut arc = 0.0;
         for (k, segment) in segments.iter().enumerate() {
-            finite(&format!("segments[{k}].length"), &[segment.length])?;
-            if segment.length <= 0.0 {
-                return Err(Error::input(
-                    format!("segments[{k}].length"),
-                    segment.length,
-                    "must be > 0 m",
-                ));
-            }
-            if segment.elements == 0 {
-                return Err(Error::input(
-                    format!("segments[{k}].elements"),
-                    segment.elements,
-                    "must be an integer >= 1",
-                ));
-            }
+            segment.check(&format!("segments[{k}]."))?;
             for i in 1..=segment.elements {
                 let s = arc + segment.length * (i as f64 / segment.elements as f64);
                 nodes.push(start + axis * s);

@@ -121,6 +121,17 @@ impl Default for SectionExtras {
     }
 }
 
+/// Checks the Morison drag and added-mass coefficients (axial, normal): each finite and ≥ 0.
+fn check_coefficients(drag: &[f64; 2], added_mass: &[f64; 2]) -> Result<()> {
+    for &c in drag {
+        non_negative("drag", c, "(dimensionless)")?;
+    }
+    for &c in added_mass {
+        non_negative("added_mass", c, "(dimensionless)")?;
+    }
+    Ok(())
+}
+
 impl Section {
     /// A section from its stiffnesses: `ga` and `ei` per principal axis (2, 3).
     pub fn new(
@@ -146,12 +157,7 @@ impl Section {
             Some(a) => non_negative("displaced_area", a, "m²")?,
             None => std::f64::consts::FRAC_PI_4 * extras.outer_diameter.powi(2),
         };
-        for &c in &extras.drag {
-            non_negative("drag", c, "(dimensionless)")?;
-        }
-        for &c in &extras.added_mass {
-            non_negative("added_mass", c, "(dimensionless)")?;
-        }
+        check_coefficients(&extras.drag, &extras.added_mass)?;
         for &c in &extras.rotational_damping {
             non_negative("rotational_damping", c, "N·m·s/m")?;
         }
@@ -184,12 +190,7 @@ impl Section {
         positive("diameter", diameter, "m")?;
         positive("EA", ea, "N")?;
         positive("mass", mass, "kg/m")?;
-        for &c in &drag {
-            non_negative("drag", c, "(dimensionless)")?;
-        }
-        for &c in &added_mass {
-            non_negative("added_mass", c, "(dimensionless)")?;
-        }
+        check_coefficients(&drag, &added_mass)?;
         Ok(Section {
             translational_stiffness: Vector3::new(ea, 0.0, 0.0),
             rotational_stiffness: Vector3::zeros(),
