@@ -37,24 +37,31 @@ from pipelay._core import (
     Segment,
     Simulation,
     SLay,
+    Stage,
+    Stages,
     State,
     Stinger,
     TensionControl,
     Touchdown,
     Vessel,
     Waves,
+    Winch,
 )
 from pipelay.analysis import checks, lay, statistics, suspect
+from pipelay.analysis import stages as _stages  # Results.stage_summary
 from pipelay.analysis.lay import find_lay_position
 from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep
 from pipelay.results import load, resume, streaming
 
 
-def _simulation(self: Model, state: State | None = None, dt: float = 0.05) -> Simulation:
+def _simulation(
+    self: Model, state: State | None = None, dt: float = 0.05, stages: Stages | None = None
+) -> Simulation:
     """A time simulation from `state` (default: ``self.static()``) with time step `dt` (s), using the
-    energy–momentum conserving integrator; the same as ``Simulation(self, state, dt)``."""
-    return Simulation(self, state, dt)
+    energy–momentum conserving integrator, through `stages` (a `pl.Stages`) if given; the same as
+    ``Simulation(self, state, dt, stages)``."""
+    return Simulation(self, state, dt, stages)
 
 
 Model.simulation = _simulation  # type: ignore[attr-defined]
@@ -124,12 +131,15 @@ __all__ = [
     "Section",
     "Segment",
     "Simulation",
+    "Stage",
+    "Stages",
     "State",
     "Stinger",
     "TensionControl",
     "Touchdown",
     "Vessel",
     "Waves",
+    "Winch",
     "checks",
     "find_lay_position",
     "lay",

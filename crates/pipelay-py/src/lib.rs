@@ -8,6 +8,7 @@ mod raos;
 mod results;
 mod seabed;
 mod simulation;
+mod stages;
 mod state;
 mod structure;
 mod vessel;
@@ -38,6 +39,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<state::State>()?;
     m.add_class::<simulation::Simulation>()?;
     m.add_class::<results::Results>()?;
+    m.add_class::<stages::Winch>()?;
+    m.add_class::<stages::Stage>()?;
+    m.add_class::<stages::Stages>()?;
     m.add_class::<vessel::Vessel>()?;
     m.add_class::<raos::Raos>()?;
     m.add_class::<vessel::PyPid>()?;

@@ -226,7 +226,9 @@ impl Model {
     /// `state.tau`), unless the controller is active at t = 0. Until the controller starts, simulations keep
     /// applying the holding thrust of their starting state. `environment`: pl.Force objects (body frame).
     /// `lay`: a pl.SLay or pl.JLay holding the pipe at the tensioner or tower (then `angle` stays zero).
-    #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None, lay=None))]
+    /// `winch`: a pl.Winch, the A&R winch the line is handed over to (a stage with hold="winch"); a line whose
+    /// top segment is a cable is held by it from the start.
+    #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None, lay=None, winch=None))]
     #[allow(clippy::too_many_arguments)]
     fn attach_vessel(
         &mut self,
@@ -237,6 +239,7 @@ impl Model {
         controller: Option<&PyPid>,
         environment: Option<&Bound<'_, PyAny>>,
         lay: Option<&Bound<'_, PyAny>>,
+        winch: Option<&crate::stages::Winch>,
     ) -> PyResult<()> {
         let lay = lay.map(crate::lay::equipment).transpose()?;
         let mut forces = Vec::new();
@@ -258,6 +261,7 @@ impl Model {
             .map(|a| vector3(a, "angle"))
             .transpose()?
             .unwrap_or_else(Vector3::zeros);
+        let previous = self.0.vessel.clone();
         self.0
             .attach_vessel(
                 end,
@@ -268,7 +272,34 @@ impl Model {
                 forces,
                 lay,
             )
-            .map_err(to_py)
+            .map_err(to_py)?;
+        let Some(winch) = winch else {
+            return Ok(());
+        };
+        let rod = &self.0.rod;
+        let top = rod.element_count() - 1;
+        let wire = match (&winch.wire, rod.section(top)) {
+            (Some(wire), _) => wire.clone(),
+            (None, section) if section.cable => section.clone(),
+            (None, _) => {
+                self.0.vessel = previous;
+                return Err(input(
+                    "winch.wire",
+                    "None, with pipe at the line's top",
+                    "must be the wire's section: pl.Winch(..., wire=pl.Section.cable(...))",
+                ));
+            }
+        };
+        let mut engine = winch.winch.clone();
+        if engine.element_length == 0.0 {
+            engine.element_length = rod.elements[top].length;
+        }
+        let outcome = self.0.add_winch(engine, wire);
+        if outcome.is_err() {
+            // A refused winch leaves the model as it was.
+            self.0.vessel = previous;
+        }
+        outcome.map_err(to_py)
     }
 
     /// The rod.

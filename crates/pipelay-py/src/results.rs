@@ -4,6 +4,7 @@ use crate::convert::{flat, shaped};
 use crate::errors::input;
 use numpy::{PyArray1, PyArrayMethods};
 use pipelay::dynamics::history::History;
+use pipelay::dynamics::stages::{Stage, Stages};
 use pipelay::response::lay_summary::LAY_FIELDS;
 use pyo3::prelude::*;
 
@@ -13,13 +14,30 @@ use pyo3::types::PyDict;
 pub struct Results {
     history: History,
     last_node: usize,
+    /// The run's stages: their names and start times (the last entry the end of the last), if it had any.
+    stages: Option<(Vec<String>, Vec<f64>)>,
 }
 
 impl Results {
     /// Results from a finished history.
     pub fn from_history(history: History) -> Self {
         let last_node = history.nodes.saturating_sub(1);
-        Results { history, last_node }
+        Results {
+            history,
+            last_node,
+            stages: None,
+        }
+    }
+
+    /// These results marked with the stages of their run.
+    pub fn with_stages(mut self, stages: Option<&Stages>) -> Self {
+        self.stages = stages.map(|s| {
+            (
+                s.stages.iter().map(|stage| stage.name.clone()).collect(),
+                s.starts.clone(),
+            )
+        });
+        self
     }
 
     fn series<'py>(&self, py: Python<'py>, data: &[f64]) -> PyResult<Option<Bound<'py, PyAny>>> {
@@ -242,6 +260,44 @@ impl Results {
         self.history.len()
     }
 
+    /// The stage of each record (T,): the index of the stage whose steps end there (the first record opens
+    /// stage 0); None for a run without stages.
+    #[getter]
+    fn stage<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<i64>>> {
+        let (names, starts) = self.stages.as_ref()?;
+        let table = stage_table(names, starts).ok()?;
+        let index: Vec<i64> = self
+            .history
+            .time
+            .iter()
+            .map(|&t| table.index_at(t) as i64)
+            .collect();
+        Some(PyArray1::from_vec(py, index))
+    }
+    /// The stages' names, in order; None for a run without stages.
+    #[getter]
+    fn stage_names(&self) -> Option<Vec<String>> {
+        self.stages.as_ref().map(|(names, _)| names.clone())
+    }
+    /// Each stage's start time (s), and last the end of the last stage (stages + 1,); None without stages.
+    #[getter]
+    fn stage_starts<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.stages
+            .as_ref()
+            .map(|(_, starts)| PyArray1::from_slice(py, starts))
+    }
+
+    /// These results marked with stages of `names` starting at `starts` (s; one more, the end): used by
+    /// `pl.load`.
+    fn _with_stages(&self, names: Vec<String>, starts: Vec<f64>) -> PyResult<Results> {
+        stage_table(&names, &starts)?;
+        Ok(Results {
+            history: self.history.clone(),
+            last_node: self.last_node,
+            stages: Some((names, starts)),
+        })
+    }
+
     /// Results rebuilt from arrays (as written by `to_netcdf`): `nodes` (n + 1) and a mapping of the names
     /// time, positions, rotations, velocities, section_forces, reaction_A, reaction_B, pipe_kinetic,
     /// pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, supplied_work, dissipated, iterations and,
@@ -346,4 +402,29 @@ impl Results {
             t.last().copied().unwrap_or(0.0)
         )
     }
+}
+
+/// The stage table of `names` and `starts` (one more start than names: the end).
+fn stage_table(names: &[String], starts: &[f64]) -> PyResult<Stages> {
+    if starts.len() != names.len() + 1 || names.is_empty() {
+        return Err(input(
+            "stage_starts",
+            format!("{} values for {} stages", starts.len(), names.len()),
+            "must hold each stage's start and the last one's end",
+        ));
+    }
+    let stages = names
+        .iter()
+        .zip(starts.windows(2))
+        .map(|(name, w)| Stage {
+            name: name.clone(),
+            duration: w[1] - w[0],
+            pay_out: None,
+            route_speed: None,
+            hold: None,
+            winch_speed: None,
+            ramp: None,
+        })
+        .collect();
+    Stages::new(stages, starts[0]).map_err(crate::errors::to_py)
 }

@@ -9,6 +9,7 @@ use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3, Vector6};
 use pipelay::dynamics::history::History;
 use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
 use pipelay::dynamics::ledger::Ledger;
+use pipelay::dynamics::stages::Stages;
 use pipelay::dynamics::state::{DynamicState, VesselMotion};
 use pipelay::model::Model;
 use pipelay::rod::dynamic_element::GaussPoint;
@@ -23,18 +24,39 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// A simulation of `model` from `state` with time step `dt` (s).
-    pub fn from_state(model: Model, state: DynamicState, dt: f64) -> PyResult<Self> {
+    /// A simulation of `model` from `state` with time step `dt` (s); `stages`, if given, are already applied
+    /// to `model` ([`Stages::apply`]).
+    pub fn from_state(
+        model: Model,
+        state: DynamicState,
+        dt: f64,
+        stages: Option<Stages>,
+    ) -> PyResult<Self> {
         let options = DynamicOptions {
             time_step: dt,
             ..DynamicOptions::default()
         };
-        let integrator = Integrator::new(model, state, options).map_err(to_py)?;
+        let mut integrator = Integrator::new(model, state, options).map_err(to_py)?;
+        if let Some(stages) = stages {
+            integrator.set_applied_stages(stages);
+        }
         Ok(Simulation {
             integrator,
             last_iterations: 0,
         })
     }
+}
+
+/// The stages of `list` from `start_time`, checked and applied to `model` stepped with `dt` (s).
+fn applied_stages(
+    model: &mut Model,
+    list: &crate::stages::Stages,
+    start_time: f64,
+    dt: f64,
+) -> PyResult<Stages> {
+    let mut stages = Stages::new(list.0.clone(), start_time).map_err(to_py)?;
+    stages.apply(model, dt).map_err(to_py)?;
+    Ok(stages)
 }
 
 /// The rod of a checkpoint written with pay-out (arrays `mesh_nodes`, `mesh_frames`, `mesh_elements` and,
@@ -113,13 +135,15 @@ fn restored_rod(
 impl Simulation {
     /// A time simulation of `model` from `state` (default: `model.static()`) with time step `dt` (s), using the
     /// energy–momentum conserving integrator. `Model.simulation(state, dt)` is the same.
+    /// `stages`: a pl.Stages to run through (`run()` then runs to their end).
     #[new]
-    #[pyo3(signature = (model, state=None, dt=0.05))]
+    #[pyo3(signature = (model, state=None, dt=0.05, stages=None))]
     fn new(
         py: Python<'_>,
         model: &crate::model::Model,
         state: Option<&State>,
         dt: f64,
+        stages: Option<&crate::stages::Stages>,
     ) -> PyResult<Self> {
         pipelay::error::positive("dt", dt, "s").map_err(to_py)?;
         let state = match state {
@@ -129,7 +153,36 @@ impl Simulation {
                 .dynamic_state(&model.0)
                 .map_err(to_py)?,
         };
-        Simulation::from_state(model.0.clone(), state, dt)
+        let mut engine = model.0.clone();
+        let stages = stages
+            .map(|list| applied_stages(&mut engine, list, state.time, dt))
+            .transpose()?;
+        Simulation::from_state(engine, state, dt, stages)
+    }
+
+    /// The stages' names, None without stages.
+    #[getter]
+    fn stage_names(&self) -> Option<Vec<String>> {
+        self.integrator
+            .stages()
+            .map(|s| s.stages.iter().map(|stage| stage.name.clone()).collect())
+    }
+    /// Each stage's start time and the last one's end (s), None without stages.
+    #[getter]
+    fn stage_starts(&self) -> Option<Vec<f64>> {
+        self.integrator.stages().map(|s| s.starts.clone())
+    }
+
+    /// The end of the last stage (s), None without stages.
+    #[getter]
+    fn stages_end(&self) -> Option<f64> {
+        self.integrator.stages().map(|s| s.end())
+    }
+
+    /// The axial force the A&R wire took on at the hand-over (N), None if no hand-over happened in this run.
+    #[getter]
+    fn hand_over_tension(&self) -> Option<f64> {
+        self.integrator.handed_over()
     }
 
     /// Advances one time step dt. Raises ConvergenceError if Newton fails (the state is then unchanged).
@@ -144,16 +197,23 @@ impl Simulation {
     /// it. A progress bar (tqdm) shows on long runs unless `progress=False`. Ctrl-C stops the run between
     /// steps and returns what was computed so far (with a warning); a failed step raises ConvergenceError
     /// (or InputError when a drive or scale callable fails) whose `results` attribute holds the steps before it.
-    #[pyo3(signature = (t_end, progress=true, record_every=1))]
+    #[pyo3(signature = (t_end=None, progress=true, record_every=1))]
     fn run(
         &mut self,
         py: Python<'_>,
-        t_end: f64,
+        t_end: Option<f64>,
         progress: bool,
         record_every: i64,
     ) -> PyResult<Results> {
         let dt = self.time_step();
         let start = self.integrator.state().time;
+        let Some(t_end) = t_end.or(self.stages_end()) else {
+            return Err(input(
+                "t_end",
+                "None",
+                "must be given for a simulation without stages",
+            ));
+        };
         if !t_end.is_finite() || t_end < start {
             return Err(input(
                 "t_end",
@@ -239,7 +299,7 @@ impl Simulation {
         if let Some(bar) = &bar {
             bar.call_method0("close")?;
         }
-        let results = Results::from_history(history);
+        let results = Results::from_history(history).with_stages(self.integrator.stages());
         match outcome {
             Ok(()) => Ok(results),
             Err(error) => {
@@ -272,6 +332,9 @@ impl Simulation {
             ],
             3,
         )?;
+        if let Some(stages) = self.integrator.stages() {
+            rows("stage_starts", stages.starts.clone(), 1)?;
+        }
         let model = self.integrator.model();
         if model.pay_out.is_some() {
             // Pay-out changes the mesh: the checkpoint carries the rod's reference as it is now.
@@ -411,19 +474,43 @@ impl Simulation {
     }
 
     /// A simulation of `model` restored from `_checkpoint` arrays: it continues exactly as the original.
+    /// `stages`: those the original ran through.
     #[staticmethod]
-    fn _restore(model: &crate::model::Model, arrays: &Bound<'_, PyDict>) -> PyResult<Simulation> {
+    #[pyo3(signature = (model, arrays, stages=None))]
+    fn _restore(
+        model: &crate::model::Model,
+        arrays: &Bound<'_, PyDict>,
+        stages: Option<&crate::stages::Stages>,
+    ) -> PyResult<Simulation> {
         let get = |key: &str| -> PyResult<Vec<f64>> {
             match arrays.get_item(key)? {
                 Some(value) => flat(&value, key),
                 None => Err(input(key, "missing", "must be present in the checkpoint")),
             }
         };
+        // The stages are applied to the model as it was at the start, before its rod is replaced by the
+        // checkpoint's (which may be the winch's already).
+        let dt = get("dt")?.first().copied().unwrap_or(f64::NAN);
+        let mut original = model.0.clone();
+        let stages = match stages {
+            Some(list) => {
+                let start = match arrays.get_item("stage_starts")? {
+                    Some(value) => flat(&value, "stage_starts")?.first().copied(),
+                    None => None,
+                };
+                Some(applied_stages(
+                    &mut original,
+                    list,
+                    start.unwrap_or(0.0),
+                    dt,
+                )?)
+            }
+            None => None,
+        };
         let model = match arrays.get_item("mesh_elements")? {
-            Some(_) => model
-                .0
+            Some(_) => original
                 .with_rod(restored_rod(
-                    &model.0,
+                    &original,
                     &get,
                     arrays
                         .get_item("mesh_segments")?
@@ -431,7 +518,7 @@ impl Simulation {
                         .transpose()?,
                 )?)
                 .map_err(to_py)?,
-            None => model.0.clone(),
+            None => original,
         };
         let nodes = model.rod.node_count();
         let elements = model.rod.element_count();
@@ -535,7 +622,6 @@ impl Simulation {
             None => vec![nalgebra::Vector2::zeros(); nodes],
         };
         let time = get("time")?.first().copied().unwrap_or(0.0);
-        let dt = get("dt")?.first().copied().unwrap_or(f64::NAN);
         let state = DynamicState {
             time,
             configuration: pipelay::assembly::configuration::Configuration {
@@ -554,7 +640,7 @@ impl Simulation {
             slips,
         };
         let ledger = get("ledger")?;
-        let mut simulation = Simulation::from_state(model, state, dt)?;
+        let mut simulation = Simulation::from_state(model, state, dt, stages)?;
         match ledger[..] {
             [supplied, dissipated] => simulation
                 .integrator

@@ -7,6 +7,7 @@ use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
 use crate::table::TimeFunction;
 use crate::vessel::control::Pid;
+use crate::vessel::winch::Winch;
 use crate::vessel::{EnvironmentForce, VesselAttachment};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use std::fmt;
@@ -199,6 +200,9 @@ pub struct Model {
 pub enum PayOutSpeed {
     Constant(f64),
     Function(TimeFunction<f64>),
+    /// In stages ([`crate::dynamics::stages`]): legs in time order, each ramping to its speed and holding it
+    /// until the next.
+    Staged(Vec<crate::table::Leg>),
 }
 
 impl fmt::Debug for PayOutSpeed {
@@ -206,6 +210,7 @@ impl fmt::Debug for PayOutSpeed {
         match self {
             PayOutSpeed::Constant(v) => write!(f, "Constant({v})"),
             PayOutSpeed::Function(_) => write!(f, "Function"),
+            PayOutSpeed::Staged(stages) => write!(f, "Staged({stages:?})"),
         }
     }
 }
@@ -251,6 +256,7 @@ impl PayOut {
             PayOutSpeed::Constant(v) => *v,
             PayOutSpeed::Function(f) => f(time)
                 .map_err(|message| Error::input("pay_out speed", format!("t = {time}"), message))?,
+            PayOutSpeed::Staged(legs) => crate::table::travel(legs, time).1,
         };
         if !speed.is_finite() {
             return Err(Error::input(
@@ -440,14 +446,15 @@ impl Model {
             if let crate::vessel::control::Reference::Route {
                 start,
                 heading,
-                speed,
-                start_time,
+                legs,
             } = &c.reference
             {
                 finite("route start", start.as_slice())?;
                 finite("route heading", &[*heading])?;
-                finite("route speed", &[*speed])?;
-                finite("route start_time", &[*start_time])?;
+                for leg in legs {
+                    finite("route speed", &[leg.speed])?;
+                    finite("route start_time", &[leg.start])?;
+                }
             }
             c.reference.at(0.0)?;
             finite("start", &[c.start])?;
@@ -493,8 +500,117 @@ impl Model {
             eta,
             controller,
             environment,
+            winch: None,
         });
         Ok(())
+    }
+
+    /// Gives the vessel an A&R winch whose wire has the section `wire`. With lay equipment the winch must lie on
+    /// the firing line ahead of the hold point ([`Winch::distance_along`]); a line whose top element is a cable
+    /// is held by the winch from the start (a recovery starts so).
+    pub fn add_winch(
+        &mut self,
+        mut winch: Winch,
+        wire: crate::rod::section::Section,
+    ) -> Result<()> {
+        if !wire.cable {
+            return Err(Error::input(
+                "wire",
+                "a pipe or rod section",
+                "must be a cable: pl.Section.cable(...)",
+            ));
+        }
+        let Some(attachment) = self.vessel.as_ref() else {
+            return Err(Error::input(
+                "winch",
+                "a winch without a vessel",
+                "needs attach_vessel first: the winch is on the vessel",
+            ));
+        };
+        let top = self.rod.element_count() - 1;
+        let held_top = attachment.node != 0 && self.rod.section(top).cable;
+        if let Some(lay) = &attachment.lay {
+            let tangent = lay.end_frame.column(0).into_owned();
+            winch.distance_along(&lay.hang_off, &tangent)?;
+        } else if !held_top {
+            return Err(Error::input(
+                "winch",
+                "a winch on a vessel without lay equipment",
+                "needs lay= (pl.SLay or pl.JLay): the winch takes the line over from its tensioner",
+            ));
+        }
+        self.rod.sections.push(wire);
+        winch.wire = self.rod.sections.len() - 1;
+        winch.holds = held_top;
+        if let Some(attachment) = self.vessel.as_mut() {
+            attachment.winch = Some(winch);
+        }
+        if held_top {
+            self.hold_by_winch();
+        }
+        Ok(())
+    }
+
+    /// Makes the winch hold the line, whose top element is now its wire: pay-out continues the wire in
+    /// elements of the winch's length, and the laydown head (if any) is fitted where the wire meets the pipe.
+    /// Called at the hand-over ([`crate::dynamics::hand_over`]) and when a remeshed rod whose top is the wire
+    /// comes back ([`Model::with_rod`]).
+    pub fn hold_by_winch(&mut self) {
+        let Some(winch) = self.vessel.as_mut().and_then(|v| v.winch.as_mut()) else {
+            return;
+        };
+        winch.holds = true;
+        let (element_length, head) = (winch.element_length, winch.head);
+        let rod_length = self.rod.length();
+        if let Some(pay_out) = self.pay_out.as_mut() {
+            pay_out.element_length = element_length;
+            pay_out.initial_length = rod_length;
+            pay_out.feed.clear();
+        }
+        let joint = self.wire_joint();
+        if let (Some(head), Some(joint)) = (head, joint) {
+            let arc = self
+                .rod
+                .arc_lengths()
+                .get(joint)
+                .copied()
+                .unwrap_or_default();
+            if !self.attachments.iter().any(|a| a.arc_length == arc) {
+                self.attachments.push(Attachment {
+                    arc_length: arc,
+                    ..head
+                });
+            }
+        }
+    }
+
+    /// Whether `element` is the winch's last wire element, next to the pipe's end: pay-in must not join it
+    /// into the pipe.
+    pub fn is_last_wire_element(&self, element: usize) -> bool {
+        self.vessel
+            .as_ref()
+            .and_then(|v| v.holding_winch())
+            .is_some_and(|w| {
+                self.rod.segment_of.get(element) == Some(&w.wire)
+                    && element
+                        .checked_sub(1)
+                        .is_some_and(|e| self.rod.segment_of.get(e) != Some(&w.wire))
+            })
+    }
+
+    /// The node where the winch's wire meets the line below it (the pipe's end, where the head sits): the
+    /// first node of the cable run at end B; `None` without a winch or if the whole line is wire.
+    pub fn wire_joint(&self) -> Option<usize> {
+        let wire = self.vessel.as_ref()?.winch.as_ref()?.wire;
+        let count = self.rod.element_count();
+        let run = self
+            .rod
+            .segment_of
+            .iter()
+            .rev()
+            .take_while(|&&k| k == wire || self.rod.sections.get(k).is_some_and(|s| s.cable))
+            .count();
+        (run > 0 && run < count).then_some(count - run)
     }
 
     /// Where every support holds its node at time t (s).
@@ -736,6 +852,12 @@ impl Model {
             model.renumber_nodes(at, added);
         }
         model.rod = rod;
+        // A rod remeshed after the hand-over has the winch's wire at its top: the winch holds it.
+        let top = model.rod.element_count() - 1;
+        let wire = model.vessel.as_ref().and_then(|v| v.winch.as_ref());
+        if wire.is_some_and(|w| !w.holds && model.rod.segment_of.get(top) == Some(&w.wire)) {
+            model.hold_by_winch();
+        }
         Ok(model)
     }
 
@@ -753,6 +875,12 @@ impl Model {
     /// The length-weighted mean submerged weight of the line (N/m).
     pub fn mean_submerged_weight(&self) -> f64 {
         self.rod.mean(|section| self.submerged_weight_of(section))
+    }
+
+    /// Whether node `node` has no rotation of its own: a cable node ([`Rod::is_cable_node`]) that does not
+    /// carry the vessel (whose rotation the vessel's node keeps, as the winch holds its wire).
+    pub fn is_rotationless(&self, node: usize) -> bool {
+        self.rod.is_cable_node(node) && self.vessel.as_ref().is_none_or(|v| v.node != node)
     }
 
     /// The seabed, if the model has one.

@@ -156,3 +156,72 @@ mod tests {
         assert_eq!(outside, "must lie within the table's times [0, 10] s");
     }
 }
+
+/// A speed in legs, each ramping linearly from the speed before it to its own over its ramp time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Leg {
+    /// When the leg starts (s).
+    pub start: f64,
+    /// Its speed once ramped (m/s).
+    pub speed: f64,
+    /// The time the change from the speed before takes (s; 0: a step).
+    pub ramp: f64,
+}
+
+/// The distance travelled by `time` (s) since the first leg's start, and the speed then, of legs in time
+/// order (each lasting until the next starts); before the first, nothing and zero.
+pub fn travel(legs: &[Leg], time: f64) -> (f64, f64) {
+    let (mut distance, mut speed, mut before) = (0.0, 0.0, 0.0);
+    for (k, leg) in legs.iter().enumerate() {
+        if time <= leg.start {
+            break;
+        }
+        let end = legs.get(k + 1).map_or(f64::INFINITY, |next| next.start);
+        let span = time.min(end) - leg.start;
+        let ramp = leg.ramp.min(span);
+        // The speed rises linearly from `before` to `leg.speed` over `leg.ramp`, then holds.
+        let reached = if leg.ramp > 0.0 {
+            before + (leg.speed - before) * (ramp / leg.ramp)
+        } else {
+            leg.speed
+        };
+        distance += 0.5 * (before + reached) * ramp + leg.speed * (span - ramp).max(0.0);
+        speed = if span > leg.ramp { leg.speed } else { reached };
+        before = speed;
+    }
+    (distance, speed)
+}
+
+#[cfg(test)]
+mod leg_tests {
+    use super::*;
+
+    #[test]
+    fn ramped_legs_integrate_their_speed() {
+        let legs = [
+            Leg {
+                start: 0.0,
+                speed: 1.0,
+                ramp: 10.0,
+            },
+            Leg {
+                start: 20.0,
+                speed: 0.0,
+                ramp: 0.0,
+            },
+        ];
+        assert_eq!(travel(&legs, -1.0), (0.0, 0.0));
+        let (d, v) = travel(&legs, 5.0);
+        assert!((d - 1.25).abs() < 1e-12 && (v - 0.5).abs() < 1e-12);
+        let (d, v) = travel(&legs, 15.0);
+        assert!((d - 10.0).abs() < 1e-12 && v == 1.0);
+        let (d, v) = travel(&legs, 30.0);
+        assert!((d - 15.0).abs() < 1e-12 && v == 0.0);
+        // The speed is the distance's derivative, by central differences.
+        for t in [3.0, 12.0, 19.0] {
+            let h = 1e-6;
+            let rate = (travel(&legs, t + h).0 - travel(&legs, t - h).0) / (2.0 * h);
+            assert!((rate - travel(&legs, t).1).abs() < 1e-6);
+        }
+    }
+}

@@ -6,7 +6,8 @@
   maxima (``pl.statistics``);
 * `pipelay.analysis.lay`: where to put the vessel for a wanted lay configuration (``pl.lay``,
   ``pl.find_lay_position``);
-* `pipelay.analysis.sweep`: operability sweeps of a scenario on Dask (``pl.sweep``).
+* `pipelay.analysis.sweep`: operability sweeps of a scenario on Dask (``pl.sweep``);
+* `pipelay.analysis.stages`: what each stage of a staged lay did (``Results.stage_summary``).
 
 Imports of pipelay: the engine, `pipelay.results` and `pipelay.scenario` (the sweep); neither of those imports
 this package.

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from pipelay._core import InputError, Model, Simulation
+from pipelay._core import InputError, Model, Simulation, Stages
 from pipelay.results.atomic import _atomic_write
 
 __all__ = ["checkpoint", "resume"]
@@ -32,14 +32,15 @@ def checkpoint(simulation: Simulation, path: str | os.PathLike[str]) -> Path:
     return target
 
 
-def resume(model: Model, path: str | os.PathLike[str]) -> Simulation:
-    """The simulation saved by ``checkpoint``, continued on `model` (the same model it was saved from)."""
+def resume(model: Model, path: str | os.PathLike[str], stages: Stages | None = None) -> Simulation:
+    """The simulation saved by ``checkpoint``, continued on `model` (the same model it was saved from) through
+    `stages`, those the original ran through (a pl.Stages; None for a run without stages)."""
     target = Path(path)
     if not target.is_file():
         raise InputError(f"path: no checkpoint file at {str(target)!r}")
     with np.load(target) as data:
         arrays = {key: data[key] for key in data.files}
-    return Simulation._restore(model, arrays)
+    return Simulation._restore(model, arrays, stages)
 
 
 def _attach() -> None:

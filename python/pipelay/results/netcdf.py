@@ -216,7 +216,28 @@ def to_xarray(results: Results) -> Any:
         "column": ("column", AXES),
         "dof": ("dof", np.arange(6), {"long_name": "component: force/moment or eta/nu entry"}),
     }
-    return xr.Dataset(variables, coords=coords, attrs=_file_attributes())
+    dataset = xr.Dataset(variables, coords=coords, attrs=_file_attributes())
+    dataset.attrs.update(stage_attributes(results.stage_names, results.stage_starts))
+    if results.stage is not None:
+        dataset["stage"] = xr.Variable(("time",), results.stage, {"long_name": "stage index of the record"})
+    return dataset
+
+
+def stage_attributes(names: list[str] | None, starts: np.ndarray | None) -> dict[str, Any]:
+    """The global attributes that mark a run's stages: ``stage_names`` (one per line) and ``stage_starts`` (s,
+    each stage's start and the last one's end); none for a run without stages."""
+    if names is None or starts is None:
+        return {}
+    return {"stage_names": "\n".join(names), "stage_starts": np.asarray(starts, dtype=float)}
+
+
+def with_stages(results: Results, attributes: Any) -> Results:
+    """`results` marked with the stages a file's `attributes` name (as written by ``stage_attributes``)."""
+    if "stage_names" not in attributes:
+        return results
+    names = str(attributes["stage_names"]).split("\n")
+    starts = np.atleast_1d(np.asarray(attributes["stage_starts"], dtype=float))
+    return results._with_stages(names, starts.tolist())
 
 
 def _file_attributes() -> dict[str, str]:
@@ -259,7 +280,8 @@ def load(path: str | os.PathLike[str]) -> Results:
         arrays = {name: dataset[name].values for name in dataset.data_vars if name in LAYOUT}
         arrays["time"] = dataset["time"].values
         nodes = int(dataset.sizes["node"])
-    return Results._from_arrays(nodes, arrays)
+        attributes = dict(dataset.attrs)
+    return with_stages(Results._from_arrays(nodes, arrays), attributes)
 
 
 def _attach() -> None:

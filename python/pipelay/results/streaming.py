@@ -50,7 +50,15 @@ from typing import Any
 import numpy as np
 
 from pipelay._core import ConvergenceError, InputError, Results, Simulation
-from pipelay.results.netcdf import AXES, GROUPS, LAYOUT, _arrays, _file_attributes
+from pipelay.results.netcdf import (
+    AXES,
+    GROUPS,
+    LAYOUT,
+    _arrays,
+    _file_attributes,
+    stage_attributes,
+    with_stages,
+)
 
 __all__ = ["GROUPS", "stream"]
 
@@ -96,6 +104,7 @@ class _Writer:
         self.rollers = 0
         self.created = False
         self.broken = False
+        self.attributes: dict[str, Any] = {}  # further global attributes (the run's stages)
         target.parent.mkdir(parents=True, exist_ok=True)
         import h5netcdf
 
@@ -180,7 +189,9 @@ class _Writer:
         if "roller_reactions" in names:
             dimensions["roller"] = rollers
         file.dimensions = dimensions
-        file.attrs.update({**_file_attributes(), "recorded_groups": " ".join(self.groups)})
+        file.attrs.update(
+            {**_file_attributes(), "recorded_groups": " ".join(self.groups), **self.attributes}
+        )
         time = file.create_variable(
             "time", ("time",), "f8", fillvalue=np.nan, chunks=(min(4096, self.expected),)
         )
@@ -252,7 +263,7 @@ def _last(time: np.ndarray, arrays: dict[str, np.ndarray]) -> Results:
 def stream(
     engine_run: Callable[..., Results],
     simulation: Simulation,
-    t_end: float,
+    t_end: float | None,
     progress: bool,
     record_every: int,
     output: str | os.PathLike[str],
@@ -264,6 +275,10 @@ def stream(
     if every < 1:
         raise InputError(f"record_every: must be an integer >= 1, got {record_every}")
     start, dt = simulation.time, simulation.dt
+    if t_end is None:
+        t_end = simulation.stages_end
+        if t_end is None:
+            raise InputError("t_end: must be given for a simulation without stages, got None")
     if not math.isfinite(t_end) or t_end < start:
         raise InputError(f"t_end: must be a finite time >= the current time {start} s, got {t_end}")
     total = max(math.ceil((t_end - start) / dt - 1e-9), 0)  # the engine's step count for one run
@@ -273,6 +288,7 @@ def stream(
     last: Results | None = None
     bar = None
     writer = _Writer(Path(output), groups, total // every + 1)
+    writer.attributes = stage_attributes(simulation.stage_names, simulation.stage_starts)
     try:
         if progress and total >= 200:
             from tqdm import tqdm
@@ -319,7 +335,7 @@ def stream(
             bar.close()
         writer.finish()
     assert last is not None
-    return last
+    return with_stages(last, writer.attributes)
 
 
 def _segment(
@@ -387,14 +403,15 @@ def _attach() -> None:
 
     def run(
         self: Simulation,
-        t_end: float,
+        t_end: float | None = None,
         progress: bool = True,
         record_every: int = 1,
         *,
         output: str | os.PathLike[str] | None = None,
         record: str | Sequence[str] | None = None,
     ) -> Results:
-        """Run to t_end (s), recording the current state and every record_every-th step after it.
+        """Run to t_end (s; default: the end of the stages), recording the current state and every
+        record_every-th step after it.
 
         Without `output`: returns every record in memory (a Results). With `output` (a path): the records are
         streamed to that netCDF file as the run goes, in segments, so memory stays flat however long the run;

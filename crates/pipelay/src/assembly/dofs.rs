@@ -22,7 +22,7 @@ impl DofMap {
     /// Free DOFs of a model: all but those its supports prescribe and the rotations of its cable nodes.
     pub fn new(model: &Model) -> Self {
         let mut fixed = vec![false; NODE_DOFS * model.rod.node_count()];
-        for node in (0..model.rod.node_count()).filter(|&a| model.rod.is_cable_node(a)) {
+        for node in (0..model.rod.node_count()).filter(|&a| model.is_rotationless(a)) {
             let base = NODE_DOFS * node;
             fixed[base + 3..base + 6].iter_mut().for_each(|f| *f = true);
         }

@@ -164,7 +164,9 @@ impl RollerContact {
         let count = arcs.len() - 1;
         let total = arcs[count];
         let longest = arcs.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
-        let reach = 1.5 * lay.reach() + 3.0 * longest;
+        // The hold point is the winch's once it holds the line: its wire runs down the firing line first.
+        let hold = attachment.hang_off();
+        let reach = 1.5 * (lay.reach() + (hold - lay.hang_off).norm()) + 3.0 * longest;
         let end_node = attachment.node;
         // Elements whose reference arc length from the held end is within reach: from end A, those starting
         // within it; from end B, those ending within it.
@@ -183,7 +185,7 @@ impl RollerContact {
             .map(|r: &Roller| {
                 let axis = to_end * r.axis;
                 LocalRoller {
-                    centre: to_end * (r.centre - lay.hang_off),
+                    centre: to_end * (r.centre - hold),
                     normal: to_end * r.normal,
                     axis,
                     projector: Matrix3::identity() - axis * axis.transpose(),
@@ -492,6 +494,7 @@ mod tests {
             environment: Vec::new(),
             surface: 0.0,
             lay: Some(lay.clone()),
+            winch: None,
         };
         // A pipe 0.6 m across, 55 m in 11 elements.
         let section = crate::rod::section::Section::pipe(

@@ -24,13 +24,16 @@
 use crate::assembly::assembler::Assembler;
 use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::seabed::SeabedContact;
+use crate::dynamics::hand_over;
 use crate::dynamics::history::{History, Snapshot};
 use crate::dynamics::ledger::{Ledger, StepWork};
 use crate::dynamics::nodal::{node_start, NodalProperties};
 use crate::dynamics::observables::Observables;
 use crate::dynamics::pay_out::Growth;
 use crate::dynamics::remesh;
+use crate::dynamics::remesh::MeshChange;
 use crate::dynamics::rod_step::{rod_constants, ElementWork, NodeStart, RodConstants};
+use crate::dynamics::stages::Stages;
 use crate::dynamics::state::DynamicState;
 use crate::dynamics::vessel_waves::VesselWaves;
 use crate::environment::waves::Kinematics;
@@ -128,6 +131,10 @@ pub struct Integrator {
     pub(super) growth: Option<Growth>,
     /// In waves, with a vessel that has RAOs: its wave-frequency motion.
     pub(super) vessel_waves: Option<VesselWaves>,
+    /// The stages of the run, if it has any (set on the model by [`Integrator::with_stages`]).
+    pub(super) stages: Option<Stages>,
+    /// The axial force the winch's wire took on at the hand-over (N), once it happened in this run.
+    pub(super) handed_over: Option<f64>,
 }
 
 /// Round-off floor of the residual norm (N): internal forces carry errors of about 1e-16·EA per element, a
@@ -211,7 +218,40 @@ impl Integrator {
             offset_next: 0.0,
             filtered_next: 0.0,
             growth: None,
+            stages: None,
+            handed_over: None,
         })
+    }
+
+    /// An integrator of `model` run through `stages`, which are checked against it and set on it
+    /// ([`Stages::apply`]); a model restored from a checkpoint ([`Model::with_rod`]) must have had them applied
+    /// before its rod was replaced, which `restore` does.
+    pub fn with_stages(
+        mut model: Model,
+        state: DynamicState,
+        options: DynamicOptions,
+        mut stages: Stages,
+    ) -> Result<Self> {
+        stages.apply(&mut model, options.time_step)?;
+        let mut integrator = Integrator::new(model, state, options)?;
+        integrator.set_applied_stages(stages);
+        Ok(integrator)
+    }
+
+    /// Runs through `stages`, already applied to this integrator's model ([`Stages::apply`], as a restore
+    /// does before it replaces the rod).
+    pub fn set_applied_stages(&mut self, stages: Stages) {
+        self.stages = Some(stages);
+    }
+
+    /// The stages, if the run has any.
+    pub fn stages(&self) -> Option<&Stages> {
+        self.stages.as_ref()
+    }
+
+    /// The axial force the wire took on at the hand-over (N), if it happened in this run.
+    pub fn handed_over(&self) -> Option<f64> {
+        self.handed_over
     }
 
     /// The current state.
@@ -311,7 +351,25 @@ impl Integrator {
     /// Advances one time step Δt. Where Newton fails, the step is split into two halves, up to
     /// [`MAX_HALVINGS`] times; each sub-step keeps the exact energy balance.
     pub fn step(&mut self) -> Result<StepReport> {
+        if self
+            .stages
+            .as_ref()
+            .is_some_and(|stages| stages.hand_over_due(&self.model, self.state.time))
+        {
+            self.hand_over()?;
+        }
         pool::run(self.parallel(), || self.substep(self.options.time_step, 0))
+    }
+
+    /// Hands the line over to the winch ([`hand_over`]) and books the energy its wire and head bring in.
+    fn hand_over(&mut self) -> Result<()> {
+        let before = self.observe().energy().total();
+        let force = hand_over::hand_over(&mut self.model, &mut self.state, &mut self.reactions)?;
+        self.rebuild(None);
+        let after = self.observe().energy().total();
+        self.ledger.book_pay_out(after - before);
+        self.handed_over = Some(force);
+        Ok(())
     }
 
     fn substep(&mut self, dt: f64, depth: usize) -> Result<StepReport> {
@@ -417,6 +475,13 @@ impl Integrator {
         ) else {
             return;
         };
+        self.rebuild(Some(change));
+        let after = self.observe().energy().total();
+        self.ledger.book_pay_out(after - before);
+    }
+
+    /// Rebuilds what depends on the mesh after it changed by `change` (`None`: elements appended at end B).
+    fn rebuild(&mut self, change: Option<MeshChange>) {
         let rollers = self.assembler.rollers.take();
         let mut assembler = Assembler::new(&self.model);
         if let (Some(new), Some(old)) = (&mut assembler.rollers, rollers) {
@@ -425,7 +490,7 @@ impl Integrator {
             new.nearest_elements = old
                 .nearest_elements
                 .iter()
-                .map(|&e| change.renumbered(e))
+                .map(|&e| change.map_or(e, |c| c.renumbered(e)))
                 .collect();
         }
         self.contact = assembler.contact.take();
@@ -439,8 +504,6 @@ impl Integrator {
         self.element_work = vec![ElementWork::default(); count - 1];
         self.node_dissipation = vec![0.0; count];
         self.round_off = round_off(&self.model);
-        let after = self.observe().energy().total();
-        self.ledger.book_pay_out(after - before);
     }
 
     /// Accepts the converged increments: positions, rotations, velocities, Gauss points, reactions, ledger.

@@ -7,8 +7,10 @@
 //!   and tangent, of which [`rod_step`] is the rod's share; [`newton`]: Newton's method on the increments;
 //! - [`vessel_waves`]: the vessel's wave-frequency motion over a step;
 //! - [`pay_out`]: the growing end element within a step; [`remesh`]: the mesh change that follows;
+//! - [`stages`]: the stages of a lay as functions of time; [`hand_over`]: the line passed to the A&R winch;
 //! - [`ledger`]: the storage function and the work supplied and dissipated;
 //! - [`observables`]: what users read off a state; [`history`]: the record of a run.
+pub mod hand_over;
 pub mod history;
 pub mod integrator;
 pub mod ledger;
@@ -18,6 +20,7 @@ pub mod observables;
 pub mod pay_out;
 pub mod remesh;
 pub mod rod_step;
+pub mod stages;
 pub mod state;
 pub mod step_residual;
 pub mod vessel_waves;

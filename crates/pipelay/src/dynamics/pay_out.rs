@@ -41,7 +41,9 @@ impl Growth {
         let length_start = model.rod.elements[element].length;
         let length_next = length_start + speed * dt;
         if length_next < 0.05 * pay_out.element_length {
-            let reason = if model.rod.element_count() == 1 {
+            let reason = if model.is_last_wire_element(element) {
+                "the winch has hauled its wire in to the pipe's end: the hand-back to the tensioner is not modelled"
+            } else if model.rod.element_count() == 1 {
                 "pay-in has reached the last element: the pipe cannot be paid in further"
             } else {
                 "pays in more than half an element in one step: |speed|·dt must stay below 0.45 element_length"

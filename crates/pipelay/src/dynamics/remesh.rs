@@ -64,7 +64,10 @@ pub fn remesh(
         reactions.insert(node, Vector6::zeros());
         model.renumber_nodes(node, 1);
         Some(MeshChange::Inserted(node))
-    } else if length < 0.5 * nominal && model.rod.element_count() > 1 {
+    } else if length < 0.5 * nominal
+        && model.rod.element_count() > 1
+        && !model.is_last_wire_element(element)
+    {
         let first = if at_start { 0 } else { element - 1 };
         join(model, state, first, at_start);
         reactions.remove(first + 1);
@@ -230,7 +233,7 @@ fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
             state.gauss[element] = element_gauss_point(model, &state.configuration, element);
         }
         for a in node - 1..=node + 1 {
-            if model.rod.is_cable_node(a) {
+            if model.is_rotationless(a) {
                 state.body_angular_velocities[a] = Vector3::zeros();
             }
         }

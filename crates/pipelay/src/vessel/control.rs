@@ -4,7 +4,7 @@
 #![allow(clippy::indexing_slicing)]
 use super::euler;
 use crate::error::{finite, Error, Result};
-use crate::table::TimeFunction;
+use crate::table::{travel, Leg, TimeFunction};
 use nalgebra::{Matrix6, Vector2, Vector3, Vector6};
 
 /// The pose η_ref(t) the controller holds or follows, and its rate η̇_ref(t).
@@ -12,12 +12,12 @@ use nalgebra::{Matrix6, Vector2, Vector3, Vector6};
 pub enum Reference {
     /// A fixed pose [x, y, z, φ, θ, ψ] (m, rad).
     Fixed(Vector6<f64>),
-    /// A lay route: from `start` (x, y) at `start_time`, along `heading` ψ at `speed` (m/s); z, φ, θ zero.
+    /// A lay route: from `start` (x, y), along `heading` ψ, in legs of speed ([`Leg`], in time order, each
+    /// lasting until the next); before the first the route waits at `start`. z, φ, θ zero.
     Route {
         start: Vector2<f64>,
         heading: f64,
-        speed: f64,
-        start_time: f64,
+        legs: Vec<Leg>,
     },
     /// A function of time, and its rate (else central differences over a millisecond).
     Function {
@@ -33,11 +33,10 @@ impl std::fmt::Debug for Reference {
             Reference::Route {
                 start,
                 heading,
-                speed,
-                start_time,
+                legs,
             } => write!(
                 f,
-                "Route(start={:?}, heading={heading}, speed={speed}, start_time={start_time})",
+                "Route(start={:?}, heading={heading}, legs={legs:?})",
                 start.as_slice()
             ),
             Reference::Function { .. } => write!(f, "Function"),
@@ -53,16 +52,14 @@ impl PartialEq for Reference {
                 Reference::Route {
                     start: a,
                     heading: b,
-                    speed: c,
-                    start_time: d,
+                    legs: c,
                 },
                 Reference::Route {
-                    start: e,
-                    heading: g,
-                    speed: h,
-                    start_time: i,
+                    start: d,
+                    heading: e,
+                    legs: g,
                 },
-            ) => a == e && b == g && c == h && d == i,
+            ) => a == d && b == e && c == g,
             (Reference::Function { pose: a, .. }, Reference::Function { pose: b, .. }) => {
                 std::sync::Arc::ptr_eq(a, b)
             }
@@ -79,12 +76,10 @@ impl Reference {
             Reference::Route {
                 start,
                 heading,
-                speed,
-                start_time,
+                legs,
             } => {
                 let (sin, cos) = heading.sin_cos();
-                let moving = time > *start_time;
-                let travelled = speed * (time - start_time).max(0.0);
+                let (travelled, speed) = travel(legs, time);
                 let pose = Vector6::new(
                     start.x + travelled * cos,
                     start.y + travelled * sin,
@@ -93,11 +88,7 @@ impl Reference {
                     0.0,
                     *heading,
                 );
-                let rate = if moving {
-                    Vector6::new(speed * cos, speed * sin, 0.0, 0.0, 0.0, 0.0)
-                } else {
-                    Vector6::zeros()
-                };
+                let rate = Vector6::new(speed * cos, speed * sin, 0.0, 0.0, 0.0, 0.0);
                 Ok((pose, rate))
             }
             Reference::Function { pose, rate } => {
@@ -266,8 +257,42 @@ impl Reference {
         Ok(Reference::Route {
             start,
             heading,
-            speed,
-            start_time,
+            legs: vec![Leg {
+                start: start_time,
+                speed,
+                ramp: 0.0,
+            }],
+        })
+    }
+
+    /// This reference with the route's speed changed at times: `changes` holds legs in time order, each
+    /// replacing the route from its start. A fixed pose becomes a route from it along its heading, waiting
+    /// there until the first change; a function of time cannot take them (`key` names the first change in the
+    /// error).
+    pub fn with_speed_changes(&self, changes: &[Leg], key: &str) -> Result<Self> {
+        let (start, heading, mut legs) = match self {
+            Reference::Fixed(pose) => (Vector2::new(pose[0], pose[1]), pose[5], Vec::new()),
+            Reference::Route {
+                start,
+                heading,
+                legs,
+            } => (*start, *heading, legs.clone()),
+            Reference::Function { .. } => {
+                return Err(Error::input(
+                    key,
+                    "a route speed for a controller whose reference is a function of time",
+                    "needs a fixed pose or a pl.Route as the controller's reference",
+                ))
+            }
+        };
+        for &change in changes {
+            legs.retain(|leg| leg.start < change.start);
+            legs.push(change);
+        }
+        Ok(Reference::Route {
+            start,
+            heading,
+            legs,
         })
     }
 }
@@ -410,12 +435,7 @@ mod tests {
 
     #[test]
     fn a_route_waits_for_its_start_then_moves_at_its_speed() {
-        let route = Reference::Route {
-            start: Vector2::new(100.0, -5.0),
-            heading: 0.5,
-            speed: 2.0,
-            start_time: 10.0,
-        };
+        let route = Reference::route(Vector2::new(100.0, -5.0), 0.5, 2.0, 10.0).unwrap();
         let (before, rate_before) = route.at(4.0).unwrap();
         assert_eq!(before, Vector6::new(100.0, -5.0, 0.0, 0.0, 0.0, 0.5));
         assert_eq!(rate_before, Vector6::zeros());
@@ -424,6 +444,41 @@ mod tests {
         assert!((travelled.norm() - 30.0).abs() < 1e-12);
         assert!((travelled.y.atan2(travelled.x) - 0.5).abs() < 1e-12);
         assert!((rate.fixed_rows::<2>(0).norm() - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_route_in_legs_travels_each_at_its_speed() {
+        let route = Reference::route(Vector2::zeros(), 0.0, 1.0, 0.0)
+            .unwrap()
+            .with_speed_changes(
+                &[
+                    Leg {
+                        start: 10.0,
+                        speed: 0.0,
+                        ramp: 0.0,
+                    },
+                    Leg {
+                        start: 20.0,
+                        speed: 3.0,
+                        ramp: 0.0,
+                    },
+                ],
+                "stages[1].route_speed",
+            )
+            .unwrap();
+        // 10 m in the first leg, none in the second, 3 m/s after 20 s.
+        let (pose, rate) = route.at(15.0).unwrap();
+        assert!((pose.x - 10.0).abs() < 1e-12 && rate.x == 0.0);
+        let (pose, rate) = route.at(25.0).unwrap();
+        assert!((pose.x - 25.0).abs() < 1e-12 && rate.x == 3.0);
+        let fixed = Reference::Fixed(Vector6::new(5.0, 1.0, 0.0, 0.0, 0.0, 0.0));
+        let leg = Leg {
+            start: 2.0,
+            speed: 1.0,
+            ramp: 0.0,
+        };
+        let moving = fixed.with_speed_changes(&[leg], "k").unwrap();
+        assert!((moving.at(4.0).unwrap().0.x - 7.0).abs() < 1e-12);
     }
 
     #[test]

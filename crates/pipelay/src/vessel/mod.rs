@@ -9,6 +9,7 @@ pub mod lay;
 pub mod raos;
 pub mod rigid_body;
 pub mod wave_motion;
+pub mod winch;
 
 use control::Pid;
 
@@ -45,14 +46,24 @@ pub struct VesselAttachment {
     /// Lay equipment: where the pipe is held (body frame) and the rollers it runs over. `None`: the pipe's
     /// end is clamped at CO (the paper's model).
     pub lay: Option<lay::LayEquipment>,
+    /// The A&R winch, if any.
+    pub winch: Option<winch::Winch>,
 }
 
 impl VesselAttachment {
-    /// The hold point in the body frame, relative to CO (m): zero without lay equipment.
+    /// The hold point in the body frame, relative to CO (m): the winch's once it holds the line, else the lay
+    /// equipment's; zero without either.
     pub fn hang_off(&self) -> nalgebra::Vector3<f64> {
-        self.lay
-            .as_ref()
-            .map_or_else(nalgebra::Vector3::zeros, |lay| lay.hang_off)
+        match (&self.winch, &self.lay) {
+            (Some(winch), _) if winch.holds => winch.position,
+            (_, Some(lay)) => lay.hang_off,
+            _ => nalgebra::Vector3::zeros(),
+        }
+    }
+
+    /// The winch, if it holds the line.
+    pub fn holding_winch(&self) -> Option<&winch::Winch> {
+        self.winch.as_ref().filter(|w| w.holds)
     }
 
     /// The rollers (empty without lay equipment).

@@ -1,0 +1,208 @@
+//! Python classes Winch, Stage and Stages: the A&R winch on the vessel and the stages of a lay.
+use crate::convert::vector3;
+use crate::errors::{input, to_py};
+use crate::structure::{Clump, Section};
+use pipelay::dynamics::stages::{Hold, Stage as EngineStage};
+use pipelay::vessel::winch::Winch as EngineWinch;
+use pyo3::prelude::*;
+
+/// An abandonment and recovery (A&R) winch on the vessel. `position` (body frame, m): where its wire enters
+/// the firing line, on the line through the tensioner (or tower exit) along the pipe, ahead of it (forward
+/// in an S-lay, up the tower in a J-lay). `tension_limit` (N): the wire's rating, None for none. `wire`: the
+/// wire's `pl.Section.cable` (default: the line's top segment, if it is a cable). `element_length` (m): of the
+/// wire elements pay-out adds (default: the line's top element's). `head`: a `pl.Clump`, the laydown head
+/// fitted to the pipe's end at the hand-over. Give it to `Model.attach_vessel(..., winch=)`.
+#[pyclass(module = "pipelay", name = "Winch", frozen)]
+#[derive(Clone)]
+pub struct Winch {
+    pub winch: EngineWinch,
+    pub wire: Option<pipelay::rod::section::Section>,
+}
+
+#[pymethods]
+impl Winch {
+    #[new]
+    #[pyo3(signature = (position, tension_limit=None, *, wire=None, element_length=None, head=None))]
+    fn new(
+        position: &Bound<'_, PyAny>,
+        tension_limit: Option<f64>,
+        wire: Option<&Section>,
+        element_length: Option<f64>,
+        head: Option<&Clump>,
+    ) -> PyResult<Self> {
+        let position = vector3(position, "position")?;
+        // An element length of 0 stands for "the line's top element's", resolved by attach_vessel.
+        if let Some(length) = element_length {
+            pipelay::error::positive("element_length", length, "m").map_err(to_py)?;
+        }
+        let winch = EngineWinch::checked(
+            position,
+            tension_limit,
+            element_length.unwrap_or(1.0),
+            head.map(|h| h.0),
+        )
+        .map_err(to_py)?;
+        let winch = EngineWinch {
+            element_length: element_length.unwrap_or(0.0),
+            ..winch
+        };
+        Ok(Winch {
+            winch,
+            wire: wire.map(|w| w.0.clone()),
+        })
+    }
+
+    /// Where the wire enters the firing line (3,) (body frame, m).
+    #[getter]
+    fn position(&self) -> [f64; 3] {
+        self.winch.position.into()
+    }
+    /// The wire's rating (N), None for none.
+    #[getter]
+    fn tension_limit(&self) -> Option<f64> {
+        self.winch.tension_limit
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Winch(position={:?}, tension_limit={:?})",
+            self.winch.position.as_slice(),
+            self.winch.tension_limit
+        )
+    }
+}
+
+/// One stage of a lay: a `name`, a `duration` (s, a whole number of time steps) and what changes at its
+/// start; what it leaves at None carries on from the stage before. `pay_out`: the tensioner's pay-out speed
+/// (m/s; negative: pay-in). `route_speed`: the DP reference's speed along its route (m/s). `hold`:
+/// "tensioner" or "winch" — the first stage the winch holds starts with the hand-over of the line to it.
+/// `winch_speed`: the winch's pay-out speed once it holds (m/s; negative: haul-in; 0: the brake holds).
+/// `ramp` (s): the time the stage's speed changes take (default 10 s, or the duration if shorter): a step of
+/// the pay-out speed would send an axial wave of force √(EA·m)·Δv down the pipe.
+#[pyclass(module = "pipelay", name = "Stage", frozen)]
+#[derive(Clone)]
+pub struct Stage(pub EngineStage);
+
+#[pymethods]
+impl Stage {
+    #[new]
+    #[pyo3(signature = (name, duration=None, *, pay_out=None, route_speed=None, hold=None, winch_speed=None, ramp=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        name: String,
+        duration: Option<f64>,
+        pay_out: Option<f64>,
+        route_speed: Option<f64>,
+        hold: Option<&str>,
+        winch_speed: Option<f64>,
+        ramp: Option<f64>,
+    ) -> PyResult<Self> {
+        let Some(duration) = duration else {
+            return Err(input(
+                "duration",
+                "missing",
+                &format!("stage {name:?} needs a duration (s)"),
+            ));
+        };
+        let hold = hold
+            .map(|h| Hold::parse("hold", h))
+            .transpose()
+            .map_err(to_py)?;
+        let stage = EngineStage {
+            name,
+            duration,
+            pay_out,
+            route_speed,
+            hold,
+            winch_speed,
+            ramp,
+        };
+        // Checked alone here; against the model when a simulation takes the stages.
+        stage.check("").map_err(to_py)?;
+        Ok(Stage(stage))
+    }
+
+    #[getter]
+    fn name(&self) -> String {
+        self.0.name.clone()
+    }
+    /// Duration (s).
+    #[getter]
+    fn duration(&self) -> f64 {
+        self.0.duration
+    }
+    #[getter]
+    fn pay_out(&self) -> Option<f64> {
+        self.0.pay_out
+    }
+    #[getter]
+    fn route_speed(&self) -> Option<f64> {
+        self.0.route_speed
+    }
+    #[getter]
+    fn hold(&self) -> Option<&'static str> {
+        self.0.hold.map(|h| match h {
+            Hold::Tensioner => "tensioner",
+            Hold::Winch => "winch",
+        })
+    }
+    #[getter]
+    fn winch_speed(&self) -> Option<f64> {
+        self.0.winch_speed
+    }
+    /// The time the stage's speed changes take (s).
+    #[getter]
+    fn ramp(&self) -> f64 {
+        self.0.ramp_time()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Stage({:?}, duration={})", self.0.name, self.0.duration)
+    }
+}
+
+/// The stages of a lay, in order: `Model.simulation(state, dt, stages=)` runs through them in one run.
+#[pyclass(module = "pipelay", name = "Stages", frozen)]
+#[derive(Clone)]
+pub struct Stages(pub Vec<EngineStage>);
+
+#[pymethods]
+impl Stages {
+    #[new]
+    fn new(stages: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let mut list = Vec::new();
+        for (k, item) in stages.try_iter()?.enumerate() {
+            let item = item?;
+            let stage = item.cast::<Stage>().map_err(|_| {
+                input(
+                    &format!("stages[{k}]"),
+                    item.repr().map_or("?".into(), |r| r.to_string()),
+                    "must be a pl.Stage",
+                )
+            })?;
+            list.push(stage.get().0.clone());
+        }
+        pipelay::dynamics::stages::Stages::new(list.clone(), 0.0).map_err(to_py)?;
+        Ok(Stages(list))
+    }
+
+    fn __len__(&self) -> usize {
+        self.0.len()
+    }
+
+    /// The stages' names.
+    #[getter]
+    fn names(&self) -> Vec<String> {
+        self.0.iter().map(|s| s.name.clone()).collect()
+    }
+
+    /// The total duration (s).
+    #[getter]
+    fn duration(&self) -> f64 {
+        self.0.iter().map(|s| s.duration).sum()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Stages({:?})", self.names())
+    }
+}

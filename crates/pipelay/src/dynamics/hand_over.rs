@@ -1,0 +1,92 @@
+//! The hand-over of the line from the tensioner to the A&R winch, at the start of the first stage the winch
+//! holds ([`crate::dynamics::stages`]). The winch's wire runs down the firing line from the winch to the
+//! pipe's end at the hold point: it joins the mesh as one cable element, stretched to carry the pipe's axial
+//! force at the hold point (its unstretched length l/(1 + N/EA)), so the axial force passes from the
+//! tensioner to the wire without a jump. The vessel then holds the wire's end at the winch (a new node, where
+//! the vessel's rigid motion puts it), and the pipe's end, released by the tensioner, keeps its state: its
+//! rotation becomes free (the rod–cable joint is a pin) and the tensioner's shear and moment are let go.
+//! The laydown head is fitted at the pipe's end ([`crate::model::Model::hold_by_winch`]). The energy the wire
+//! and head bring in is booked with pay-out's by the integrator.
+// Indexing cannot go out of bounds here: the vessel's node is end B, the last node of the mesh.
+#![allow(clippy::indexing_slicing)]
+use crate::dynamics::state::DynamicState;
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::rod::cable::gauss_point as cable_gauss_point;
+use crate::rod::element::ElementReference;
+use crate::vessel::coupling::body_rotation;
+use nalgebra::{Vector2, Vector3, Vector6};
+
+/// Hands the line over to the winch: appends the wire's element and node and moves the vessel's hold to
+/// it. `reactions` follow the nodes. Returns the axial force the wire takes on (N).
+pub fn hand_over(
+    model: &mut Model,
+    state: &mut DynamicState,
+    reactions: &mut Vec<Vector6<f64>>,
+) -> Result<f64> {
+    let Some((attachment, winch)) = model
+        .vessel
+        .as_ref()
+        .and_then(|v| v.winch.as_ref().map(|w| (v, w)))
+    else {
+        return Err(Error::input(
+            "hold",
+            "\"winch\"",
+            "needs a winch on the vessel: attach_vessel(..., winch=pl.Winch(...))",
+        ));
+    };
+    let node = attachment.node;
+    if node != model.rod.element_count() {
+        return Err(Error::input(
+            "hold",
+            "\"winch\" with the vessel at end A",
+            "the winch holds the line's end B: attach the vessel there",
+        ));
+    }
+    let rotation = state.configuration.rotations[node];
+    let offset = body_rotation(attachment, &rotation) * (winch.position - attachment.hang_off());
+    let wire = winch.wire;
+    // The axial force at the hold point: that of the top element.
+    let top = node - 1;
+    let section = model.rod.section(top);
+    let force = (section.c_t() * (state.gauss[top].strain - model.rod.elements[top].strain)).x;
+    let chord = offset.norm();
+    let length =
+        chord / (1.0 + force.max(0.0) / model.rod.sections[wire].translational_stiffness.x);
+    let direction = offset / chord;
+
+    let rod = &mut model.rod;
+    let reference_end = rod.nodes[node] + direction * length;
+    rod.nodes.push(reference_end);
+    let frame = rod.frames[node];
+    rod.frames.push(frame);
+    rod.elements.push(ElementReference {
+        length,
+        strain: Vector3::zeros(),
+        curvature: Vector3::zeros(),
+    });
+    rod.segment_of.push(wire);
+
+    let spin = rotation * state.body_angular_velocities[node];
+    let configuration = &mut state.configuration;
+    configuration
+        .positions
+        .push(configuration.positions[node] + offset);
+    configuration.rotations.push(rotation);
+    state
+        .velocities
+        .push(state.velocities[node] + spin.cross(&offset));
+    state.accelerations.push(state.accelerations[node]);
+    state
+        .body_angular_velocities
+        .push(state.body_angular_velocities[node]);
+    state.slips.push(Vector2::zeros());
+    state.gauss.push(cable_gauss_point(&offset, length));
+    reactions.push(reactions[node]);
+    reactions[node] = Vector6::zeros();
+    if let Some(attachment) = model.vessel.as_mut() {
+        attachment.node = node + 1;
+    }
+    model.hold_by_winch();
+    Ok(force)
+}

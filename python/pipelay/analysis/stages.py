@@ -1,0 +1,171 @@
+"""What each stage of a lay did: the extremes users check per stage (``Results.stage_summary``), and the laydown
+head's track.
+
+A run through ``pl.Stages`` marks each record with its stage (``results.stage``: the stage whose steps end
+there). The summary takes, per stage, the extremes of the top tension (at the tensioner or the winch), of the
+A&R wire's tension, of the pipe's axial force and strain, of the DNV-ST-F101 utilisation (with ``checks``),
+of the touchdown's arc length and of the roller loads, and the laydown head's position (the node where the
+wire meets the pipe) and its height above the seabed.
+
+Units: N, m, s; strains and utilisations are dimensionless.
+
+Imports of pipelay: the engine (`pipelay._core`) and `pipelay.analysis.extremes`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from pipelay._core import InputError, Model, Results
+
+__all__ = ["head_positions", "stage_summary", "wire_segments"]
+
+FloatArray = npt.NDArray[np.float64]
+
+
+def wire_segments(results: Results, model: Model | None = None) -> set[int]:
+    """The segments of `results` that are cables: those of `model`'s sections that are (the A&R wire among
+    them: ``attach_vessel(winch=)`` adds its section); without a model, the segment of the top element at the
+    last record if it differs from that at the first (the wire a hand-over joined), else none."""
+    if model is not None:
+        return {k for k, section in enumerate(model.rod.sections) if section.is_cable}
+    segment = results.segment
+    top = [_top_element(row) for row in segment[[0, -1]]]
+    first, last = (int(segment[i, e]) for i, e in zip((0, -1), top, strict=True))
+    return {last} if last != first else set()
+
+
+def _top_element(row: FloatArray) -> int:
+    """The last element a record has (the rest is NaN padding of a run with pay-out)."""
+    return int(np.flatnonzero(np.isfinite(row))[-1])
+
+
+def head_positions(results: Results, model: Model | None = None) -> FloatArray:
+    """The laydown head's position in each record (T, 3) (m, in e): the first node of the trailing run of wire
+    elements (see `wire_segments`); NaN rows where the line has no wire at its top."""
+    wires = wire_segments(results, model)
+    segment = results.segment
+    positions = results.positions
+    heads = np.full((len(segment), 3), np.nan)
+    if not wires:
+        return heads
+    for k, row in enumerate(segment):
+        top = _top_element(row)
+        is_wire = np.isin(row[: top + 1], list(wires))
+        if not is_wire[top]:
+            continue
+        run = int(np.argmax(~is_wire[::-1])) if not is_wire.all() else top + 1
+        node = top + 1 - run
+        if node > 0:
+            heads[k] = positions[k, node]
+    return heads
+
+
+def stage_summary(
+    results: Results,
+    model: Model | None = None,
+    checks: Mapping[str, Any] | None = None,
+) -> Any:
+    """Per stage of a staged run, the extremes users check, as a ``pandas.DataFrame`` (one row per stage, in
+    order; columns below, NaN where a stage has no such value).
+
+    Columns: ``name``; ``start``, ``end`` (s); ``top_tension_max``, ``top_tension_min`` (N, at the hold:
+    tensioner, tower or winch); ``wire_tension_max``, ``wire_tension_min`` (N, over the wire's elements);
+    ``pipe_force_min`` (N, the pipe's smallest axial force: negative is compression); ``strain_max`` (the
+    largest of the lay summary's overbend and sagbend strains); ``utilisation_max`` (DNV-ST-F101, with
+    `checks`); ``touchdown_min``, ``touchdown_max`` (m, touchdown's arc length from end A);
+    ``roller_reaction_max`` (N); ``head_x``, ``head_z`` (m, the head at the stage's end); ``head_height_min``
+    (m, the head's least height above the plane of end A's seabed, z = 0).
+
+    Args:
+        results: a run through ``pl.Stages``.
+        model: the model run (its sections tell the wire from the pipe, and its pipe section serves the
+            checks); without it the wire is found as ``wire_segments`` says.
+        checks: keyword arguments of ``pipelay.checks.dnv_st_f101`` (e.g. ``{"grade": "X65"}``) evaluated at
+            every record on the pipe's elements (needs `model`); None: no utilisation column.
+
+    Raises:
+        pipelay.InputError: for results of a run without stages, or `checks` without a model.
+    """
+    import pandas as pd
+
+    stage = results.stage
+    names, starts = results.stage_names, results.stage_starts
+    if stage is None or names is None or starts is None:
+        raise InputError("results: results of a run through pl.Stages (stage_summary), got a run without stages")
+    wires = wire_segments(results, model)
+    forces = results.section_forces[:, :, 0]
+    segment = results.segment
+    is_wire = np.isin(segment, list(wires)) & np.isfinite(segment)
+    is_pipe = ~is_wire & np.isfinite(segment)
+    lay = results.lay_summary() or {}
+    top = lay.get("top_tension", np.full(len(stage), np.nan))
+    strain = np.fmax(lay.get("overbend_strain", np.nan), lay.get("sagbend_strain", np.nan))
+    touchdown = results.touchdown_arc_length
+    rollers = results.roller_reactions
+    heads = head_positions(results, model)
+    utilisation = _pipe_utilisation(results, model, checks, is_pipe) if checks is not None else None
+    rows = []
+    for k, name in enumerate(names):
+        records = np.flatnonzero(stage == k)
+        row: dict[str, Any] = {"name": name, "start": float(starts[k]), "end": float(starts[k + 1])}
+        row["top_tension_max"] = _extreme(top[records], np.nanmax)
+        row["top_tension_min"] = _extreme(top[records], np.nanmin)
+        row["wire_tension_max"] = _extreme(np.where(is_wire, forces, np.nan)[records], np.nanmax)
+        row["wire_tension_min"] = _extreme(np.where(is_wire, forces, np.nan)[records], np.nanmin)
+        row["pipe_force_min"] = _extreme(np.where(is_pipe, forces, np.nan)[records], np.nanmin)
+        row["strain_max"] = _extreme(np.asarray(strain)[records], np.nanmax)
+        if utilisation is not None:
+            row["utilisation_max"] = _extreme(utilisation[records], np.nanmax)
+        row["touchdown_min"] = _extreme(touchdown[records], np.nanmin) if touchdown is not None else np.nan
+        row["touchdown_max"] = _extreme(touchdown[records], np.nanmax) if touchdown is not None else np.nan
+        row["roller_reaction_max"] = _extreme(rollers[records], np.nanmax) if rollers is not None else np.nan
+        last = records[-1] if len(records) else None
+        row["head_x"] = float(heads[last, 0]) if last is not None else np.nan
+        row["head_z"] = float(heads[last, 2]) if last is not None else np.nan
+        row["head_height_min"] = _extreme(-heads[records, 2], np.nanmin)
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _extreme(values: FloatArray, reduce: Any) -> float:
+    """`reduce` (np.nanmax or np.nanmin) of `values`, NaN when there is no finite value."""
+    values = np.asarray(values, dtype=np.float64)
+    if values.size == 0 or not np.isfinite(values).any():
+        return float("nan")
+    return float(reduce(values))
+
+
+def _pipe_utilisation(
+    results: Results, model: Model | None, checks: Mapping[str, Any], is_pipe: npt.NDArray[np.bool_]
+) -> FloatArray:
+    """The DNV-ST-F101 utilisation of the pipe's elements at every record (T, n), NaN on the wire's."""
+    from pipelay.analysis.extremes import utilisation
+
+    if model is None:
+        raise InputError("model: the model run, for the checks of stage_summary (its pipe section), got None")
+    pipes = [section for section in model.rod.sections if not section.is_cable]
+    if not pipes:
+        raise InputError("model: a model with a pipe section to check, got one of cables only")
+    values = utilisation(results, section=pipes[0], sea=model.sea, checks=checks)
+    return np.where(is_pipe, values, np.nan)
+
+
+def _attach() -> None:
+    """Makes `stage_summary` a method of the engine's Results: ``Results.stage_summary``."""
+
+    def results_stage_summary(
+        self: Results, model: Model | None = None, checks: Mapping[str, Any] | None = None
+    ) -> Any:
+        """Per stage, the extremes of tensions, strain, utilisation, touchdown, roller loads and the head's
+        position (a pandas.DataFrame): see pipelay.analysis.stages.stage_summary."""
+        return stage_summary(self, model, checks)
+
+    Results.stage_summary = results_stage_summary  # type: ignore[attr-defined]
+
+
+_attach()
