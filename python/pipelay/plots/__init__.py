@@ -1,6 +1,7 @@
 """Figures of a pipelay run: pipe shapes, vessel motion, top tension, tension and bending along the pipe, the
 energy balance, and for a lay with pay-out the touchdown's track, the laid pipe's deviation from the route and
-the top tension of several runs.
+the top tension of several runs, and for a staged lay the tensions over the stages and the line at the end of
+each.
 
 Every function returns a :class:`matplotlib.figure.Figure` drawn on its own Agg canvas (pyplot is not used, so
 neither the user's backend nor pyplot's list of open figures is touched) and, when ``path`` is given, also
@@ -17,8 +18,9 @@ Usage::
     plots.all_figures(results, "figures", depth=800.0)
 
 The figures come in families, one module each: `pipelay.plots.run` (any run, and `all_figures`),
-`pipelay.plots.lay` (a lay), `pipelay.plots.operability` (a sweep), all drawn on `pipelay.plots.canvas`; this
-package has the names of them all, those the module ``pipelay.plots`` had.
+`pipelay.plots.lay` (a lay), `pipelay.plots.stages` (a staged lay), `pipelay.plots.operability` (a sweep), all
+drawn on `pipelay.plots.canvas`; this package has the names of them all, those the module ``pipelay.plots``
+had, and those added since.
 
 Imports of pipelay: the engine and these modules (the lay configuration's checks through ``pl.checks``).
 """
@@ -35,6 +37,7 @@ from pipelay.plots.lay import (
 )
 from pipelay.plots.operability import operability
 from pipelay.plots.run import all_figures, energy, shape, tension_and_bending, top_tension, vessel_motion
+from pipelay.plots.stages import stage_configurations, stage_tensions
 
 __all__ = [
     "all_figures",
@@ -45,6 +48,8 @@ __all__ = [
     "lay_summary",
     "operability",
     "shape",
+    "stage_configurations",
+    "stage_tensions",
     "tension_and_bending",
     "tension_comparison",
     "top_tension",

@@ -1,7 +1,8 @@
 """The figures of any run: the pipe's shape, the vessel's motion, the top tension, tension and bending along the
 pipe, the energy balance; and `all_figures`, which writes every figure that applies to a run.
 
-Imports of pipelay: the engine (`pipelay._core`), `pipelay.plots.canvas` and `pipelay.plots.lay`.
+Imports of pipelay: the engine (`pipelay._core`), `pipelay.plots.canvas`, `pipelay.plots.lay` and
+`pipelay.plots.stages`.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from pipelay.plots.canvas import (
     _time_label,
 )
 from pipelay.plots.lay import lay_accuracy, lay_summary, touchdown_path, touchdown_track
+from pipelay.plots.stages import stage_configurations, stage_tensions
 
 __all__ = ["all_figures", "energy", "shape", "tension_and_bending", "top_tension", "vessel_motion"]
 
@@ -279,13 +281,13 @@ def all_figures(
     Files: shape.png, vessel_motion.png (only with a vessel), touchdown.png (only with a seabed),
     touchdown_track.png and lay_accuracy.png (only with pay-out, a vessel and a seabed), top_tension.png
     (end B), lay_summary.png (only with lay equipment's rollers), tension_bending.png, energy.png, with the
-    default times.
+    default times, and stage_tensions.png and stage_configurations.png (only for a run through pl.Stages).
 
     Args:
         results: a run.
         directory: the output folder.
         reference: η_ref for `vessel_motion` (m, rad; NaN entries not drawn); unused without a vessel.
-        depth: water depth (m) for `shape`'s sea surface and seabed lines.
+        depth: water depth (m) for the sea surface and seabed lines of `shape` and `stage_configurations`.
         route: the lay route for the pay-out figures, a pl.Route or ((x, y), heading) (m, rad); None: the line
             through the vessel's first position along its first heading.
 
@@ -316,4 +318,9 @@ def all_figures(
     tension_and_bending(results, path=written[-1])
     written.append(out / "energy.png")
     energy(results, path=written[-1])
+    if results.stage is not None:
+        written.append(out / "stage_tensions.png")
+        stage_tensions(results, path=written[-1])
+        written.append(out / "stage_configurations.png")
+        stage_configurations(results, path=written[-1], depth=depth)
     return written
