@@ -28,6 +28,7 @@ from __future__ import annotations
 import argparse
 import copy
 import json
+import os
 import sys
 import tomllib
 from pathlib import Path
@@ -41,8 +42,8 @@ from pipelay.analysis.lay import TARGETS, find_lay_position
 from pipelay.analysis.suspect import PhysicsWarning, worst_of_each_kind
 from pipelay.analysis.sweep import SUMMARY_TITLE, _label, sweep
 from pipelay.analysis.sweep import run as run_simulation
-from pipelay.analysis.sweep import start as start_simulation
-from pipelay.results import checkpoint, load
+from pipelay.analysis.sweep import start as start_without_stages
+from pipelay.results import checkpoint, load, resume
 from pipelay.scenario import Scenario, load_scenario, parse_scenario
 
 INTERRUPTED = 130
@@ -53,7 +54,10 @@ def _parser() -> argparse.ArgumentParser:
         prog="pipelay", description="Offshore pipelay simulation from scenario files."
     )
     commands = parser.add_subparsers(dest="command", required=True)
-    run = commands.add_parser("run", help="statics, then a simulation to solver.t_end; writes netCDF results")
+    run = commands.add_parser(
+        "run",
+        help="statics, then a simulation to solver.t_end (or through the stages); writes netCDF results",
+    )
     run.add_argument("scenario", type=Path, help="scenario file (TOML)")
     run.add_argument(
         "-o",
@@ -128,6 +132,22 @@ def _parser() -> argparse.ArgumentParser:
     schema = commands.add_parser("schema", help="the JSON Schema of scenario files")
     schema.add_argument("-o", "--output", type=Path, help="write it to this file instead of printing it")
     return parser
+
+
+def start_simulation(scenario: Scenario, checkpoint: str | os.PathLike[str] | None = None) -> pl.Simulation:
+    """The simulation of a scenario from its static state, or continued from a `checkpoint` file, through
+    its `[[stages]]` (`scenario.stages`; a resumed run through them too, `pl.resume(..., stages=)`). Without
+    stages it is `pipelay.analysis.sweep.start`, the start of a sweep's case.
+
+    Raises InputError if the scenario has neither `solver.t_end` nor stages, or if the stages do not fit the
+    model (naming `stages[k].key`); ConvergenceError if the statics fail.
+    """
+    if scenario.stages is None:
+        return start_without_stages(scenario, checkpoint)
+    if checkpoint is not None:
+        return resume(scenario.model, checkpoint, stages=scenario.stages)
+    state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
+    return scenario.model.simulation(state=state, dt=scenario.dt, stages=scenario.stages)
 
 
 def _reference(scenario: Scenario) -> list[float] | None:
@@ -372,6 +392,8 @@ def _check(args: argparse.Namespace) -> int:
         if scenario.t_end
         else "statics only"
     )
+    if scenario.stages is not None:
+        run += f" through {len(scenario.stages)} stages ({', '.join(scenario.stages.names)})"
     print(f"{args.scenario}: valid: {rod.elements} elements, {rod.length:g} m, {vessel}; {run}")
     return 0
 

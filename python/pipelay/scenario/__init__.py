@@ -9,9 +9,13 @@ from pipelay.scenario import load_scenario
 scenario = load_scenario("examples/jensen2009.toml")
 state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
 if scenario.t_end is not None:
-    simulation = scenario.model.simulation(state=state, dt=scenario.dt)
+    simulation = scenario.model.simulation(state=state, dt=scenario.dt, stages=scenario.stages)
     results = simulation.run(scenario.t_end, record_every=scenario.record_every)
 ```
+
+`scenario.stages` is the file's `[[stages]]` as a `pl.Stages` (None without them; `scenario.t_end` is then the
+end of the last stage unless `solver.t_end` says otherwise); a run resumed from a checkpoint takes them too,
+`pl.resume(scenario.model, path, stages=scenario.stages)`.
 
 Any mistake raises `pl.InputError` whose message starts with the key path, states the value and what is
 allowed, and ends with the file, e.g. `pipe.outer_diameter: must be > 0 m, got -0.6 (in lay.toml)`. Unknown

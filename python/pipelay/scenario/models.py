@@ -23,10 +23,12 @@ from pydantic import Discriminator, Field, Tag, model_validator
 
 from pipelay.scenario.models_vessel import (
     ArcStinger,
+    Cable,
     Controller,
     ControllerTable,
     Environment,
     FixedController,
+    Head,
     JLay,
     Lay,
     MatrixVessel,
@@ -40,6 +42,7 @@ from pipelay.scenario.models_vessel import (
     Tension,
     Vessel,
     VesselTable,
+    Winch,
 )
 from pipelay.scenario.values import (
     AXES,
@@ -70,6 +73,7 @@ __all__ = [
     "MAX_ELEMENTS",
     "ArcStinger",
     "Bathymetry",
+    "Cable",
     "Clamp",
     "Controller",
     "ControllerTable",
@@ -81,6 +85,7 @@ __all__ = [
     "FlatBathymetry",
     "Gravity",
     "GridBathymetry",
+    "Head",
     "JLay",
     "JonswapWaves",
     "Lay",
@@ -106,6 +111,7 @@ __all__ = [
     "Seabed",
     "Section",
     "Solver",
+    "Stage",
     "Stinger",
     "StraightRod",
     "Support",
@@ -116,6 +122,7 @@ __all__ = [
     "Vessel",
     "VesselTable",
     "Waves",
+    "Winch",
 ]
 
 MAX_ELEMENTS = 1_000_000
@@ -220,20 +227,6 @@ class Section(Table):
     rotational_damping: Annotated[
         float | list[float] | None, number_or_vector(3, Number("N·m·s/m", ge=0), "[t1, t2, t3]")
     ] = api("a number or [t1, t2, t3], ≥ 0", 0)
-
-
-class Cable(Table):
-    """`pl.Section.cable`: a cable segment's section (wire rope, chain): tension only, no bending or torsion."""
-
-    diameter: Annotated[float, POSITIVE_LENGTH] = Field(description="nominal diameter, > 0")
-    mass: Annotated[float, Number("kg/m", gt=0)] = Field(description="mass per unit length in air, > 0")
-    EA: Annotated[float, Number("N", gt=0)] = Field(description="axial stiffness, > 0")
-    drag: Annotated[list[float] | None, COEFFICIENTS] = api(
-        "Morison drag coefficients [axial, normal] on the diameter, ≥ 0", [0, 1.2]
-    )
-    added_mass: Annotated[list[float] | None, COEFFICIENTS] = api(
-        "added-mass coefficients [axial, normal], ≥ 0", [0, 1]
-    )
 
 
 class LineSegment(Table):
@@ -604,8 +597,57 @@ class Attachment(Table):
     )
 
 
+_STAGE_RAMP = 10.0
+"""The time a stage's speed changes take unless it says (s), or its duration if shorter (`pl.Stage`)."""
+
+
+class Stage(Table):
+    """`pl.Stage`, one table per stage of the lay, in order: `model.simulation(..., stages=pl.Stages([...]))`
+    runs through them in one run, from t = 0.
+
+    Each stage lasts `duration` and sets, at its start, what it gives; what it leaves out carries on from the
+    stage before (at first: no pay-out, the route's own speed, the tensioner or tower holding the line). A
+    change of speed is linear over the stage's `ramp`, from the speed before: the length paid out is the
+    integral of those ramped speeds. The first stage with `hold = "winch"` starts with the hand-over to
+    `[vessel.winch]`: the tensioner's speed ramps to 0 (the winch's brake then holds) and the winch holds the
+    line from then on (there is no hand-back); `winch_speed` pays its wire out. With stages, `solver.t_end`
+    defaults to the end of the last stage (past it, a later `t_end` runs on at the last stage's speeds)."""
+
+    name: Annotated[str, Text()] = Field(description="the stage's name, for the results (`res.stage_names`)")
+    duration: Annotated[float, Number("s", gt=0)] = Field(
+        description="how long the stage lasts, > 0: a whole number of time steps `solver.dt`"
+    )
+    pay_out: Annotated[float | None, Number("m/s")] = api(
+        "the tensioner's pay-out speed of unstretched pipe (< 0 pays in), while it holds the line",
+        words="the stage before's (at first 0)",
+    )
+    route_speed: Annotated[float | None, Number("m/s")] = api(
+        "the DP reference's speed along its route (a fixed `reference` moves along its heading ψ)",
+        words="the stage before's (at first the route's, or 0 for a fixed `reference`)",
+    )
+    hold: Annotated[Literal["tensioner", "winch"] | None, Choice(("tensioner", "winch"))] = api(
+        'who holds the line: `"tensioner"` (or the tower) or `"winch"` (the first such stage hands over)',
+        words="the stage before's (at first the tensioner)",
+    )
+    winch_speed: Annotated[float | None, Number("m/s")] = api(
+        "the winch's pay-out speed once it holds the line (< 0 hauls in; 0: the brake holds)",
+        words="the stage before's (at first 0)",
+    )
+    ramp: Annotated[float | None, Number("s", ge=0)] = api(
+        "time the stage's speed changes take, linear from the speeds before, in [0, duration]",
+        words=f"{_STAGE_RAMP:g} s, or the duration if shorter",
+    )
+
+    @model_validator(mode="after")
+    def ramp_within_the_stage(self) -> Stage:
+        """The ramp ends within the stage."""
+        if self.ramp is not None and self.ramp > self.duration:
+            raise rule(f"must be <= duration = {self.duration:g} s, got {self.ramp:g}", "ramp")
+        return self
+
+
 class Solver(Table):
-    """`model.static(steps, start)`, `model.simulation(dt)`, `simulation.run(t_end, record_every)`."""
+    """`model.static(steps, start)`, `model.simulation(dt, stages)`, `simulation.run(t_end, record_every)`."""
 
     static_steps: Annotated[int | None, Integer(1)] = api(
         "initial number of (adaptive) static load steps, ≥ 1", 1
@@ -615,7 +657,7 @@ class Solver(Table):
     ] = Field("auto", description='Newton\'s start: `"auto"`, `"reference"` or `"catenary"`')
     dt: Annotated[float, Number("s", gt=0)] = Field(0.05, description="time step, > 0")
     t_end: Annotated[float | None, Number("s", gt=0)] = api(
-        "end of the time simulation, > 0; none: statics only"
+        "end of the time simulation, > 0; none: the end of the `[[stages]]`, or statics only without them"
     )
     record_every: Annotated[int, Integer(1)] = Field(
         1, description="record every k-th time step, an integer ≥ 1"
@@ -626,7 +668,7 @@ class Output(Table):
     """For the figures; kept in `Scenario.output` for the program that runs the scenario."""
 
     plot_times: Annotated[list[float] | None, Vector(None, Number("s", ge=0), at_least=1)] = api(
-        "times of the pipe shapes to plot, each in [0, t_end]; none: the plotter's choice"
+        "times of the pipe shapes to plot, each in [0, the run's end]; none: the plotter's choice"
     )
 
 
@@ -636,7 +678,10 @@ class ScenarioFile(Table):
     Each table is checked on its own first, then the rules across tables: exactly one of `[pipe]` and
     `[section]`, point loads on nodes that exist, something that holds the rod (`[supports]` or a `[vessel]`,
     not both at one end), a `[sea]` for a `[vessel]` and a `[vessel]` for a `[controller]` or
-    `[[environment]]`, a `[controller.route]` for a pay-out at the route's speed, plot times within the run.
+    `[[environment]]`, a `[controller.route]` for a pay-out at the route's speed, a wire and lay equipment
+    for a `[vessel.winch]`, `[[stages]]` that fit the model (a winch for `hold = "winch"` and `winch_speed`,
+    the winch holding the line for `winch_speed` and not for `pay_out`, a `[controller]` for `route_speed`, no
+    `[pay_out]` beside stages that pay out, durations of whole time steps), plot times within the run.
     """
 
     title: Annotated[str | None, Text()] = api("a name for the scenario (text; kept in `Scenario.source`)")
@@ -660,6 +705,7 @@ class ScenarioFile(Table):
     pay_out: PayOut | None = None
     environment: list[Environment] = []  # noqa: RUF012 (as point_loads)
     attachments: list[Attachment] = []  # noqa: RUF012 (as point_loads)
+    stages: list[Stage] = []  # noqa: RUF012 (as point_loads)
     solver: Solver = Solver()
     output: Output = Output()
 
@@ -670,8 +716,26 @@ class ScenarioFile(Table):
         self._nodes_exist()
         self._something_holds_the_rod()
         self._pay_out_speed_has_a_route()
+        self._winch_has_a_wire_and_a_lay()
+        self._stages_fit_the_model()
         self._plots_within_the_run()
         return self
+
+    def run_end(self) -> float | None:
+        """The end of the time simulation (s): `solver.t_end`, else the end of the last stage; None (no
+        `t_end`, no stages): statics only."""
+        if self.solver.t_end is not None:
+            return self.solver.t_end
+        if not self.stages:
+            return None
+        end = 0.0
+        for stage in self.stages:  # summed in order, as the engine sums the stages' starts
+            end += stage.duration
+        return end
+
+    def _top_is_a_cable(self) -> bool:
+        """Whether the line's top segment (at end B) is a cable."""
+        return self.line is not None and self.line.segments[-1].cable is not None
 
     def _one_cross_section(self) -> None:
         if self.line is not None:
@@ -724,9 +788,60 @@ class ScenarioFile(Table):
             reason = '"route" needs a [controller.route] to take the speed from; there is none'
             raise rule(reason, "pay_out.speed")
 
+    def _winch_has_a_wire_and_a_lay(self) -> None:
+        vessel = self.vessel
+        if vessel is None or vessel.winch is None:
+            return
+        if vessel.winch.wire is None and not self._top_is_a_cable():
+            reason = (
+                "missing required section; give the A&R wire: [vessel.winch.wire] with the keys of "
+                "pl.Section.cable (the line's top is not a cable to take it from)"
+            )
+            raise rule(reason, "vessel.winch.wire")
+        if vessel.lay is None and not (vessel.end == "B" and self._top_is_a_cable()):
+            reason = "needs [vessel.lay]: the winch takes the line over from its tensioner or tower"
+            raise rule(reason, "vessel.winch")
+
+    def _stages_fit_the_model(self) -> None:
+        winch = None if self.vessel is None else self.vessel.winch
+        from_start = winch is not None and self.vessel is not None and self.vessel.end == "B"
+        holds = "winch" if from_start and self._top_is_a_cable() else "tensioner"
+        dt = self.solver.dt
+        for k, stage in enumerate(self.stages):
+            key = f"stages[{k}]"
+            steps = stage.duration / dt
+            if abs(steps - round(steps)) > 1e-6 * max(steps, 1.0):
+                whole = f"must be a whole number of time steps solver.dt = {dt:g} s, got {stage.duration:g}"
+                raise rule(whole, f"{key}.duration")
+            if stage.hold == "winch" and winch is None:
+                raise rule("needs a [vessel.winch] to hand the line over to", f"{key}.hold")
+            if stage.hold == "tensioner" and holds == "winch":
+                back = "the winch holds the line by then; the hand-back to the tensioner is not modelled"
+                raise rule(back, f"{key}.hold")
+            holds = stage.hold or holds
+            if stage.winch_speed is not None and winch is None:
+                raise rule("needs a [vessel.winch] to pay out", f"{key}.winch_speed")
+            if stage.winch_speed is not None and holds != "winch":
+                first = 'the tensioner holds the line in this stage: hand over first (hold = "winch")'
+                raise rule(first, f"{key}.winch_speed")
+            if stage.pay_out is not None and holds == "winch":
+                raise rule("the winch holds the line in this stage: set winch_speed", f"{key}.pay_out")
+            if stage.route_speed is not None and self.controller is None:
+                raise rule("needs a [controller] whose reference it moves", f"{key}.route_speed")
+            paying = [name for name in ("pay_out", "winch_speed") if getattr(stage, name) is not None]
+            paying += ["hold"] if stage.hold == "winch" else []
+            if paying and self.pay_out is not None:
+                twice = "conflicts with [pay_out]: the stages set the pay-out speed; give it one way"
+                raise rule(twice, f"{key}.{paying[0]}")
+
     def _plots_within_the_run(self) -> None:
-        t_end = self.solver.t_end
-        limit = "0 s: statics only (no solver.t_end)" if t_end is None else f"<= solver.t_end = {t_end:g} s"
+        t_end = self.run_end()
+        if t_end is None:
+            limit = "0 s: statics only (no solver.t_end or [[stages]])"
+        elif self.solver.t_end is None:
+            limit = f"<= the end of the [[stages]] = {t_end:g} s"
+        else:
+            limit = f"<= solver.t_end = {t_end:g} s"
         for i, time in enumerate(self.output.plot_times or ()):
             if time > (t_end or 0.0):
                 raise rule(f"must be {limit}, got {time:g}", f"output.plot_times[{i}]")

@@ -1,7 +1,8 @@
 """The scenario format's models of the vessel and what works with it: `[vessel]` (given by a built-in model or
-by its matrices) with its lay equipment (`[vessel.lay]`, `[vessel.lay.stinger]`), `[controller]` with its
-route and tension loop, `[pay_out]` and `[[environment]]`. `pipelay.scenario.models` exposes them with the
-others.
+by its matrices) with its lay equipment (`[vessel.lay]`, `[vessel.lay.stinger]`) and A&R winch
+(`[vessel.winch]`, its wire and head), `[controller]` with its route and tension loop, `[pay_out]` and
+`[[environment]]`. The winch's wire is a `Cable`, the model a cable segment of a `[line]` takes too.
+`pipelay.scenario.models` exposes them with the others.
 
 Imports of pipelay: `pipelay.scenario.values`.
 """
@@ -14,6 +15,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Discriminator, Field, Tag, ValidationInfo, field_validator, model_validator
 
 from pipelay.scenario.values import (
+    COEFFICIENTS,
     END,
     ETA,
     POINT,
@@ -39,10 +41,12 @@ from pipelay.scenario.values import (
 
 __all__ = [
     "ArcStinger",
+    "Cable",
     "Controller",
     "ControllerTable",
     "Environment",
     "FixedController",
+    "Head",
     "JLay",
     "Lay",
     "MatrixVessel",
@@ -56,6 +60,7 @@ __all__ = [
     "Tension",
     "Vessel",
     "VesselTable",
+    "Winch",
 ]
 
 
@@ -153,6 +158,61 @@ Lay = Annotated[
 ]
 
 
+class Cable(Table):
+    """`pl.Section.cable`: the section of a cable segment or of the A&R wire (wire rope, chain): tension
+    only, no bending or torsion."""
+
+    diameter: Annotated[float, POSITIVE_LENGTH] = Field(description="nominal diameter, > 0")
+    mass: Annotated[float, Number("kg/m", gt=0)] = Field(description="mass per unit length in air, > 0")
+    EA: Annotated[float, Number("N", gt=0)] = Field(description="axial stiffness, > 0")
+    drag: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "Morison drag coefficients [axial, normal] on the diameter, ≥ 0", [0, 1.2]
+    )
+    added_mass: Annotated[list[float] | None, COEFFICIENTS] = api(
+        "added-mass coefficients [axial, normal], ≥ 0", [0, 1]
+    )
+
+
+class Head(Table):
+    """`pl.Clump`: the laydown (A&R) head fitted to the pipe's end at the hand-over to the winch. Its weight
+    less buoyancy, mass with added mass and drag act at the joint of the pipe and the wire."""
+
+    mass: Annotated[float, Number("kg", ge=0)] = Field(description="mass in air, ≥ 0")
+    volume: Annotated[float | None, Number("m³", ge=0)] = api("displaced volume, ≥ 0", 0)
+    drag_area: Annotated[float | None, Number("m²", ge=0)] = api("drag area C_d·A, ≥ 0", 0)
+    added_mass: Annotated[float | None, Number(ge=0)] = api(
+        "added-mass coefficient on the displaced volume, ≥ 0", 1
+    )
+
+
+class Winch(Table):
+    """`pl.Winch`: the abandonment and recovery (A&R) winch the line is handed over to, `attach_vessel(...,
+    winch=)`; needs `[vessel.lay]` (or a `[line]` whose top segment is a cable, held by the winch from the
+    start).
+
+    The first `[[stages]]` entry with `hold = "winch"` starts with the hand-over: the wire, from `position` to
+    the tensioner or tower exit, stretched to the pipe's axial force there, joins the pipe's end (with the
+    head), and the vessel holds the line by the winch; the stages' `winch_speed` then pays the wire out.
+    `position` must lie on the firing line, ahead of the hold point along the pipe: in an S-lay forward of the
+    tensioner along +b1, in a J-lay up the tower, the tower exit + d·[sin a, 0, −cos a] with d > 0 and a the
+    tower's `angle`."""
+
+    position: Annotated[list[float], POINT] = Field(
+        description="where the wire enters the firing line [x, y, z] (body frame), ahead of the tensioner or "
+        "tower exit along the pipe"
+    )
+    tension_limit: Annotated[float | None, Number("N", gt=0)] = api("the wire's rating, > 0; none: no limit")
+    element_length: Annotated[float | None, POSITIVE_LENGTH] = api(
+        "length of the wire elements pay-out adds, > 0", words="the line's top element's"
+    )
+    wire: Cable | None = api(
+        "the wire's section: a `[vessel.winch.wire]` table", words="the line's top segment, if it is a cable"
+    )
+    head: Head | None = api(
+        "the head fitted to the pipe's end at the hand-over: a `[vessel.winch.head]` table"
+    )
+
+
 class VesselTable(Table):
     """`[vessel]`: the keys of `model.attach_vessel` and the RAOs, whichever way the vessel is given."""
 
@@ -167,6 +227,7 @@ class VesselTable(Table):
         "first-order motion RAOs: path of a CSV table", words='the built-in OSV\'s (model = "osv"), else none'
     )
     lay: Lay | None = None
+    winch: Winch | None = None
 
     @field_validator("raos")
     @classmethod

@@ -38,12 +38,15 @@ class Scenario:
     Attributes:
         model: the model with its supports, loads and vessel.
         dt: time step of the simulation (s).
-        t_end: end time of the simulation (s); None: statics only.
+        t_end: end time of the simulation (s): `solver.t_end`, else the end of the stages; None: statics
+            only.
         record_every: record every k-th time step.
         static_steps: initial number of load steps of the static solve; None: the engine's default.
         static_start: Newton's starting shape in statics: "auto", "reference" or "catenary".
         output: the `[output]` table: `plot_times` (list of s, or None when not given).
         source: the parsed TOML as given (a copy), for provenance.
+        stages: the `[[stages]]` as a `pl.Stages`, for `model.simulation(..., stages=)` and `pl.resume(...,
+            stages=)`; None without stages.
     """
 
     model: pl.Model
@@ -54,6 +57,7 @@ class Scenario:
     static_start: Literal["auto", "reference", "catenary"]
     output: dict[str, Any]
     source: dict[str, Any]
+    stages: pl.Stages | None = None
 
 
 @dataclass(frozen=True)
@@ -93,7 +97,7 @@ def _settings(file: models.ScenarioFile) -> dict[str, Any]:
     solver = file.solver
     return {
         "dt": solver.dt,
-        "t_end": solver.t_end,
+        "t_end": file.run_end(),
         "record_every": solver.record_every,
         "static_steps": solver.static_steps,
         "static_start": solver.static_start,
@@ -121,6 +125,13 @@ def _engine(path: str, keys: Collection[str] = (), elsewhere: dict[str, str] | N
 
 
 _SEABED_SHAPE = {"bathymetry": "sea.seabed.bathymetry"}
+_WINCH_ARGUMENTS = {
+    "winch": "vessel.winch",
+    "winch position": "vessel.winch.position",
+    "winch.wire": "vessel.winch.wire",
+    "wire": "vessel.winch.wire",
+}
+"""The engine's names, in `attach_vessel`'s errors, of what belongs to `[vessel.winch]`."""
 _STINGER_ARGUMENTS = {
     "stinger radius": "vessel.lay.stinger.radius",
     "stinger length": "vessel.lay.stinger.length",
@@ -282,7 +293,7 @@ def _vessel(vessel: models.ModelVessel | models.MatrixVessel) -> pl.Vessel:
     with _engine("vessel", KEYS["vessel"]):
         if isinstance(vessel, models.ModelVessel):
             return pl.Vessel.osv(**raos)
-        return pl.Vessel(**vessel.given("end", "eta", "angle", "raos", "lay"), **raos)
+        return pl.Vessel(**vessel.given("end", "eta", "angle", "raos", "lay", "winch"), **raos)
 
 
 def _controller(controller: models.FixedController | models.RouteController) -> pl.PID:
@@ -298,17 +309,29 @@ def _controller(controller: models.FixedController | models.RouteController) -> 
         return pl.PID(**arguments)
 
 
+def _winch(winch: models.Winch) -> pl.Winch:
+    """The A&R winch of `[vessel.winch]`, with its wire and head."""
+    wire = None if winch.wire is None else _section(winch.wire, "vessel.winch.wire", "vessel.winch.wire")
+    head = None
+    if winch.head is not None:
+        with _engine("vessel.winch.head", KEYS["vessel.winch.head"]):
+            head = pl.Clump(**winch.head.given())
+    with _engine("vessel.winch", KEYS["vessel.winch"], _WINCH_ARGUMENTS):
+        return pl.Winch(winch.position, wire=wire, head=head, **winch.given("position", "wire", "head"))
+
+
 def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
-    """Build the vessel, its lay equipment, controller and environment; attach them."""
+    """Build the vessel, its lay equipment, winch, controller and environment; attach them."""
     vessel = cast(models.ModelVessel | models.MatrixVessel, file.vessel)
     lay = None if vessel.lay is None else _lay(vessel.lay)
+    winch = None if vessel.winch is None else _winch(vessel.winch)
     body = _vessel(vessel)
     controller = None if file.controller is None else _controller(file.controller)
     environment = []
     for i, force in enumerate(file.environment):
         with _engine(f"environment[{i}]", KEYS["environment"]):
             environment.append(pl.Force(**force.given()))
-    with _engine("vessel", KEYS["vessel"]):
+    with _engine("vessel", KEYS["vessel"], _WINCH_ARGUMENTS):
         model.attach_vessel(
             vessel.end,
             body,
@@ -317,6 +340,7 @@ def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
             controller=controller,
             environment=environment,
             lay=lay,
+            winch=winch,
         )
 
 
@@ -329,6 +353,19 @@ def _pay_out(pay_out: models.PayOut, controller: models.ControllerTable | None) 
         start_time = route.start_time if start_time is None else start_time
     ramp = _PAY_OUT_RAMP if pay_out.ramp is None else pay_out.ramp
     return SmoothStart(speed, start_time or 0.0, ramp)
+
+
+def _stages(file: models.ScenarioFile) -> pl.Stages | None:
+    """The `[[stages]]` as a pl.Stages (None for none); checked against the model when a simulation takes
+    them."""
+    if not file.stages:
+        return None
+    stages = []
+    for k, stage in enumerate(file.stages):
+        with _engine(f"stages[{k}]", KEYS["stages"]):
+            stages.append(pl.Stage(stage.name, **stage.given("name")))
+    with _engine("", ("stages",)):
+        return pl.Stages(stages)
 
 
 def _build(file: models.ScenarioFile) -> pl.Model:
@@ -361,17 +398,19 @@ def parse_scenario(
     """The scenario described by `data`, a parsed TOML document (its keys: the documentation's Scenario
     reference).
 
-    Every key is checked before the model is built; nothing is solved. `origin` names the source in messages;
-    file paths in it (`vessel.raos`) are relative to `folder` (default: the folder of `origin` if it is a file,
-    else the current one). Raises pl.InputError whose message starts with the key path and ends with
-    `(in origin)`.
+    Every key is checked before the model is built; nothing is solved (the engine checks the `[[stages]]`,
+    `Scenario.stages`, against the model again when a simulation takes them). `origin` names the source in
+    messages; file paths in it (`vessel.raos`) are relative to `folder` (default: the folder of `origin` if it
+    is a file, else the current one). Raises pl.InputError whose message starts with the key path and ends
+    with `(in origin)`.
     """
     try:
         file = _check(data, _folder(origin, folder))
         model = _build(file)
+        stages = _stages(file)
     except pl.InputError as error:
         raise pl.InputError(f"{error} (in {origin})") from None
-    return Scenario(model=model, source=copy.deepcopy(data), **_settings(file))
+    return Scenario(model=model, source=copy.deepcopy(data), stages=stages, **_settings(file))
 
 
 def _syntax_error(error: tomllib.TOMLDecodeError, text: str, origin: str) -> pl.InputError:
