@@ -48,7 +48,7 @@ from pipelay._core import (
     Winch,
 )
 from pipelay.analysis import checks, lay, statistics, suspect
-from pipelay.analysis import stages as _stages  # Results.stage_summary
+from pipelay.analysis import stages as _stages  # noqa: F401 (attaches Results.stage_summary)
 from pipelay.analysis.lay import find_lay_position
 from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep

@@ -225,9 +225,11 @@ impl Section {
 
     /// A cable (wire rope, chain) of nominal `diameter` (m), `mass` (kg/m, in air) and axial stiffness `EA`
     /// (N): tension only, no bending or torsional stiffness; its nodes have no rotation. Buoyancy area π/4 d²;
-    /// drag and added-mass coefficients (axial, normal) refer to d.
+    /// drag and added-mass coefficients (axial, normal) refer to d. `damping` B (N·s, MoorDyn's BA): the
+    /// axial internal damping of a taut cable, force B·ε̇ (it damps the stiff axial modes a time step cannot
+    /// resolve; all its work is dissipated).
     #[staticmethod]
-    #[pyo3(signature = (diameter, mass, EA, drag=None, added_mass=None))]
+    #[pyo3(signature = (diameter, mass, EA, drag=None, added_mass=None, damping=0.0))]
     #[allow(non_snake_case)]
     fn cable(
         diameter: f64,
@@ -235,12 +237,20 @@ impl Section {
         EA: f64,
         drag: Option<&Bound<'_, PyAny>>,
         added_mass: Option<&Bound<'_, PyAny>>,
+        damping: f64,
     ) -> PyResult<Self> {
         let drag = coefficients(drag, "drag", [0.0, 1.2])?;
         let added_mass = coefficients(added_mass, "added_mass", [0.0, 1.0])?;
         section::Section::cable(diameter, mass, EA, drag, added_mass)
+            .and_then(|section| section.with_axial_damping(damping))
             .map(Section)
             .map_err(to_py)
+    }
+
+    /// A cable's axial internal damping B (N·s): the damping force B·ε̇ of a taut cable; 0 for rods.
+    #[getter]
+    fn damping(&self) -> f64 {
+        self.0.axial_damping
     }
 
     /// Whether this is a cable's section (`Section.cable`): axial stiffness only.

@@ -96,7 +96,9 @@ def stage_summary(
     stage = results.stage
     names, starts = results.stage_names, results.stage_starts
     if stage is None or names is None or starts is None:
-        raise InputError("results: results of a run through pl.Stages (stage_summary), got a run without stages")
+        raise InputError(
+            "results: results of a run through pl.Stages (stage_summary), got a run without stages"
+        )
     wires = wire_segments(results, model)
     forces = results.section_forces[:, :, 0]
     segment = results.segment

@@ -189,9 +189,7 @@ class _Writer:
         if "roller_reactions" in names:
             dimensions["roller"] = rollers
         file.dimensions = dimensions
-        file.attrs.update(
-            {**_file_attributes(), "recorded_groups": " ".join(self.groups), **self.attributes}
-        )
+        file.attrs.update({**_file_attributes(), "recorded_groups": " ".join(self.groups), **self.attributes})
         time = file.create_variable(
             "time", ("time",), "f8", fillvalue=np.nan, chunks=(min(4096, self.expected),)
         )

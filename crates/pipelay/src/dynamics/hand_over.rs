@@ -4,7 +4,9 @@
 //! force at the hold point (its unstretched length l/(1 + N/EA)), so the axial force passes from the
 //! tensioner to the wire without a jump. The vessel then holds the wire's end at the winch (a new node, where
 //! the vessel's rigid motion puts it), and the pipe's end, released by the tensioner, keeps its state: its
-//! rotation becomes free (the rod–cable joint is a pin) and the tensioner's shear and moment are let go.
+//! rotation becomes free (the rod–cable joint is a pin) and the tensioner's shear and moment are let go; its
+//! velocity becomes the material's, the vessel's plus the pay-out speed along the pipe (the winch takes over
+//! at the tensioner's speed).
 //! The laydown head is fitted at the pipe's end ([`crate::model::Model::hold_by_winch`]). The energy the wire
 //! and head bring in is booked with pay-out's by the integrator.
 // Indexing cannot go out of bounds here: the vessel's node is end B, the last node of the mesh.
@@ -67,6 +69,14 @@ pub fn hand_over(
     });
     rod.segment_of.push(wire);
 
+    // The pipe's end was a point of the vessel that pipe passed through at the pay-out speed: as the pipe's
+    // material end it moves on with the pipe, at that speed away from the vessel along the top element.
+    let speed = model
+        .pay_out
+        .as_ref()
+        .map_or(Ok(0.0), |p| p.speed_at(state.time))?;
+    let positions = &state.configuration.positions;
+    let along = (positions[node - 1] - positions[node]).normalize() * speed;
     let spin = rotation * state.body_angular_velocities[node];
     let configuration = &mut state.configuration;
     configuration
@@ -76,6 +86,7 @@ pub fn hand_over(
     state
         .velocities
         .push(state.velocities[node] + spin.cross(&offset));
+    state.velocities[node] += along;
     state.accelerations.push(state.accelerations[node]);
     state
         .body_angular_velocities

@@ -16,7 +16,7 @@ use crate::environment::drag::{morison_drag, morison_force};
 use crate::environment::waves::Kinematics;
 use crate::linalg::pool;
 use crate::model::Model;
-use crate::rod::cable::step as cable_step;
+use crate::rod::cable::{damping_step as cable_damping_step, step as cable_step};
 use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::so3::{cayley, cayley_tangent, skew};
@@ -56,6 +56,8 @@ pub struct SegmentConstants {
     drag: (f64, f64),
     /// Whether the segment is a cable.
     cable: bool,
+    /// A cable's axial internal damping B (N·s).
+    axial_damping: f64,
 }
 
 /// The constants of each segment of a model's line.
@@ -73,6 +75,7 @@ pub fn rod_constants(model: &Model) -> RodConstants {
             weight: model.submerged_weight_of(section),
             drag: model.drag_coefficients_of(section),
             cable: section.cable,
+            axial_damping: section.axial_damping,
         })
         .collect()
 }
@@ -199,6 +202,7 @@ impl RodStep<'_> {
             weight,
             drag: (k_axial, k_normal),
             cable,
+            axial_damping,
         } = self.constants[model.rod.segment_of[e]];
         let dt = self.dt;
         let base = NODE_DOFS * e;
@@ -237,6 +241,19 @@ impl RodStep<'_> {
             ..ElementWork::default()
         };
         let mut forces = step.forces;
+        if cable && axial_damping > 0.0 {
+            let (damping, dissipated) = cable_damping_step(
+                &chord,
+                &increments,
+                length_start,
+                reference.length,
+                axial_damping,
+                dt,
+                tangent.as_deref_mut(),
+            );
+            forces += damping;
+            work.dissipated += dissipated;
+        }
         let mut magnitude = forces.abs();
         // Submerged weight, a dead load: −½L0 w e3 in the residual of each node.
         let nodal_weight = 0.5 * reference.length * weight;

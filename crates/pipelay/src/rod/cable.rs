@@ -213,9 +213,86 @@ pub fn step(
     }
 }
 
+/// The axial internal damping of a taut cable element over a step: the force B ε̇ along the step's mean chord,
+/// with ε̇ = Δl/(L Δt) and the direction u = (d_n + d_{n+1})/(l_n + l_{n+1}), for which u·Δd = Δl exactly: its
+/// work on the step's increments is B Δl²/(L Δt) ≥ 0, all of it dissipated. Slack at both ends of the step, the
+/// cable has no damping (a slack rope's strands do not rub). Returns the forces on [Δφ1, θ1, Δφ2, θ2] and the
+/// energy dissipated (J); with `tangent`, their derivatives are added to it.
+pub fn damping_step(
+    chord: &Vector3<f64>,
+    increments: &ElementVector,
+    length_start: f64,
+    length: f64,
+    damping: f64,
+    dt: f64,
+    tangent: Option<&mut ElementMatrix>,
+) -> (ElementVector, f64) {
+    let chord_next = chord + increments.fixed_rows::<3>(NODE_DOFS) - increments.fixed_rows::<3>(0);
+    let (l_n, l_next) = (chord.norm(), chord_next.norm());
+    if l_n <= length_start && l_next <= length {
+        return (ElementVector::zeros(), 0.0);
+    }
+    let sum = l_n + l_next;
+    let direction = (chord + chord_next) / sum;
+    let rate = damping / (length * dt);
+    let stretch = l_next - l_n;
+    let force = direction * (rate * stretch);
+    if let Some(tangent) = tangent {
+        // ∂(B Δl/(L Δt) u)/∂Δφ2 with ∂l_{n+1}/∂Δφ2 = t_{n+1}ᵀ and ∂u/∂Δφ2 = (I − u t_{n+1}ᵀ)/(l_n + l_{n+1}).
+        let t_next = chord_next / l_next;
+        let block = direction * t_next.transpose() * rate
+            + (Matrix3::identity() - direction * t_next.transpose()) * (rate * stretch / sum);
+        let mut added = ElementMatrix::zeros();
+        bar_tangent(&block, &mut added);
+        *tangent += added;
+    }
+    (bar_forces(&force), rate * stretch * stretch)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn damping_dissipates_its_work_and_has_its_tangent() {
+        let chord = Vector3::new(10.05, 0.3, -0.2);
+        let mut increments = ElementVector::zeros();
+        increments
+            .fixed_rows_mut::<3>(0)
+            .copy_from(&Vector3::new(0.01, -0.02, 0.005));
+        increments
+            .fixed_rows_mut::<3>(6)
+            .copy_from(&Vector3::new(0.04, 0.01, -0.01));
+        let (damping, dt) = (2e6, 0.1);
+        let mut tangent = ElementMatrix::zeros();
+        let (forces, dissipated) = damping_step(
+            &chord,
+            &increments,
+            10.0,
+            10.0,
+            damping,
+            dt,
+            Some(&mut tangent),
+        );
+        assert!(dissipated > 0.0);
+        assert!((forces.dot(&increments) - dissipated).abs() < 1e-9 * dissipated);
+        let h = 1e-7;
+        for k in [0, 1, 2, 6, 7, 8] {
+            let mut moved = increments;
+            moved[k] += h;
+            let (up, _) = damping_step(&chord, &moved, 10.0, 10.0, damping, dt, None);
+            moved[k] -= 2.0 * h;
+            let (down, _) = damping_step(&chord, &moved, 10.0, 10.0, damping, dt, None);
+            let column = (up - down) / (2.0 * h);
+            let error = (column - tangent.column(k)).norm();
+            assert!(error < 1e-5 * tangent.norm(), "column {k}: {error}");
+        }
+        let slack = Vector3::new(9.0, 0.0, 0.0);
+        assert_eq!(
+            damping_step(&slack, &increments, 10.0, 10.0, damping, dt, None).1,
+            0.0
+        );
+    }
 
     fn reference(length: f64) -> ElementReference {
         ElementReference {

@@ -31,6 +31,9 @@ pub struct Section {
     pub wall: Option<PipeWall>,
     /// A cable's section ([`Section::cable`]): axial stiffness only, its elements bars ([`crate::rod::cable`]).
     pub cable: bool,
+    /// A cable's axial internal damping B (N·s): a taut cable's damping force B ε̇ along its chord (MoorDyn's
+    /// BA); zero for rods.
+    pub axial_damping: f64,
 }
 
 /// The wall of a pipe section.
@@ -174,6 +177,7 @@ impl Section {
             rotational_damping: Vector3::from(extras.rotational_damping),
             wall: None,
             cable: false,
+            axial_damping: 0.0,
         })
     }
 
@@ -204,6 +208,16 @@ impl Section {
             rotational_damping: Vector3::zeros(),
             wall: None,
             cable: true,
+            axial_damping: 0.0,
+        })
+    }
+
+    /// This cable's section with axial internal damping `damping` B (N·s, ≥ 0; force B ε̇ when taut).
+    pub fn with_axial_damping(self, damping: f64) -> Result<Self> {
+        crate::error::non_negative("damping", damping, "N·s")?;
+        Ok(Section {
+            axial_damping: damping,
+            ..self
         })
     }
 
