@@ -175,6 +175,8 @@ def test_the_file_builds_the_stages_of_the_python_api(
     assert scenario.t_end == 50.0 and simulation.stages_end == 50.0
     assert results.stage_names == ["lay", "hand-over", "lower"]
     np.testing.assert_array_equal(results.stage_starts, [0.0, 20.0, 30.0, 50.0])
+    wire = scenario.model.rod.sections[1]  # attach_vessel adds the winch's wire to the line's sections
+    assert wire.is_cable and (wire.EA, wire.mass, wire.drag, wire.damping) == (EA_WIRE, 28.0, (0.0, 1.2), 0.0)
     api = model.simulation(model.static(), dt=DT, stages=stages).run(progress=False)
     np.testing.assert_array_equal(api.time, results.time)
     np.testing.assert_array_equal(api.positions, results.positions)
@@ -269,6 +271,7 @@ WITHOUT_WINCH = STAGED[: STAGED.index("[vessel.winch]")] + STAGED[STAGED.index("
         (edited("[controller]", "[pay_out]\nspeed = 0.3\n\n[controller]"), "stages[0].pay_out", "[pay_out]"),
         (edited("[vessel.winch.wire]", "[vessel.winch.cable]"), "vessel.winch.cable", "unknown section"),
         (edited("EA = 5.5e8", "EA = -5.5e8"), "vessel.winch.wire.EA", "> 0 N"),
+        (edited("EA = 5.5e8", "EA = 5.5e8\ndamping = -1.0"), "vessel.winch.wire.damping", ">= 0 N·s"),
         (edited("mass = 5000.0", "mass = -5000.0"), "vessel.winch.head.mass", ">= 0 kg"),
         (
             edited(f"position = {list(WINCH)}", "position = [1.0, 0.0, -20.0]"),
@@ -291,6 +294,7 @@ WITHOUT_WINCH = STAGED[: STAGED.index("[vessel.winch]")] + STAGED[STAGED.index("
         "two pay-outs",
         "wire misspelt",
         "wire EA",
+        "wire damping",
         "head mass",
         "winch off the tower",
         "tension limit",
@@ -328,3 +332,9 @@ def test_t_end_defaults_to_the_end_of_the_stages(tmp_path: Path) -> None:
         pl.InputError, match=r"^output\.plot_times\[1\]: must be <= the end of the \[\[stages\]\] = 50 s"
     ):
         load_scenario(write(tmp_path, STAGED + "\n[output]\nplot_times = [0.0, 60.0]\n"))
+
+
+def test_the_wire_takes_the_cable_keys(tmp_path: Path) -> None:
+    """[vessel.winch.wire] takes every key of pl.Section.cable, its axial damping among them."""
+    scenario = load_scenario(write(tmp_path, edited("EA = 5.5e8", "EA = 5.5e8\ndamping = 2e5")))
+    assert scenario.model.rod.sections[1].damping == 2e5

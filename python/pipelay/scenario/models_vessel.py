@@ -171,6 +171,11 @@ class Cable(Table):
     added_mass: Annotated[list[float] | None, COEFFICIENTS] = api(
         "added-mass coefficients [axial, normal], ≥ 0", [0, 1]
     )
+    damping: Annotated[float | None, Number("N·s", ge=0)] = api(
+        "axial internal damping B of the taut cable (MoorDyn's BA), force B·dε/dt, ≥ 0: it damps the stiff "
+        "axial modes a time step cannot resolve",
+        0,
+    )
 
 
 class Head(Table):
