@@ -17,6 +17,7 @@ hand-over and landing; the ramped pay-out speeds' integral for the length paid o
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -235,7 +236,7 @@ def test_stage_summary_has_each_stages_extremes(laydown: tuple[pl.Model, pl.Simu
 # --- resume and bad input, on a short J-lay ---------------------------------------------------------------
 
 
-def _short(winch: bool = True, controller: bool = True) -> pl.Model:
+def _short(winch: bool = True, controller: bool = True, tension_limit: float | None = None) -> pl.Model:
     rod = pl.Rod.straight((0.0, 0.0, 0.0), (600.0, 0.0, 0.0), 60, PIPE)
     model = pl.Model(rod, pl.Sea(150.0, seabed=pl.Seabed(stiffness=1e5, friction=0.5, mobilisation=0.02)))
     model.pin("A")
@@ -246,7 +247,11 @@ def _short(winch: bool = True, controller: bool = True) -> pl.Model:
         if controller
         else None
     )
-    a_r = pl.Winch(EXIT + 5.0 * tower, wire=WIRE, element_length=10.0, head=HEAD) if winch else None
+    a_r = (
+        pl.Winch(EXIT + 5.0 * tower, tension_limit, wire=WIRE, element_length=10.0, head=HEAD)
+        if winch
+        else None
+    )
     model.attach_vessel(
         "B", pl.Vessel.osv(), eta=eta, lay=pl.JLay(position=tuple(EXIT), angle=0.2), controller=pid, winch=a_r
     )
@@ -375,3 +380,18 @@ def test_hauling_the_wire_in_past_the_head_stops_with_an_input_error() -> None:
         simulation.run(progress=False)
     kept = caught.value.results  # type: ignore[attr-defined]
     assert kept.time[-1] > 2.0
+
+
+def test_a_wire_beyond_the_winchs_limit_is_warned_of() -> None:
+    """The winch runs at its speed whatever the tension: a wire pulled beyond its tension_limit is reported as a
+    PhysicsWarning naming the tension, the time and the limit; within the limit, nothing is said."""
+    limited = _short(tension_limit=1e4)
+    with pytest.warns(
+        pl.PhysicsWarning, match=r"A&R wire's tension .* exceeds the winch's tension_limit 10\.0 kN"
+    ):
+        limited.simulation(limited.static(), dt=DT, stages=SHORT).run(progress=False)
+    ample = _short(tension_limit=1e8)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ample.simulation(ample.static(), dt=DT, stages=SHORT).run(progress=False)
+    assert not [w for w in caught if "tension_limit" in str(w.message)]

@@ -86,7 +86,8 @@ def _checking_run(run: Callable[..., Results]) -> Callable[..., Results]:
     def checked(self: Simulation, *args: Any, **kwargs: Any) -> Results:
         results = run(self, *args, **kwargs)
         if len(results):
-            suspect.warn(suspect.suspect_results(results, self.state))
+            winch = suspect.suspect_winch(results, self.winch_tension_limit, self.winch_wire_segment)
+            suspect.warn(suspect.suspect_results(results, self.state) + winch)
         return results
 
     return checked

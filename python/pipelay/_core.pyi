@@ -1,7 +1,7 @@
 """Type stubs of the compiled engine module (SI units; frame e with e3 pointing down)."""
 
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any, Literal, TypeAlias, final
 
@@ -34,12 +34,15 @@ __all__ = [
     "Section",
     "Segment",
     "Simulation",
+    "Stage",
+    "Stages",
     "State",
     "Stinger",
     "TensionControl",
     "Touchdown",
     "Vessel",
     "Waves",
+    "Winch",
 ]
 
 class InputError(ValueError):
@@ -128,12 +131,17 @@ class Section:
         EA: float,
         drag: Sequence[float] | None = None,
         added_mass: Sequence[float] | None = None,
+        damping: float = 0.0,
     ) -> Section:
         """A cable (wire rope, chain) of nominal `diameter` (m), `mass` (kg/m) and axial stiffness `EA` (N):
-        tension only, no bending or torsion; drag defaults to (0, 1.2), added mass to (0, 1)."""
+        tension only, no bending or torsion; drag defaults to (0, 1.2), added mass to (0, 1); `damping` B
+        (N·s): the axial internal damping of a taut cable, force B·ε̇."""
     @property
     def is_cable(self) -> bool:
         """Whether this is a cable's section (`Section.cable`)."""
+    @property
+    def damping(self) -> float:
+        """A cable's axial internal damping B (N·s); 0 for rods."""
     @property
     def EA(self) -> float:
         """Axial stiffness (N)."""
@@ -671,19 +679,22 @@ class Force:
 class Simulation:
     """A time simulation of a model (energy–momentum conserving integrator)."""
 
-    def __new__(cls, model: Model, state: State | None = None, dt: float = 0.05) -> Simulation: ...
+    def __new__(
+        cls, model: Model, state: State | None = None, dt: float = 0.05, stages: Stages | None = None
+    ) -> Simulation: ...
     def step(self) -> None:
         """Advance one time step dt."""
     def run(
         self,
-        t_end: float,
+        t_end: float | None = None,
         progress: bool = True,
         record_every: int = 1,
         *,
         output: str | os.PathLike[str] | None = None,
         record: str | Sequence[str] | None = None,
     ) -> Results:
-        """Run to t_end (s), recording the current state and every record_every-th step after it.
+        """Run to t_end (s; default: the end of the stages), recording the current state and every
+        record_every-th step after it.
 
         Without `output`: returns every record in memory. With `output` (a path): the records are streamed to
         that netCDF file as the run goes (memory stays flat); it is `<output>.part` until the run ends, fails or
@@ -711,6 +722,24 @@ class Simulation:
         """Angular momentum about the origin (kg·m²/s)."""
     def checkpoint(self, path: str | os.PathLike[str]) -> Path:
         """Save the complete state (atomically); pl.resume continues it exactly."""
+    @property
+    def stage_names(self) -> list[str] | None:
+        """The stages' names, None without stages."""
+    @property
+    def stage_starts(self) -> list[float] | None:
+        """Each stage's start time and the last one's end (s), None without stages."""
+    @property
+    def stages_end(self) -> float | None:
+        """The end of the last stage (s), None without stages."""
+    @property
+    def winch_tension_limit(self) -> float | None:
+        """The A&R winch's tension limit (N), None without a winch or a limit."""
+    @property
+    def winch_wire_segment(self) -> int | None:
+        """The segment index of the A&R winch's wire (in Results.segment), None without a winch."""
+    @property
+    def hand_over_tension(self) -> float | None:
+        """The axial force the A&R wire took on at the hand-over (N), None if none happened in this run."""
 
 @final
 class Results:
@@ -793,6 +822,17 @@ class Results:
     def to_netcdf(self, path: str | os.PathLike[str]) -> Path:
         """Write a netCDF-4 file atomically; pl.load reads it back exactly."""
     def __len__(self) -> int: ...
+    @property
+    def stage(self) -> _IntArray | None:
+        """The stage of each record (T,), None for a run without stages."""
+    @property
+    def stage_names(self) -> list[str] | None:
+        """The stages' names, None without stages."""
+    @property
+    def stage_starts(self) -> _FloatArray | None:
+        """Each stage's start time and the last one's end (s), None without stages."""
+    def stage_summary(self, model: Model | None = None, checks: Mapping[str, Any] | None = None) -> Any:
+        """Per stage, the extremes users check (a pandas.DataFrame): see pipelay.analysis.stages."""
 
 @final
 class Model:
@@ -825,11 +865,14 @@ class Model:
         controller: PID | None = None,
         environment: Sequence[Force] | None = None,
         lay: SLay | JLay | None = None,
+        winch: Winch | None = None,
     ) -> None:
         """Attach a vessel at `end`: starting pose eta (6,), clamp angle β (zyx, rad), controller, forces; or
-        held by lay equipment (`lay`)."""
-    def simulation(self, state: State | None = None, dt: float = 0.05) -> Simulation:
-        """A time simulation from `state` (default: self.static()) with time step `dt` (s)."""
+        held by lay equipment (`lay`), with an A&R winch (`winch`) to hand the line over to."""
+    def simulation(
+        self, state: State | None = None, dt: float = 0.05, stages: Stages | None = None
+    ) -> Simulation:
+        """A time simulation from `state` (default: self.static()) with time step `dt` (s), through `stages`."""
     def pay_out(
         self,
         end: _End = "B",
@@ -868,3 +911,69 @@ class Model:
     @property
     def submerged_weight(self) -> float:
         """Submerged weight per unit length (N/m)."""
+
+@final
+class Winch:
+    """An A&R winch on the vessel: where its wire enters the firing line (body frame), its rating, its wire,
+    the length of the wire elements it pays out and the laydown head fitted at the hand-over."""
+
+    def __new__(
+        cls,
+        position: _ArrayLike,
+        tension_limit: float | None = None,
+        *,
+        wire: Section | None = None,
+        element_length: float | None = None,
+        head: Clump | None = None,
+    ) -> Winch: ...
+    @property
+    def position(self) -> list[float]:
+        """Where the wire enters the firing line (3,) (body frame, m)."""
+    @property
+    def tension_limit(self) -> float | None:
+        """The wire's rating (N), None for none."""
+
+@final
+class Stage:
+    """One stage of a lay: a name, a duration (s) and what changes at its start."""
+
+    def __new__(
+        cls,
+        name: str,
+        duration: float | None = None,
+        *,
+        pay_out: float | None = None,
+        route_speed: float | None = None,
+        hold: Literal["tensioner", "winch"] | None = None,
+        winch_speed: float | None = None,
+        ramp: float | None = None,
+    ) -> Stage: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def duration(self) -> float:
+        """Duration (s)."""
+    @property
+    def pay_out(self) -> float | None: ...
+    @property
+    def route_speed(self) -> float | None: ...
+    @property
+    def hold(self) -> str | None: ...
+    @property
+    def winch_speed(self) -> float | None: ...
+    @property
+    def ramp(self) -> float:
+        """The time the stage's speed changes take (s)."""
+
+@final
+class Stages:
+    """The stages of a lay, in order."""
+
+    def __new__(cls, stages: Sequence[Stage]) -> Stages: ...
+    def __len__(self) -> int: ...
+    @property
+    def names(self) -> list[str]:
+        """The stages' names."""
+    @property
+    def duration(self) -> float:
+        """The total duration (s)."""

@@ -179,6 +179,28 @@ impl Simulation {
         self.integrator.stages().map(|s| s.end())
     }
 
+    /// The A&R winch's tension limit (N), None without a winch or a limit.
+    #[getter]
+    fn winch_tension_limit(&self) -> Option<f64> {
+        self.integrator
+            .model()
+            .vessel
+            .as_ref()
+            .and_then(|v| v.winch.as_ref())
+            .and_then(|w| w.tension_limit)
+    }
+
+    /// The segment index of the A&R winch's wire (in `Results.segment`), None without a winch.
+    #[getter]
+    fn winch_wire_segment(&self) -> Option<usize> {
+        self.integrator
+            .model()
+            .vessel
+            .as_ref()
+            .and_then(|v| v.winch.as_ref())
+            .map(|w| w.wire)
+    }
+
     /// The axial force the A&R wire took on at the hand-over (N), None if no hand-over happened in this run.
     #[getter]
     fn hand_over_tension(&self) -> Option<f64> {

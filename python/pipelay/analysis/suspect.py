@@ -6,7 +6,9 @@ A `PhysicsWarning` (a `UserWarning`) names where and how much:
   pushed, and the equilibrium found may be a buckled one;
 * a strain beyond the steel's yield strain SMYS/E (of the section's grade, X65 where it has none): the rod is
   linear elastic, so its stresses there are not real (sections without a steel wall are not checked);
-* the vessel heeled (roll) or trimmed (pitch) beyond 10°, outside the small-angle hydrostatics of its model.
+* the vessel heeled (roll) or trimmed (pitch) beyond 10°, outside the small-angle hydrostatics of its model;
+* the A&R wire's tension at the winch beyond the winch's `tension_limit` (the winch does not render: the run
+  goes on at its speed).
 
 `Model.static` checks the state it returns, `Simulation.run` the records of its run.
 """
@@ -23,7 +25,15 @@ import numpy as np
 
 from pipelay.analysis.checks import DEFAULT_GRADE, GRADES
 
-__all__ = ["HEEL_LIMIT", "PhysicsWarning", "suspect_results", "suspect_state", "warn", "worst_of_each_kind"]
+__all__ = [
+    "HEEL_LIMIT",
+    "PhysicsWarning",
+    "suspect_results",
+    "suspect_state",
+    "suspect_winch",
+    "warn",
+    "worst_of_each_kind",
+]
 
 HEEL_LIMIT = math.radians(10.0)
 """Largest roll or pitch of the vessel (rad) within its model's small-angle hydrostatics."""
@@ -32,7 +42,7 @@ HEEL_LIMIT = math.radians(10.0)
 class PhysicsWarning(UserWarning):
     """A solution whose physics is suspect: compression at the hold point, strain beyond yield, large heel.
 
-    `kind` is what is suspect ("compression", "strain", "heel" or "trim") and `size` how much (N of
+    `kind` is what is suspect ("compression", "strain", "heel", "trim" or "winch") and `size` how much (N of
     compression, strain, rad), so that a caller can keep the worst of each kind."""
 
     def __init__(self, message: str, kind: str = "", size: float = 0.0) -> None:
@@ -140,6 +150,28 @@ def suspect_results(results: Any, final: Any) -> list[Suspect]:
         final.section,
         time,
     )
+
+
+def suspect_winch(results: Any, limit: float | None, wire: int | None) -> list[Suspect]:
+    """The A&R wire's tension at the winch beyond its `limit` (N) in the records where the wire (segment `wire`)
+    is the line's top: the worst of them (empty if none, or without a limit)."""
+    summary = results.lay_summary()
+    if limit is None or wire is None or summary is None:
+        return []
+    segment = np.asarray(results.segment)
+    finite = np.isfinite(segment)
+    top = segment.shape[1] - 1 - np.argmax(finite[:, ::-1], axis=1)
+    held = segment[np.arange(len(segment)), top] == wire
+    tension = np.where(held, np.asarray(summary["top_tension"]), -np.inf)
+    record = int(np.argmax(tension))
+    if tension[record] <= limit:
+        return []
+    time = float(np.asarray(results.time)[record])
+    message = (
+        f"the A&R wire's tension {tension[record] / 1e3:.1f} kN at t = {time:.6g} s exceeds the winch's "
+        f"tension_limit {limit / 1e3:.1f} kN: the winch does not render, the run went on at its speed"
+    )
+    return [("winch", float(tension[record] - limit), message)]
 
 
 def warn(suspects: list[Suspect], stacklevel: int = 3) -> None:

@@ -17,7 +17,7 @@ Imports of pipelay: the engine (`pipelay._core`) and `pipelay.results.atomic`.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from datetime import UTC, datetime
 from functools import partial
 from pathlib import Path
@@ -223,7 +223,7 @@ def to_xarray(results: Results) -> Any:
     return dataset
 
 
-def stage_attributes(names: list[str] | None, starts: np.ndarray | None) -> dict[str, Any]:
+def stage_attributes(names: list[str] | None, starts: Sequence[float] | np.ndarray | None) -> dict[str, Any]:
     """The global attributes that mark a run's stages: ``stage_names`` (one per line) and ``stage_starts`` (s,
     each stage's start and the last one's end); none for a run without stages."""
     if names is None or starts is None:
