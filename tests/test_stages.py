@@ -231,6 +231,12 @@ def test_stage_summary_has_each_stages_extremes(laydown: tuple[pl.Model, pl.Simu
     assert summary["head_x"][5] == pytest.approx(heads[_last(results, 5), 0], rel=1e-12)
     assert (summary["utilisation_max"] > 0).all()
     print("\n" + summary.to_string())
+    # Held by the winch, the line departs along the wire's top chord (a cable's node has no rotation of its own).
+    k = _last(results, 5)
+    nodes = np.flatnonzero(np.isfinite(results.positions[k, :, 0]))
+    chord = results.positions[k, nodes[-1]] - results.positions[k, nodes[-2]]
+    departure = math.atan2(-chord[2], np.hypot(chord[0], chord[1]))
+    assert results.lay_summary()["departure_angle"][k] == pytest.approx(departure, abs=1e-12)
 
 
 # --- resume and bad input, on a short J-lay ---------------------------------------------------------------

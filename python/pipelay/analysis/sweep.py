@@ -114,9 +114,9 @@ def start(scenario: Scenario, checkpoint: str | os.PathLike[str] | None = None) 
     if scenario.t_end is None:
         raise InputError("solver.t_end: needed for a simulation (s); use `pipelay static` for statics only")
     if checkpoint is not None:
-        return resume(scenario.model, checkpoint)
+        return resume(scenario.model, checkpoint, stages=scenario.stages)
     state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
-    return scenario.model.simulation(state=state, dt=scenario.dt)  # type: ignore[attr-defined, no-any-return]
+    return scenario.model.simulation(state=state, dt=scenario.dt, stages=scenario.stages)  # type: ignore[attr-defined, no-any-return]
 
 
 def run(

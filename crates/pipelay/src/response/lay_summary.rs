@@ -116,9 +116,16 @@ pub fn lay_summary(
         Some((k, e)) => (Some(k), if node == 0 { e + 1 } else { e }),
         None => (None, node),
     };
-    // The pipe's angle below the horizontal at each node, going down from the hold point.
+    // The pipe's angle below the horizontal at each node, going down from the hold point; a cable's node (the
+    // winch's too, whose rotation is the vessel's) takes its tangent toward B from the chord of its element
+    // toward A (from the first element at node 0).
     let slope = |i: usize| {
-        let tangent = rotations[i] * Vector3::x();
+        let tangent = if model.rod.is_cable_node(i) {
+            let (a, b) = if i == 0 { (0, 1) } else { (i - 1, i) };
+            (positions[b] - positions[a]).normalize()
+        } else {
+            rotations[i] * Vector3::x()
+        };
         let down = if node == 0 { tangent } else { -tangent };
         down.z.atan2(down.xy().norm())
     };
