@@ -24,6 +24,7 @@ import numpy as np
 import pipelay as pl
 import pytest
 from scipy.optimize import brentq
+from sections import with_bending_scaled
 
 DEPTH = 150.0
 REAL_PIPE = pl.Section.pipe(0.3239, 0.0159, contents_density=0.0, drag=(0.0, 1.2), added_mass=(0.0, 1.0))
@@ -37,21 +38,6 @@ STAGES = pl.Stages(
         pl.Stage("settle", duration=60.0, pay_out=0.0, route_speed=0.0),
     ]
 )
-
-
-def _flexible(section: pl.Section, factor: float) -> pl.Section:
-    """`section` with its bending and torsional stiffness scaled by `factor`."""
-    return pl.Section(
-        EA=section.EA,
-        GA=section.GA,
-        GJ=section.GJ * factor,
-        EI=section.EI[0] * factor,
-        mass=section.mass,
-        inertia=section.inertia,
-        outer_diameter=section.outer_diameter,
-        drag=section.drag,
-        added_mass=section.added_mass,
-    )
 
 
 def _initiation(pipe: pl.Section) -> pl.Results:
@@ -90,7 +76,7 @@ def _stage_means(results: pl.Results, stage: int, weight: float) -> tuple[float,
 
 @pytest.fixture(scope="module")
 def cable_limit() -> pl.Results:
-    return _initiation(_flexible(REAL_PIPE, 1e-6))
+    return _initiation(with_bending_scaled(REAL_PIPE, 1e-6))
 
 
 @pytest.mark.parametrize("stage", [1, 3])

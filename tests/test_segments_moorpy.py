@@ -61,6 +61,7 @@ from typing import Any
 import numpy as np
 import pipelay as pl
 import pytest
+from sections import with_bending_scaled
 
 mp = pytest.importorskip("moorpy")
 
@@ -87,22 +88,7 @@ ARRANGEMENTS = {
 E_UP = np.array([0.0, 0.0, -1.0])  # up, in e
 
 
-def pipe_with_ei(factor: float) -> pl.Section:
-    """The pipe with its bending and torsional stiffness scaled by ``factor``, all else equal."""
-    return pl.Section(
-        EA=PIPE.EA,
-        GA=PIPE.GA,
-        GJ=PIPE.GJ * factor,
-        EI=PIPE.EI[0] * factor,
-        mass=PIPE.mass,
-        inertia=PIPE.inertia,
-        outer_diameter=PIPE.outer_diameter,
-        drag=PIPE.drag,
-        added_mass=PIPE.added_mass,
-    )
-
-
-PIPE_MODELS = {"all_cable": PIPE_AS_CABLE, "rod_ei_1e-6": pipe_with_ei(1e-6)}
+PIPE_MODELS = {"all_cable": PIPE_AS_CABLE, "rod_ei_1e-6": with_bending_scaled(PIPE, 1e-6)}
 
 
 @dataclass(frozen=True)
@@ -393,7 +379,7 @@ def test_pipe_bending_stiffness_effect_is_first_order_in_ei(case: tuple[str, Any
 
     ratio = {}
     for factor in (1.0, 0.1):
-        section = PIPE if factor == 1.0 else pipe_with_ei(factor)
+        section = PIPE if factor == 1.0 else with_bending_scaled(PIPE, factor)
         stiff = real if factor == 1.0 else errors(pipelay_solution(arrangement, section, 1.0), ref)
         ratio[factor] = {k: (stiff[k] - cable[k]) / (factor * predicted[k]) for k in FORCES + JOINT}
 

@@ -28,7 +28,6 @@ from __future__ import annotations
 import argparse
 import copy
 import json
-import os
 import sys
 import tomllib
 from pathlib import Path
@@ -42,8 +41,8 @@ from pipelay.analysis.lay import TARGETS, find_lay_position
 from pipelay.analysis.suspect import PhysicsWarning, worst_of_each_kind
 from pipelay.analysis.sweep import SUMMARY_TITLE, _label, sweep
 from pipelay.analysis.sweep import run as run_simulation
-from pipelay.analysis.sweep import start as start_without_stages
-from pipelay.results import checkpoint, load, resume
+from pipelay.analysis.sweep import start as start_simulation
+from pipelay.results import checkpoint, load
 from pipelay.scenario import Scenario, load_scenario, parse_scenario
 
 INTERRUPTED = 130
@@ -132,22 +131,6 @@ def _parser() -> argparse.ArgumentParser:
     schema = commands.add_parser("schema", help="the JSON Schema of scenario files")
     schema.add_argument("-o", "--output", type=Path, help="write it to this file instead of printing it")
     return parser
-
-
-def start_simulation(scenario: Scenario, checkpoint: str | os.PathLike[str] | None = None) -> pl.Simulation:
-    """The simulation of a scenario from its static state, or continued from a `checkpoint` file, through
-    its `[[stages]]` (`scenario.stages`; a resumed run through them too, `pl.resume(..., stages=)`). Without
-    stages it is `pipelay.analysis.sweep.start`, the start of a sweep's case.
-
-    Raises InputError if the scenario has neither `solver.t_end` nor stages, or if the stages do not fit the
-    model (naming `stages[k].key`); ConvergenceError if the statics fail.
-    """
-    if scenario.stages is None:
-        return start_without_stages(scenario, checkpoint)
-    if checkpoint is not None:
-        return resume(scenario.model, checkpoint, stages=scenario.stages)
-    state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
-    return scenario.model.simulation(state=state, dt=scenario.dt, stages=scenario.stages)
 
 
 def _reference(scenario: Scenario) -> list[float] | None:
@@ -281,8 +264,11 @@ def _run_summary(path: Path) -> str:
 
 
 def _write(args: argparse.Namespace, scenario: Scenario) -> None:
-    """The summary of the run streamed to ``args.output``, and its figures (from the file read back)."""
+    """The summary of the run streamed to ``args.output`` (and of each stage, for a staged run), and its figures
+    (from the file read back)."""
     print(_run_summary(args.output))
+    if scenario.stages is not None:
+        print(_stage_table(load(args.output), scenario.model))
     if args.plots:
         for figure in plots.all_figures(
             load(args.output), args.plots, reference=_reference(scenario), depth=_depth(scenario)
@@ -312,6 +298,30 @@ def _run(args: argparse.Namespace) -> int:
     if args.checkpoint:
         print(f"checkpoint: {checkpoint(simulation, args.checkpoint)} (t = {simulation.time:g} s)")
     return status
+
+
+def _stage_table(results: pl.Results, model: pl.Model) -> str:
+    """Each stage's extremes (``Results.stage_summary``) as a table: tensions in kN, strain in %, lengths in m."""
+    summary = results.stage_summary(model)
+    columns = {
+        "top_tension_max": ("top T max kN", 1e-3),
+        "top_tension_min": ("top T min kN", 1e-3),
+        "wire_tension_max": ("wire T max kN", 1e-3),
+        "pipe_force_min": ("pipe N min kN", 1e-3),
+        "strain_max": ("strain max %", 100.0),
+        "roller_reaction_max": ("roller max kN", 1e-3),
+        "touchdown_max": ("touchdown m", 1.0),
+        "head_height_min": ("head height m", 1.0),
+    }
+    width = max(len(name) for name in summary["name"])
+    lines = [
+        "stages:",
+        " ".join([f"{'':{width}}", f"{'start s':>9}", *(f"{t:>14}" for t, _ in columns.values())]),
+    ]
+    for _, row in summary.iterrows():
+        cells = [f"{row[key] * scale:14.4g}" for key, (_, scale) in columns.items()]
+        lines.append(" ".join([f"{row['name']:{width}}", f"{row['start']:9.1f}", *cells]))
+    return "\n".join(lines)
 
 
 def _print_suspects(suspects: dict[str, PhysicsWarning]) -> None:

@@ -107,7 +107,8 @@ SUMMARY_TITLE = "pipelay sweep summary"
 
 def start(scenario: Scenario, checkpoint: str | os.PathLike[str] | None = None) -> Simulation:
     """The simulation of a scenario from its static state (``model.static`` with the scenario's steps and
-    start), or continued from a `checkpoint` file; time step ``scenario.dt`` (s).
+    start), or continued from a `checkpoint` file; time step ``scenario.dt`` (s), through the scenario's
+    `[[stages]]` if it has any (``scenario.stages``).
 
     Raises InputError if the scenario has no ``solver.t_end``, ConvergenceError if the statics fail.
     """
