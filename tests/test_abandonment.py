@@ -80,6 +80,13 @@ def test_the_head_runs_over_the_rollers_within_the_normal_lays_loads(
     assert normal < rollers[peak, -1] < tension[peak]
     summary = results.stage_summary(scenario.model)
     assert summary["wire_tension_min"][2] > 0.1 * summary["wire_tension_max"][2]
+    # The stage summary's tip clearance is the lay summary's least in each stage; the head's pivot closes it.
+    clearance = results.lay_summary()["tip_clearance"]
+    for k in range(len(summary)):
+        assert summary["tip_clearance_min"][k] == pytest.approx(
+            np.nanmin(clearance[results.stage == k]), abs=1e-12
+        )
+    assert clearance[peak] < 0.0
 
 
 def test_the_head_lands_at_the_laid_pipes_end(abandonment: tuple[Scenario, pl.State, pl.Results]) -> None:

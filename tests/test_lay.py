@@ -238,6 +238,27 @@ def test_rollers_push_only_with_the_contact_law(x: float, seabed: bool) -> None:
     assert np.linalg.norm(rollers_on_pipe) > 0.1 * np.linalg.norm(state.reaction("B")[:3])
 
 
+@pytest.mark.parametrize("x", [620.0, 640.0, 660.0])
+def test_tip_clearance_is_the_gap_at_the_last_roller(x: float) -> None:
+    """The lay summary's tip clearance is the gap between the pipe's surface and the stinger's last roller: the
+    distance from the roller's axis to the pipe's centreline polyline (recomputed here from the positions and
+    the vessel pose), less the roller's radius and the pipe's half diameter, to 1e-9 m; in contact (≤ 0) it
+    is minus the overlap F/k."""
+    state = _s_lay_state(x, True)
+    distances, _ = _roller_contacts(state, _stinger(), 100.0)
+    expected = distances[-1] - ROLLER_RADIUS - DIAMETER / 2
+    summary = state.lay_summary()
+    assert summary is not None and state.roller_reactions is not None
+    print(f"\nx = {x}: tip clearance {summary['tip_clearance']:.6f} m (geometry {expected:.6f} m)")
+    assert summary["tip_clearance"] == pytest.approx(expected, abs=1e-9)
+    if summary["tip_clearance"] <= 0.0:
+        assert -summary["tip_clearance"] == pytest.approx(
+            state.roller_reactions[-1] / ROLLER_STIFFNESS, abs=1e-9
+        )
+    else:
+        assert state.roller_reactions[-1] == 0.0
+
+
 # --- 3. J-lay ------------------------------------------------------------------------------------------
 
 

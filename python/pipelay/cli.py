@@ -310,6 +310,7 @@ def _stage_table(results: pl.Results, model: pl.Model) -> str:
         "pipe_force_min": ("pipe N min kN", 1e-3),
         "strain_max": ("strain max %", 100.0),
         "roller_reaction_max": ("roller max kN", 1e-3),
+        "tip_clearance_min": ("tip gap min m", 1.0),
         "touchdown_max": ("touchdown m", 1.0),
         "head_height_min": ("head height m", 1.0),
     }

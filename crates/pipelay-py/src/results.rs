@@ -364,7 +364,11 @@ impl Results {
         let lay: Vec<Vec<f64>> = LAY_FIELDS
             .iter()
             .map(|name| match optional(name) {
-                Ok(series) if series.is_empty() && *name == "touchdown_arc_length" => {
+                // Files written before the tip clearance existed have none either.
+                Ok(series)
+                    if series.is_empty()
+                        && (*name == "touchdown_arc_length" || *name == "tip_clearance") =>
+                {
                     Ok(vec![f64::NAN; h.time.len()])
                 }
                 other => other,

@@ -4,7 +4,7 @@ head's track.
 A run through ``pl.Stages`` marks each record with its stage (``results.stage``: the stage whose steps end
 there). The summary takes, per stage, the extremes of the top tension (at the tensioner or the winch), of the
 A&R wire's tension, of the pipe's axial force and strain, of the DNV-ST-F101 utilisation (with ``checks``),
-of the touchdown's arc length and of the roller loads, and the laydown head's position (the node where the
+of the touchdown's arc length, of the roller loads and the stinger's tip clearance, and the laydown head's position (the node where the
 wire meets the pipe) and its height above the seabed.
 
 Units: N, m, s; strains and utilisations are dimensionless.
@@ -78,7 +78,8 @@ def stage_summary(
     ``pipe_force_min`` (N, the pipe's smallest axial force: negative is compression); ``strain_max`` (the
     largest of the lay summary's overbend and sagbend strains); ``utilisation_max`` (DNV-ST-F101, with
     `checks`); ``touchdown_min``, ``touchdown_max`` (m, touchdown's arc length from end A);
-    ``roller_reaction_max`` (N); ``head_x``, ``head_z`` (m, the head at the stage's end); ``head_height_min``
+    ``roller_reaction_max`` (N); ``tip_clearance_min`` (m, the least gap between the line and the stinger's
+    last roller, ≤ 0 in contact); ``head_x``, ``head_z`` (m, the head at the stage's end); ``head_height_min``
     (m, the head's least height above the plane of end A's seabed, z = 0).
 
     Args:
@@ -107,6 +108,7 @@ def stage_summary(
     lay = results.lay_summary() or {}
     top = lay.get("top_tension", np.full(len(stage), np.nan))
     strain = np.fmax(lay.get("overbend_strain", np.nan), lay.get("sagbend_strain", np.nan))
+    clearance = lay.get("tip_clearance", np.full(len(stage), np.nan))
     touchdown = results.touchdown_arc_length
     rollers = results.roller_reactions
     heads = head_positions(results, model)
@@ -126,6 +128,7 @@ def stage_summary(
         row["touchdown_min"] = _extreme(touchdown[records], np.nanmin) if touchdown is not None else np.nan
         row["touchdown_max"] = _extreme(touchdown[records], np.nanmax) if touchdown is not None else np.nan
         row["roller_reaction_max"] = _extreme(rollers[records], np.nanmax) if rollers is not None else np.nan
+        row["tip_clearance_min"] = _extreme(np.asarray(clearance)[records], np.nanmin)
         last = records[-1] if len(records) else None
         row["head_x"] = float(heads[last, 0]) if last is not None else np.nan
         row["head_z"] = float(heads[last, 2]) if last is not None else np.nan

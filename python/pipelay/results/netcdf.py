@@ -69,6 +69,11 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "overbend_strain": (("time",), "1", "largest strain from the hold point to the inflection point"),
     "sagbend_strain": (("time",), "1", "largest strain from the inflection point to the touchdown"),
     "sagbend_moment": (("time",), "N m", "largest bending moment from the inflection point to the touchdown"),
+    "tip_clearance": (
+        ("time",),
+        "m",
+        "gap between the line and the stinger's last roller (<= 0: in contact)",
+    ),
     "touchdown": (
         ("time", "axis"),
         "m",
@@ -129,6 +134,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "overbend_strain",
         "sagbend_strain",
         "sagbend_moment",
+        "tip_clearance",
     ),
 }
 # The groups ``load`` needs to build a Results (the engine's Results has no missing arrays).

@@ -34,6 +34,10 @@ pub struct LaySummary {
     pub sagbend_strain: f64,
     /// Largest bending moment in the sagbend (N·m).
     pub sagbend_moment: f64,
+    /// The gap between the line's surface and the stinger's last roller (m): the distance from the roller's
+    /// axis to the nearest element's chord less the roller's radius and the element's half diameter (≤ 0: in
+    /// contact); NaN without rollers.
+    pub tip_clearance: f64,
 }
 
 /// Where the rollers' top points are in a configuration (in e, m); empty without rollers.
@@ -55,7 +59,7 @@ pub fn roller_tops(
 }
 
 /// Names of [`LaySummary::values`], in order (`liftoff_roller` as a number, NaN: none).
-pub const LAY_FIELDS: [&str; 10] = [
+pub const LAY_FIELDS: [&str; 11] = [
     "top_tension",
     "departure_angle",
     "liftoff_roller",
@@ -66,11 +70,12 @@ pub const LAY_FIELDS: [&str; 10] = [
     "overbend_strain",
     "sagbend_strain",
     "sagbend_moment",
+    "tip_clearance",
 ];
 
 impl LaySummary {
     /// The fields as numbers, in the order of [`LAY_FIELDS`].
-    pub fn values(&self) -> [f64; 10] {
+    pub fn values(&self) -> [f64; 11] {
         [
             self.top_tension,
             self.departure_angle,
@@ -82,6 +87,7 @@ impl LaySummary {
             self.overbend_strain,
             self.sagbend_strain,
             self.sagbend_moment,
+            self.tip_clearance,
         ]
     }
 }
@@ -175,6 +181,7 @@ pub fn lay_summary(
             }
         }
     }
+    let tip_clearance = tip_clearance(model, positions, rotations, rollers);
     let nan_if_empty = |v: f64| if v.is_finite() { v } else { f64::NAN };
     Some(LaySummary {
         top_tension: section_forces[top_element][0],
@@ -187,5 +194,38 @@ pub fn lay_summary(
         overbend_strain: nan_if_empty(overbend_strain),
         sagbend_strain: nan_if_empty(sagbend_strain),
         sagbend_moment,
+        tip_clearance,
     })
+}
+
+/// The gap between the line and the last roller (m), from the element nearest it as the roller contact reports
+/// (`rollers`: forces and nearest elements); NaN without rollers.
+fn tip_clearance(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+    rollers: Option<(&[f64], &[usize])>,
+) -> f64 {
+    let (Some(attachment), Some((_, elements))) = (model.vessel.as_ref(), rollers) else {
+        return f64::NAN;
+    };
+    let (Some(roller), Some(&element)) = (attachment.rollers().last(), elements.last()) else {
+        return f64::NAN;
+    };
+    let node = attachment.node;
+    let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
+    let centre = positions[node] + body * (roller.centre - attachment.hang_off());
+    let axis = body * roller.axis;
+    // The chord's nearest point to the axis, in the plane across the axis.
+    let across = |v: Vector3<f64>| v - axis * axis.dot(&v);
+    let start = across(positions[element] - centre);
+    let chord = across(positions[element + 1] - positions[element]);
+    let length2 = chord.norm_squared();
+    let s = if length2 > 0.0 {
+        (-start.dot(&chord) / length2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let distance = (start + s * chord).norm();
+    distance - roller.radius - 0.5 * model.rod.section(element).hydrodynamic_diameter
 }
