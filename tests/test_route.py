@@ -97,3 +97,38 @@ def test_scenario_route() -> None:
     data["controller"]["route"]["speed"] = "fast"
     with pytest.raises(pl.InputError, match="controller.route.speed"):
         parse_scenario(data)
+
+
+def test_stages_move_the_set_point_and_the_route() -> None:
+    """Stages move the DP reference: a new set-point (x, y, ψ) is where the PD brings the vessel (no other
+    load: to 1 mm after 400 s); a route speed then moves it on along ψ from there, and the vessel follows with
+    the PD's lag D₁₁v/K_p behind the ramped route (travelled 1 m/s · 300 s less half the 10 s ramp: 295 m; to
+    5 mm). A set-point that is not finite names the key; one without a controller names the stage's key."""
+    model = _follower([10.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    stages = pl.Stages(
+        [
+            pl.Stage("hold", duration=50.0),
+            pl.Stage("move", duration=400.0, setpoint=(30.0, 5.0, 0.0)),
+            pl.Stage("sail", duration=300.0, route_speed=1.0),
+        ]
+    )
+    results = model.simulation(model.static(), dt=0.5, stages=stages).run(progress=False)
+    eta = results.eta
+    assert eta is not None
+    moved = np.flatnonzero(results.stage == 1)[-1]
+    print(f"\nat the set-point {eta[moved, :2]}, end {eta[-1, :2]}")
+    np.testing.assert_allclose(eta[moved, :2], [30.0, 5.0], atol=1e-3)
+    lag = pl.Vessel.osv().D[0, 0] * 1.0 / KP
+    assert eta[-1, 0] == pytest.approx(30.0 + 295.0 - lag, abs=5e-3)
+    assert eta[-1, 1] == pytest.approx(5.0, abs=1e-3)
+    with pytest.raises(pl.InputError, match="setpoint"):
+        pl.Stage("bad", duration=1.0, setpoint=(0.0, math.nan, 0.0))
+    free = pl.Model(
+        pl.Rod.straight((0, 0, 0), (10, 0, 0), 2, pl.Section(EA=1e7, GA=1e7, GJ=1e4, EI=1e4, mass=1.0)),
+        pl.Sea(100.0),
+    )
+    free.attach_vessel("B", pl.Vessel.osv(), eta=[10, 0, -100, 0, 0, 0.0])
+    with pytest.raises(pl.InputError, match=r"stages\[0\]\.setpoint"):
+        free.simulation(
+            free.rest(), dt=0.5, stages=pl.Stages([pl.Stage("a", duration=1.0, setpoint=(1.0, 0.0, 0.0))])
+        )

@@ -946,6 +946,7 @@ class Stage:
         route_speed: float | None = None,
         hold: Literal["tensioner", "winch"] | None = None,
         winch_speed: float | None = None,
+        setpoint: _ArrayLike | None = None,
         ramp: float | None = None,
     ) -> Stage: ...
     @property
@@ -961,6 +962,9 @@ class Stage:
     def hold(self) -> str | None: ...
     @property
     def winch_speed(self) -> float | None: ...
+    @property
+    def setpoint(self) -> list[float] | None:
+        """The DP set-point (x, y, ψ) the stage moves the reference to (m, rad), None for none."""
     @property
     def ramp(self) -> float:
         """The time the stage's speed changes take (s)."""

@@ -427,6 +427,7 @@ fn stage_table(names: &[String], starts: &[f64]) -> PyResult<Stages> {
             route_speed: None,
             hold: None,
             winch_speed: None,
+            setpoint: None,
             ramp: None,
         })
         .collect();

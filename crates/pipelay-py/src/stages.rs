@@ -77,6 +77,8 @@ impl Winch {
 /// (m/s; negative: pay-in). `route_speed`: the DP reference's speed along its route (m/s). `hold`:
 /// "tensioner" or "winch" — the first stage the winch holds starts with the hand-over of the line to it.
 /// `winch_speed`: the winch's pay-out speed once it holds (m/s; negative: haul-in; 0: the brake holds).
+/// `setpoint`: a new DP set-point (x, y, ψ) (m, rad): the reference jumps there and waits, until a route speed
+/// (of this stage or a later one) moves it along ψ.
 /// `ramp` (s): the time the stage's speed changes take (default 10 s, or the duration if shorter): a step of
 /// the pay-out speed would send an axial wave of force √(EA·m)·Δv down the pipe.
 #[pyclass(module = "pipelay", name = "Stage", frozen)]
@@ -86,7 +88,7 @@ pub struct Stage(pub EngineStage);
 #[pymethods]
 impl Stage {
     #[new]
-    #[pyo3(signature = (name, duration=None, *, pay_out=None, route_speed=None, hold=None, winch_speed=None, ramp=None))]
+    #[pyo3(signature = (name, duration=None, *, pay_out=None, route_speed=None, hold=None, winch_speed=None, setpoint=None, ramp=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         name: String,
@@ -95,8 +97,12 @@ impl Stage {
         route_speed: Option<f64>,
         hold: Option<&str>,
         winch_speed: Option<f64>,
+        setpoint: Option<&Bound<'_, PyAny>>,
         ramp: Option<f64>,
     ) -> PyResult<Self> {
+        let setpoint = setpoint
+            .map(|p| crate::convert::array::<3>(p, "setpoint"))
+            .transpose()?;
         let Some(duration) = duration else {
             return Err(input(
                 "duration",
@@ -115,6 +121,7 @@ impl Stage {
             route_speed,
             hold,
             winch_speed,
+            setpoint,
             ramp,
         };
         // Checked alone here; against the model when a simulation takes the stages.
@@ -149,6 +156,11 @@ impl Stage {
     #[getter]
     fn winch_speed(&self) -> Option<f64> {
         self.0.winch_speed
+    }
+    /// The DP set-point the stage moves the reference to, (x, y, ψ) (m, rad), None for none.
+    #[getter]
+    fn setpoint(&self) -> Option<[f64; 3]> {
+        self.0.setpoint
     }
     /// The time the stage's speed changes take (s).
     #[getter]

@@ -633,6 +633,10 @@ class Stage(Table):
         "the winch's pay-out speed once it holds the line (< 0 hauls in; 0: the brake holds)",
         words="the stage before's (at first 0)",
     )
+    setpoint: Annotated[list[float] | None, Vector(3, Number("m, m, rad"), "[x, y, ψ]")] = api(
+        "a new DP set-point (x, y, ψ): the reference jumps there and waits until a route speed moves it",
+        words="none: the reference carries on",
+    )
     ramp: Annotated[float | None, Number("s", ge=0)] = api(
         "time the stage's speed changes take, linear from the speeds before, in [0, duration]",
         words=f"{_STAGE_RAMP:g} s, or the duration if shorter",

@@ -10,6 +10,8 @@
 use crate::error::{Error, Result};
 use crate::model::{Model, PayOutSpeed};
 use crate::table::Leg;
+use crate::vessel::control::Reference;
+use nalgebra::Vector6;
 
 /// Who holds the line's top end.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,6 +49,9 @@ pub struct Stage {
     pub hold: Option<Hold>,
     /// The winch's pay-out speed (m/s; negative: haul-in; zero: the brake holds).
     pub winch_speed: Option<f64>,
+    /// A new DP set-point (x, y (m), heading ψ (rad)): the reference jumps there and waits (until a route speed
+    /// moves it along ψ).
+    pub setpoint: Option<[f64; 3]>,
     /// The time the stage's speed changes take, from the speeds before (s); `None`: [`DEFAULT_RAMP`] or the
     /// duration if shorter.
     pub ramp: Option<f64>,
@@ -81,6 +86,9 @@ impl Stage {
                     "must be a finite speed (m/s)",
                 ));
             }
+        }
+        if let Some(setpoint) = self.setpoint {
+            crate::error::finite(&format!("{prefix}setpoint"), &setpoint)?;
         }
         if let Some(ramp) = self.ramp {
             if !(ramp.is_finite() && (0.0..=self.duration).contains(&ramp)) {
@@ -244,8 +252,8 @@ impl Stages {
                 speed = value;
                 pays_out = true;
             }
-            if let Some(value) = stage.route_speed {
-                route.push((k, stage.leg(self.starts[k], value)));
+            if stage.setpoint.is_some() || stage.route_speed.is_some() {
+                route.push(k);
             }
             self.holds[k] = hold;
             speeds.push(stage.leg(self.starts[k], speed));
@@ -253,9 +261,12 @@ impl Stages {
         if pays_out {
             self.set_pay_out(model, speeds)?;
         }
-        if let Some(&(first, _)) = route.first() {
-            let changes: Vec<Leg> = route.iter().map(|&(_, leg)| leg).collect();
-            let key = format!("stages[{first}].route_speed");
+        if let Some(&first) = route.first() {
+            let key = if self.stages[first].setpoint.is_some() {
+                format!("stages[{first}].setpoint")
+            } else {
+                format!("stages[{first}].route_speed")
+            };
             let controller = model
                 .vessel
                 .as_mut()
@@ -263,13 +274,38 @@ impl Stages {
                 .ok_or_else(|| {
                     Error::input(
                         &key,
-                        changes[0].speed,
+                        "a DP change",
                         "needs a DP controller on the vessel: attach_vessel(..., controller=pl.PID(...))",
                     )
                 })?;
-            controller.reference = controller.reference.with_speed_changes(&changes, &key)?;
+            controller.reference = self.staged_reference(&controller.reference, &route)?;
         }
         Ok(())
+    }
+
+    /// The DP reference through the stages: from `base`, each of the stages `route` (by index) that sets a
+    /// set-point starts a new piece there, and one that sets a route speed changes the speed from its start.
+    fn staged_reference(&self, base: &Reference, route: &[usize]) -> Result<Reference> {
+        let mut pieces = vec![(f64::NEG_INFINITY, base.clone())];
+        for &k in route {
+            let start = self.starts[k];
+            let (setpoint, speed) = (self.stages[k].setpoint, self.stages[k].route_speed);
+            if let Some([x, y, heading]) = setpoint {
+                let fixed = Vector6::new(x, y, 0.0, 0.0, 0.0, heading);
+                pieces.push((start, Reference::Fixed(fixed)));
+            }
+            if let Some(speed) = speed {
+                let leg = self.stages[k].leg(start, speed);
+                let key = format!("stages[{k}].route_speed");
+                if let Some((_, last)) = pieces.last_mut() {
+                    *last = last.with_speed_changes(&[leg], &key)?;
+                }
+            }
+        }
+        Ok(match pieces.len() {
+            1 => pieces.swap_remove(0).1,
+            _ => Reference::Pieces(pieces),
+        })
     }
 
     /// Sets the stages' pay-out speeds on the model, paying out at the vessel's end if it does not yet.
@@ -322,6 +358,7 @@ mod tests {
             route_speed: None,
             hold: None,
             winch_speed: None,
+            setpoint: None,
             ramp: None,
         }
     }

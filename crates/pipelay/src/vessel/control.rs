@@ -19,6 +19,9 @@ pub enum Reference {
         heading: f64,
         legs: Vec<Leg>,
     },
+    /// References in pieces: each (its start time (s), the reference from then on), in time order; before the
+    /// first piece's start, the first piece (the stages of a lay: a new DP set-point starts a piece).
+    Pieces(Vec<(f64, Reference)>),
     /// A function of time, and its rate (else central differences over a millisecond).
     Function {
         pose: TimeFunction<Vector6<f64>>,
@@ -39,6 +42,7 @@ impl std::fmt::Debug for Reference {
                 "Route(start={:?}, heading={heading}, legs={legs:?})",
                 start.as_slice()
             ),
+            Reference::Pieces(pieces) => write!(f, "Pieces({pieces:?})"),
             Reference::Function { .. } => write!(f, "Function"),
         }
     }
@@ -60,6 +64,7 @@ impl PartialEq for Reference {
                     legs: g,
                 },
             ) => a == d && b == e && c == g,
+            (Reference::Pieces(a), Reference::Pieces(b)) => a == b,
             (Reference::Function { pose: a, .. }, Reference::Function { pose: b, .. }) => {
                 std::sync::Arc::ptr_eq(a, b)
             }
@@ -90,6 +95,17 @@ impl Reference {
                 );
                 let rate = Vector6::new(speed * cos, speed * sin, 0.0, 0.0, 0.0, 0.0);
                 Ok((pose, rate))
+            }
+            Reference::Pieces(pieces) => {
+                let piece = pieces
+                    .iter()
+                    .take_while(|(start, _)| *start <= time)
+                    .last()
+                    .or(pieces.first());
+                match piece {
+                    Some((_, reference)) => reference.at(time),
+                    None => Ok((Vector6::zeros(), Vector6::zeros())),
+                }
             }
             Reference::Function { pose, rate } => {
                 let call = |function: &TimeFunction<Vector6<f64>>, argument: &str, t: f64| {
@@ -277,6 +293,13 @@ impl Reference {
                 heading,
                 legs,
             } => (*start, *heading, legs.clone()),
+            Reference::Pieces(pieces) => {
+                let mut pieces = pieces.clone();
+                if let Some((_, last)) = pieces.last_mut() {
+                    *last = last.with_speed_changes(changes, key)?;
+                }
+                return Ok(Reference::Pieces(pieces));
+            }
             Reference::Function { .. } => {
                 return Err(Error::input(
                     key,
