@@ -420,16 +420,7 @@ fn stage_table(names: &[String], starts: &[f64]) -> PyResult<Stages> {
     let stages = names
         .iter()
         .zip(starts.windows(2))
-        .map(|(name, w)| Stage {
-            name: name.clone(),
-            duration: w[1] - w[0],
-            pay_out: None,
-            route_speed: None,
-            hold: None,
-            winch_speed: None,
-            setpoint: None,
-            ramp: None,
-        })
+        .map(|(name, w)| Stage::lasting(name.clone(), w[1] - w[0]))
         .collect();
     Stages::new(stages, starts[0]).map_err(crate::errors::to_py)
 }

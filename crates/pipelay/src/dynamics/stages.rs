@@ -64,6 +64,20 @@ pub struct Stage {
 pub const DEFAULT_RAMP: f64 = 10.0;
 
 impl Stage {
+    /// A stage of `duration` (s) that changes nothing.
+    pub fn lasting(name: String, duration: f64) -> Self {
+        Stage {
+            name,
+            duration,
+            pay_out: None,
+            route_speed: None,
+            hold: None,
+            winch_speed: None,
+            setpoint: None,
+            ramp: None,
+        }
+    }
+
     /// Checks the stage's own values: a positive, finite duration and finite speeds; errors name the key
     /// after `prefix` (e.g. "stages[2].").
     pub fn check(&self, prefix: &str) -> Result<()> {
@@ -351,16 +365,7 @@ mod tests {
     use super::*;
 
     fn stage(name: &str, duration: f64) -> Stage {
-        Stage {
-            name: name.into(),
-            duration,
-            pay_out: None,
-            route_speed: None,
-            hold: None,
-            winch_speed: None,
-            setpoint: None,
-            ramp: None,
-        }
+        Stage::lasting(name.into(), duration)
     }
 
     #[test]
