@@ -401,3 +401,46 @@ def test_a_wire_beyond_the_winchs_limit_is_warned_of() -> None:
         warnings.simplefilter("always")
         ample.simulation(ample.static(), dt=DT, stages=SHORT).run(progress=False)
     assert not [w for w in caught if "tension_limit" in str(w.message)]
+
+
+def test_a_stage_can_start_from_statics_of_its_configuration() -> None:
+    """A stage with statics=True starts from the line and vessel brought to rest in equilibrium where they
+    are: one step after it the pipe's kinetic energy is down from 10 kJ to a twentieth (the DP, whose reference
+    the vessel lagged, now pushes it on), the line is where an independent static solve with the vessel at
+    that pose puts it to 0.1 m (measured 6.5 cm: the vessel's surge over that step) with the vessel's heave and
+    pitch to 1 mm and 1e-3 rad, and the ledger closes with the restart booked as work supplied."""
+
+    def build(eta: list[float]) -> pl.Model:
+        rod = pl.Rod.straight((0.0, 0.0, 0.0), (600.0, 0.0, 0.0), 60, PIPE)
+        model = pl.Model(rod, pl.Sea(150.0, seabed=pl.Seabed(stiffness=1e5)))
+        model.pin("A")
+        pid = pl.PID(
+            kp=[2e5, 2e5, 0, 0, 0, 1e7], kd=[4e6, 4e6, 0, 0, 0, 1e8], reference=[520.0, 0, -150, 0, 0, 0]
+        )
+        lay = pl.JLay(position=(0.0, 0.0, -10.0), angle=0.2)
+        model.attach_vessel("B", pl.Vessel.osv(), eta=eta, lay=lay, controller=pid)
+        return model
+
+    model = build([520.0, 0.0, -150.0, 0.0, 0.0, 0.0])
+    stages = pl.Stages(
+        [
+            pl.Stage("pull", duration=20.0, route_speed=0.5),
+            pl.Stage("statics", duration=10.0, statics=True, route_speed=0.0),
+        ]
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", pl.PhysicsWarning)
+        results = model.simulation(model.static(), dt=DT, stages=stages).run(progress=False)
+        k = int(np.flatnonzero(results.stage == 0)[-1])
+        eta = results.eta
+        assert eta is not None
+        static = build([eta[k, 0], eta[k, 1], -150.0, 0.0, 0.0, eta[k, 5]]).static()
+    kinetic = results.energy["pipe_kinetic"]
+    print(f"\nkinetic {kinetic[k]:.0f} J before, {kinetic[k + 1]:.0f} J one step after the restart")
+    assert kinetic[k + 1] < 0.1 * kinetic[k]
+    assert np.abs(results.positions[k + 1] - static.positions).max() < 0.1
+    assert static.eta is not None
+    assert abs(eta[k + 1, 2] - static.eta[2]) < 1e-3 and abs(eta[k + 1, 4] - static.eta[4]) < 1e-3
+    energy = results.energy["total"]
+    balance = energy - energy[0] - results.supplied_work + results.dissipated
+    assert np.abs(balance).max() < 1e-9 * np.abs(energy).max()

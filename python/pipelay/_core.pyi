@@ -947,6 +947,7 @@ class Stage:
         hold: Literal["tensioner", "winch"] | None = None,
         winch_speed: float | None = None,
         setpoint: _ArrayLike | None = None,
+        statics: bool = False,
         ramp: float | None = None,
     ) -> Stage: ...
     @property
@@ -965,6 +966,9 @@ class Stage:
     @property
     def setpoint(self) -> list[float] | None:
         """The DP set-point (x, y, ψ) the stage moves the reference to (m, rad), None for none."""
+    @property
+    def statics(self) -> bool:
+        """Whether the stage starts from statics of its configuration."""
     @property
     def ramp(self) -> float:
         """The time the stage's speed changes take (s)."""

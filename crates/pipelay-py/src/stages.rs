@@ -78,7 +78,9 @@ impl Winch {
 /// "tensioner" or "winch" — the first stage the winch holds starts with the hand-over of the line to it.
 /// `winch_speed`: the winch's pay-out speed once it holds (m/s; negative: haul-in; 0: the brake holds).
 /// `setpoint`: a new DP set-point (x, y, ψ) (m, rad): the reference jumps there and waits, until a route speed
-/// (of this stage or a later one) moves it along ψ.
+/// (of this stage or a later one) moves it along ψ. `statics`: the stage starts from statics of its own
+/// configuration (the line and vessel as they are, brought to rest in equilibrium, the vessel held where it is;
+/// the energy this changes is booked as work supplied); calm water only.
 /// `ramp` (s): the time the stage's speed changes take (default 10 s, or the duration if shorter): a step of
 /// the pay-out speed would send an axial wave of force √(EA·m)·Δv down the pipe.
 #[pyclass(module = "pipelay", name = "Stage", frozen)]
@@ -88,7 +90,7 @@ pub struct Stage(pub EngineStage);
 #[pymethods]
 impl Stage {
     #[new]
-    #[pyo3(signature = (name, duration=None, *, pay_out=None, route_speed=None, hold=None, winch_speed=None, setpoint=None, ramp=None))]
+    #[pyo3(signature = (name, duration=None, *, pay_out=None, route_speed=None, hold=None, winch_speed=None, setpoint=None, statics=false, ramp=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         name: String,
@@ -98,6 +100,7 @@ impl Stage {
         hold: Option<&str>,
         winch_speed: Option<f64>,
         setpoint: Option<&Bound<'_, PyAny>>,
+        statics: bool,
         ramp: Option<f64>,
     ) -> PyResult<Self> {
         let setpoint = setpoint
@@ -122,6 +125,7 @@ impl Stage {
             hold,
             winch_speed,
             setpoint,
+            statics,
             ramp,
         };
         // Checked alone here; against the model when a simulation takes the stages.
@@ -161,6 +165,11 @@ impl Stage {
     #[getter]
     fn setpoint(&self) -> Option<[f64; 3]> {
         self.0.setpoint
+    }
+    /// Whether the stage starts from statics of its configuration.
+    #[getter]
+    fn statics(&self) -> bool {
+        self.0.statics
     }
     /// The time the stage's speed changes take (s).
     #[getter]

@@ -56,6 +56,7 @@ from pipelay.scenario.values import (
     About,
     Choice,
     End,
+    Flag,
     Integer,
     Matrix,
     Number,
@@ -636,6 +637,10 @@ class Stage(Table):
     setpoint: Annotated[list[float] | None, Vector(3, Number("m, m, rad"), "[x, y, ψ]")] = api(
         "a new DP set-point (x, y, ψ): the reference jumps there and waits until a route speed moves it",
         words="none: the reference carries on",
+    )
+    statics: Annotated[bool | None, Flag()] = api(
+        "start the stage from statics of its own configuration (brought to rest in equilibrium; calm water)",
+        words="false",
     )
     ramp: Annotated[float | None, Number("s", ge=0)] = api(
         "time the stage's speed changes take, linear from the speeds before, in [0, duration]",

@@ -46,6 +46,7 @@ __all__ = [
     "Choice",
     "Either",
     "End",
+    "Flag",
     "Integer",
     "Matrix",
     "Number",
@@ -226,6 +227,19 @@ class Text(Value):
     def schema(self) -> core_schema.CoreSchema:
         """A strict str."""
         return core_schema.str_schema(strict=True)
+
+
+@dataclass(frozen=True)
+class Flag(Value):
+    """true or false."""
+
+    def allowed(self) -> str:
+        """What is allowed."""
+        return "true or false"
+
+    def schema(self) -> core_schema.CoreSchema:
+        """A strict bool."""
+        return core_schema.bool_schema(strict=True)
 
 
 @dataclass(frozen=True)

@@ -358,7 +358,80 @@ impl Integrator {
         {
             self.hand_over()?;
         }
+        if let Some(stage) = self
+            .stages
+            .as_ref()
+            .and_then(|stages| stages.statics_due(self.state.time))
+        {
+            self.restart_from_statics(stage)?;
+        }
         pool::run(self.parallel(), || self.substep(self.options.time_step, 0))
+    }
+
+    /// Starts stage `stage` from statics of the configuration as it is: the vessel held where it is (its surge,
+    /// sway and yaw by the holding thrust), the line in equilibrium from Newton at full load from the current
+    /// configuration, all at rest. The change of energy is booked as work supplied: the analysis, not the
+    /// physics, put the system there.
+    fn restart_from_statics(&mut self, stage: usize) -> Result<()> {
+        let before = self.observe().energy().total();
+        let time = self.state.time;
+        if let Some(attachment) = self.model.vessel.as_mut() {
+            let node = attachment.node;
+            let configuration = &self.state.configuration;
+            let (position, body) = crate::vessel::coupling::vessel_pose(
+                attachment,
+                &configuration.positions[node],
+                &configuration.rotations[node],
+            );
+            attachment.eta = crate::vessel::coupling::eta_of(&position, &body);
+        }
+        let solution = crate::statics::solve::solve_from(
+            &self.model,
+            &crate::statics::solve::StaticOptions::default(),
+            self.state.configuration.clone(),
+            &self.state.slips,
+            time,
+        )
+        .map_err(|error| match error {
+            Error::Convergence {
+                iterations,
+                residual,
+                reason,
+                ..
+            } => Error::Convergence {
+                context: format!("statics at the start of stage {stage}"),
+                reached: time,
+                iterations,
+                residual,
+                reason,
+            },
+            other => other,
+        })?;
+        let slips = solution
+            .response
+            .seabed
+            .as_ref()
+            .map(|seabed| seabed.slips.clone());
+        let mut state = DynamicState::at_rest(&self.model, solution.configuration, time)?;
+        if let Some(slips) = slips {
+            state = state.with_slips(&slips);
+        }
+        self.state = state;
+        self.rebuild(None);
+        // As a new integrator's: the contacts and reactions of the configuration at rest.
+        let mut assembler = Assembler::new(&self.model);
+        assembler
+            .contact_start
+            .clone_from(&self.state.configuration.positions);
+        assembler.contact_slips.clone_from(&self.state.slips);
+        self.reactions =
+            Response::with_assembler(&self.model, &self.state.configuration, &mut assembler)
+                .nodal_reactions;
+        self.contact = assembler.contact.take();
+        self.assembler = assembler;
+        let after = self.observe().energy().total();
+        self.ledger.book_step(after - before, 0.0);
+        Ok(())
     }
 
     /// Hands the line over to the winch ([`hand_over`]) and books the energy its wire and head bring in.

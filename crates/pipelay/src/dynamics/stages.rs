@@ -52,6 +52,9 @@ pub struct Stage {
     /// A new DP set-point (x, y (m), heading ψ (rad)): the reference jumps there and waits (until a route speed
     /// moves it along ψ).
     pub setpoint: Option<[f64; 3]>,
+    /// Whether the stage starts from statics of its own configuration: the line and vessel as they are then,
+    /// brought to rest in equilibrium (the vessel held where it is) before the stage's first step.
+    pub statics: bool,
     /// The time the stage's speed changes take, from the speeds before (s); `None`: [`DEFAULT_RAMP`] or the
     /// duration if shorter.
     pub ramp: Option<f64>,
@@ -74,6 +77,7 @@ impl Stage {
             hold: None,
             winch_speed: None,
             setpoint: None,
+            statics: false,
             ramp: None,
         }
     }
@@ -269,6 +273,13 @@ impl Stages {
             if stage.setpoint.is_some() || stage.route_speed.is_some() {
                 route.push(k);
             }
+            if stage.statics && model.waves.is_some() {
+                return Err(Error::input(
+                    key("statics"),
+                    "true, in waves",
+                    "a stage can start from statics in calm water only (statics has no waves)",
+                ));
+            }
             self.holds[k] = hold;
             speeds.push(stage.leg(self.starts[k], speed));
         }
@@ -346,6 +357,14 @@ impl Stages {
             pay_out.speed = PayOutSpeed::Staged(speeds);
         }
         Ok(())
+    }
+
+    /// The stage that starts at `time` (s) from statics of its configuration, if one does: a step from its start
+    /// (a run resumed within the stage does not start it again).
+    pub fn statics_due(&self, time: f64) -> Option<usize> {
+        let tolerance = 1e-9 * (1.0 + time.abs());
+        let k = self.stepping_at(time);
+        (self.stages[k].statics && (time - self.starts[k]).abs() <= tolerance).then_some(k)
     }
 
     /// Whether the line must be handed over to the winch before a step from `time` (s): the stage holds it by

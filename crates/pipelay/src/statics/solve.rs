@@ -16,7 +16,7 @@ use crate::response::configuration::Response;
 use crate::so3::{exp_quat, quat_from_matrix};
 use crate::statics::start::catenary_guess;
 use crate::statics::supports::support_increment;
-use nalgebra::Vector3;
+use nalgebra::{Vector2, Vector3};
 
 /// Where Newton starts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -430,6 +430,51 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
         }
     }
     Ok(solution)
+}
+
+/// Static equilibrium of `model` found by Newton at full load from `start`, a configuration near it (the state a
+/// stage of a lay starts from statics of, [`crate::dynamics::stages`]): supports and point loads at `time` (s),
+/// the seabed's friction measured from `start` with its `slips`. Fails (`Error::Convergence`) where Newton
+/// does.
+pub fn solve_from(
+    model: &Model,
+    options: &StaticOptions,
+    start: Configuration,
+    slips: &[Vector2<f64>],
+    time: f64,
+) -> Result<StaticSolution> {
+    let mut assembler = Assembler::new(model);
+    assembler.point_load_scales = model
+        .point_loads
+        .iter()
+        .map(|load| load.scale_at(time))
+        .collect::<Result<_>>()?;
+    assembler.contact_start.clone_from(&start.positions);
+    assembler.contact_slips = slips.to_vec();
+    let mut config = start;
+    match newton(model, &mut assembler, &mut config, 1.0, None, options) {
+        Newton::Converged {
+            iterations,
+            residual,
+        } => Ok(StaticSolution {
+            response: Response::with_assembler(model, &config, &mut assembler),
+            configuration: config,
+            iterations,
+            steps: 1,
+            residual,
+            from_catenary: false,
+        }),
+        Newton::Failed {
+            iterations,
+            residual,
+        } => Err(Error::Convergence {
+            context: "static solve".into(),
+            reached: time,
+            iterations,
+            residual,
+            reason: format!("Newton did not converge from the configuration at t = {time} s"),
+        }),
+    }
 }
 
 fn solve_unchecked(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
