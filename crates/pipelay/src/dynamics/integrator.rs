@@ -131,10 +131,27 @@ pub struct Integrator {
     pub(super) growth: Option<Growth>,
     /// In waves, with a vessel that has RAOs: its wave-frequency motion.
     pub(super) vessel_waves: Option<VesselWaves>,
-    /// The stages of the run, if it has any (set on the model by [`Integrator::with_stages`]).
+    /// The stages of the run, if it has any (applied to the model by [`Stages::apply`]).
     pub(super) stages: Option<Stages>,
     /// The axial force the winch's wire took on at the hand-over (N), once it happened in this run.
     pub(super) handed_over: Option<f64>,
+}
+
+/// An assembler for `state` at rest, with the reactions of its configuration (static ones for a static state,
+/// friction from the state's slips) and its seabed contact: what a run starts from.
+fn assembler_at_rest(
+    model: &Model,
+    state: &DynamicState,
+) -> (Assembler, Vec<Vector6<f64>>, Option<SeabedContact>) {
+    let mut assembler = Assembler::new(model);
+    assembler
+        .contact_start
+        .clone_from(&state.configuration.positions);
+    assembler.contact_slips.clone_from(&state.slips);
+    let reactions =
+        Response::with_assembler(model, &state.configuration, &mut assembler).nodal_reactions;
+    let contact = assembler.contact.take();
+    (assembler, reactions, contact)
 }
 
 /// Round-off floor of the residual norm (N): internal forces carry errors of about 1e-16·EA per element, a
@@ -177,18 +194,9 @@ impl Integrator {
                 format!("must hold one per node ({count})"),
             ));
         }
-        let mut assembler = Assembler::new(&model);
-        // Before the first step: the reactions of the starting configuration at rest (static ones for a
-        // static state, friction from the state's slips), from the integrator's own assembler.
-        assembler
-            .contact_start
-            .clone_from(&state.configuration.positions);
-        assembler.contact_slips.clone_from(&state.slips);
-        let reactions =
-            Response::with_assembler(&model, &state.configuration, &mut assembler).nodal_reactions;
+        let (assembler, reactions, contact) = assembler_at_rest(&model, &state);
         let nodal = NodalProperties::new(&model);
         let round_off = round_off(&model);
-        let contact = assembler.contact.take();
         let vessel_waves = VesselWaves::new(&model, state.time)?;
         Ok(Integrator {
             segment_constants: rod_constants(&model),
@@ -223,23 +231,8 @@ impl Integrator {
         })
     }
 
-    /// An integrator of `model` run through `stages`, which are checked against it and set on it
-    /// ([`Stages::apply`]); a model restored from a checkpoint ([`Model::with_rod`]) must have had them applied
-    /// before its rod was replaced, which `restore` does.
-    pub fn with_stages(
-        mut model: Model,
-        state: DynamicState,
-        options: DynamicOptions,
-        mut stages: Stages,
-    ) -> Result<Self> {
-        stages.apply(&mut model, options.time_step)?;
-        let mut integrator = Integrator::new(model, state, options)?;
-        integrator.set_applied_stages(stages);
-        Ok(integrator)
-    }
-
-    /// Runs through `stages`, already applied to this integrator's model ([`Stages::apply`], as a restore
-    /// does before it replaces the rod).
+    /// Runs through `stages`, already applied to this integrator's model ([`Stages::apply`]: before the
+    /// integrator is made, and for a restored run before its checkpoint's rod replaces the model's).
     pub fn set_applied_stages(&mut self, stages: Stages) {
         self.stages = Some(stages);
     }
@@ -416,19 +409,10 @@ impl Integrator {
         if let Some(slips) = slips {
             state = state.with_slips(&slips);
         }
+        // The mesh is as it was: as a new integrator's, the contacts and reactions of the configuration at rest.
+        (self.assembler, self.reactions, self.contact) = assembler_at_rest(&self.model, &state);
+        self.next_gauss.clone_from(&state.gauss);
         self.state = state;
-        self.rebuild(None);
-        // As a new integrator's: the contacts and reactions of the configuration at rest.
-        let mut assembler = Assembler::new(&self.model);
-        assembler
-            .contact_start
-            .clone_from(&self.state.configuration.positions);
-        assembler.contact_slips.clone_from(&self.state.slips);
-        self.reactions =
-            Response::with_assembler(&self.model, &self.state.configuration, &mut assembler)
-                .nodal_reactions;
-        self.contact = assembler.contact.take();
-        self.assembler = assembler;
         let after = self.observe().energy().total();
         self.ledger.book_step(after - before, 0.0);
         Ok(())

@@ -183,9 +183,8 @@ impl<'a> Observables<'a> {
             .zip(&rod.elements)
             .enumerate()
             .map(|(e, (g, reference))| {
-                let section = rod.section(e);
-                let n = section.c_t() * (g.strain - reference.strain);
-                let m = section.c_r() * (g.curvature - reference.curvature);
+                let n = self.state.material_force(self.model, e);
+                let m = rod.section(e).c_r() * (g.curvature - reference.curvature);
                 Vector6::new(n.x, n.y, n.z, m.x, m.y, m.z)
             })
             .collect()

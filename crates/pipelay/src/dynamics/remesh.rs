@@ -215,9 +215,7 @@ fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
         // The element's axial force under its old section, which the new one is to carry on: its unstretched
         // length becomes l/(1 + N/EA) of the new section's EA (a joint passes the tensioner under tension,
         // not by a jump of the strain's stiffness), and its Gauss point that of the configuration.
-        let old = model.rod.section(element);
-        let reference = model.rod.elements[element];
-        let force = (old.c_t() * (state.gauss[element].strain - reference.strain)).x;
+        let force = state.material_force(model, element).x;
         model.rod.segment_of[element] = segment;
         changed = true;
         let positions = &state.configuration.positions;

@@ -192,8 +192,8 @@ impl Stages {
     }
 
     /// Checks the stages against `model` stepped with `dt` (s) and sets them on it: the pay-out speed becomes
-    /// the stages' (pay-out is set at the vessel's end if a stage needs it) and the DP reference's route takes
-    /// their route speeds. Errors name the stage's key: `stages[k].hold` for a winch that is not there, and so on.
+    /// the stages' (pay-out is set at the vessel's end if a stage needs it) and the DP reference takes their
+    /// set-points and route speeds. Errors name the stage's key: `stages[k].hold` for a winch that is not there, and so on.
     pub fn apply(&mut self, model: &mut Model, dt: f64) -> Result<()> {
         let winch = model.vessel.as_ref().and_then(|v| v.winch.as_ref());
         let mut hold = if winch.is_some_and(|w| w.holds) {
@@ -235,7 +235,8 @@ impl Stages {
                 }
                 (Some(Hold::Winch), Hold::Tensioner) => {
                     hold = Hold::Winch;
-                    // The tensioner's speed stops at the hand-over; the winch's brake holds until it pays out.
+                    // The winch takes over at the tensioner's speed and ramps to rest (its brake then holds)
+                    // unless the stage gives it a speed.
                     speed = 0.0;
                     pays_out = true;
                 }

@@ -52,6 +52,13 @@ pub struct VesselMotion {
 }
 
 impl DynamicState {
+    /// The material force n^t = C_T (Γ − Γ₀) at element `element`'s Gauss point (N, section frame); its first
+    /// component is the element's axial force.
+    pub fn material_force(&self, model: &Model, element: usize) -> Vector3<f64> {
+        model.rod.section(element).c_t()
+            * (self.gauss[element].strain - model.rod.elements[element].strain)
+    }
+
     /// A state at rest in `configuration` at time `time`; driven nodes move with their drive's velocity.
     pub fn at_rest(model: &Model, configuration: Configuration, time: f64) -> Result<Self> {
         let gauss = (0..model.rod.element_count())

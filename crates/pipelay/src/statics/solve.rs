@@ -443,12 +443,7 @@ pub fn solve_from(
     slips: &[Vector2<f64>],
     time: f64,
 ) -> Result<StaticSolution> {
-    let mut assembler = Assembler::new(model);
-    assembler.point_load_scales = model
-        .point_loads
-        .iter()
-        .map(|load| load.scale_at(time))
-        .collect::<Result<_>>()?;
+    let mut assembler = static_assembler(model, time)?;
     assembler.contact_start.clone_from(&start.positions);
     assembler.contact_slips = slips.to_vec();
     let mut config = start;
@@ -477,6 +472,17 @@ pub fn solve_from(
     }
 }
 
+/// An assembler of `model`'s statics with its point loads scaled as at `time` (s).
+fn static_assembler(model: &Model, time: f64) -> Result<Assembler> {
+    let mut assembler = Assembler::new(model);
+    assembler.point_load_scales = model
+        .point_loads
+        .iter()
+        .map(|load| load.scale_at(time))
+        .collect::<Result<_>>()?;
+    Ok(assembler)
+}
+
 fn solve_unchecked(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
     if options.initial_steps == 0 {
         return Err(Error::input("steps", 0, "must be an integer >= 1"));
@@ -490,12 +496,7 @@ fn solve_unchecked(model: &Model, options: &StaticOptions) -> Result<StaticSolut
     }
     // Statics is the state at t = 0: supports (drives included) and load scales are taken there.
     let targets = model.support_targets(0.0)?;
-    let mut assembler = Assembler::new(model);
-    assembler.point_load_scales = model
-        .point_loads
-        .iter()
-        .map(|load| load.scale_at(0.0))
-        .collect::<Result<_>>()?;
+    let mut assembler = static_assembler(model, 0.0)?;
     let mut iterations = 0;
     // A vessel holds its end where η puts it, upright at the surface: a target for the catenary guess.
     let mut guess_targets = targets.clone();

@@ -283,8 +283,8 @@ impl Reference {
 
     /// This reference with the route's speed changed at times: `changes` holds legs in time order, each
     /// replacing the route from its start. A fixed pose becomes a route from it along its heading, waiting
-    /// there until the first change; a function of time cannot take them (`key` names the first change in the
-    /// error).
+    /// there until the first change; a function of time (or a reference in pieces, which the stages change
+    /// piece by piece) cannot take them (`key` names the first change in the error).
     pub fn with_speed_changes(&self, changes: &[Leg], key: &str) -> Result<Self> {
         let (start, heading, mut legs) = match self {
             Reference::Fixed(pose) => (Vector2::new(pose[0], pose[1]), pose[5], Vec::new()),
@@ -293,14 +293,7 @@ impl Reference {
                 heading,
                 legs,
             } => (*start, *heading, legs.clone()),
-            Reference::Pieces(pieces) => {
-                let mut pieces = pieces.clone();
-                if let Some((_, last)) = pieces.last_mut() {
-                    *last = last.with_speed_changes(changes, key)?;
-                }
-                return Ok(Reference::Pieces(pieces));
-            }
-            Reference::Function { .. } => {
+            Reference::Pieces(_) | Reference::Function { .. } => {
                 return Err(Error::input(
                     key,
                     "a route speed for a controller whose reference is a function of time",
