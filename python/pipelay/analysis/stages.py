@@ -22,9 +22,29 @@ import numpy.typing as npt
 
 from pipelay._core import InputError, Model, Results
 
-__all__ = ["head_positions", "stage_summary", "wire_segments"]
+__all__ = ["head_positions", "stage_summary", "staged", "top_elements", "wire_elements", "wire_segments"]
 
 FloatArray = npt.NDArray[np.float64]
+
+
+def staged(results: Results, caller: str) -> tuple[npt.NDArray[np.int64], list[str], npt.NDArray[np.float64]]:
+    """The stage of each record (T,), the stages' names and their starts with the last one's end (s), of a run
+    through ``pl.Stages``.
+
+    Raises:
+        pipelay.InputError: naming `results` (and `caller`, what needs them), for a run without stages.
+    """
+    stage, names, starts = results.stage, results.stage_names, results.stage_starts
+    if stage is None or names is None or starts is None:
+        raise InputError(f"results: results of a run through pl.Stages ({caller}), got a run without stages")
+    return np.asarray(stage, dtype=np.int64), list(names), np.asarray(starts, dtype=np.float64)
+
+
+def top_elements(segment: FloatArray) -> npt.NDArray[np.int64]:
+    """The last element each record has (T,), of `segment` (T, n) (the rest is NaN padding of a run with
+    pay-out)."""
+    finite = np.isfinite(segment)
+    return segment.shape[1] - 1 - np.argmax(finite[:, ::-1], axis=1)
 
 
 def wire_segments(results: Results, model: Model | None = None) -> set[int]:
@@ -33,32 +53,28 @@ def wire_segments(results: Results, model: Model | None = None) -> set[int]:
     last record if it differs from that at the first (the wire a hand-over joined), else none."""
     if model is not None:
         return {k for k, section in enumerate(model.rod.sections) if section.is_cable}
+    segment = results.segment[[0, -1]]
+    first, last = segment[[0, 1], top_elements(segment)].astype(int)
+    return {int(last)} if last != first else set()
+
+
+def wire_elements(results: Results, model: Model | None = None) -> npt.NDArray[np.bool_]:
+    """Which elements of each record (T, n) are the wire's (see `wire_segments`; False on NaN padding)."""
     segment = results.segment
-    top = [_top_element(row) for row in segment[[0, -1]]]
-    first, last = (int(segment[i, e]) for i, e in zip((0, -1), top, strict=True))
-    return {last} if last != first else set()
-
-
-def _top_element(row: FloatArray) -> int:
-    """The last element a record has (the rest is NaN padding of a run with pay-out)."""
-    return int(np.flatnonzero(np.isfinite(row))[-1])
+    return np.isin(segment, list(wire_segments(results, model))) & np.isfinite(segment)
 
 
 def head_positions(results: Results, model: Model | None = None) -> FloatArray:
     """The laydown head's position in each record (T, 3) (m, in e): the first node of the trailing run of wire
     elements (see `wire_segments`); NaN rows where the line has no wire at its top."""
-    wires = wire_segments(results, model)
-    segment = results.segment
+    is_wire = wire_elements(results, model)
     positions = results.positions
-    heads = np.full((len(segment), 3), np.nan)
-    if not wires:
-        return heads
-    for k, row in enumerate(segment):
-        top = _top_element(row)
-        is_wire = np.isin(row[: top + 1], list(wires))
-        if not is_wire[top]:
+    heads = np.full((len(is_wire), 3), np.nan)
+    for k, top in enumerate(top_elements(results.segment)):
+        wire = is_wire[k, : top + 1]
+        if not wire[top]:
             continue
-        run = int(np.argmax(~is_wire[::-1])) if not is_wire.all() else top + 1
+        run = int(np.argmax(~wire[::-1])) if not wire.all() else top + 1
         node = top + 1 - run
         if node > 0:
             heads[k] = positions[k, node]
@@ -94,17 +110,10 @@ def stage_summary(
     """
     import pandas as pd
 
-    stage = results.stage
-    names, starts = results.stage_names, results.stage_starts
-    if stage is None or names is None or starts is None:
-        raise InputError(
-            "results: results of a run through pl.Stages (stage_summary), got a run without stages"
-        )
-    wires = wire_segments(results, model)
+    stage, names, starts = staged(results, "stage_summary")
     forces = results.section_forces[:, :, 0]
-    segment = results.segment
-    is_wire = np.isin(segment, list(wires)) & np.isfinite(segment)
-    is_pipe = ~is_wire & np.isfinite(segment)
+    is_wire = wire_elements(results, model)
+    is_pipe = ~is_wire & np.isfinite(results.segment)
     lay = results.lay_summary() or {}
     top = lay.get("top_tension", np.full(len(stage), np.nan))
     strain = np.fmax(lay.get("overbend_strain", np.nan), lay.get("sagbend_strain", np.nan))

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from pipelay.analysis.checks import DEFAULT_GRADE, GRADES
+from pipelay.analysis.stages import top_elements
 
 __all__ = [
     "HEEL_LIMIT",
@@ -159,9 +160,7 @@ def suspect_winch(results: Any, limit: float | None, wire: int | None) -> list[S
     if limit is None or wire is None or summary is None:
         return []
     segment = np.asarray(results.segment)
-    finite = np.isfinite(segment)
-    top = segment.shape[1] - 1 - np.argmax(finite[:, ::-1], axis=1)
-    held = segment[np.arange(len(segment)), top] == wire
+    held = segment[np.arange(len(segment)), top_elements(segment)] == wire
     tension = np.where(held, np.asarray(summary["top_tension"]), -np.inf)
     record = int(np.argmax(tension))
     if tension[record] <= limit:

@@ -17,8 +17,8 @@ import numpy as np
 import numpy.typing as npt
 from matplotlib.figure import Figure
 
-from pipelay._core import InputError, Model, Results
-from pipelay.analysis.stages import head_positions, wire_segments
+from pipelay._core import Model, Results
+from pipelay.analysis.stages import head_positions, staged, wire_elements
 from pipelay.plots.canvas import _figure, _finish, _PathLike
 from pipelay.plots.lay import _top_tension_series
 
@@ -26,26 +26,6 @@ __all__ = ["stage_configurations", "stage_tensions"]
 
 _SHADES = ("0.86", "0.95")
 """Face colours of the stages' spans, alternately."""
-
-
-def _stages(
-    results: Results, figure: str
-) -> tuple[npt.NDArray[np.int64], list[str], npt.NDArray[np.float64]]:
-    """The stage of each record (T,), the stages' names and their starts with the last one's end (s).
-
-    Raises:
-        pipelay.InputError: naming `results`, for a run without stages.
-    """
-    stage, names, starts = results.stage, results.stage_names, results.stage_starts
-    if stage is None or names is None or starts is None:
-        raise InputError(f"results: results of a run through pl.Stages ({figure}), got a run without stages")
-    return np.asarray(stage, dtype=np.int64), list(names), np.asarray(starts, dtype=np.float64)
-
-
-def _wire_elements(results: Results, model: Model | None) -> npt.NDArray[np.bool_]:
-    """Which elements of each record (T, n) are the wire's (False on NaN padding)."""
-    segment = results.segment
-    return np.isin(segment, list(wire_segments(results, model))) & np.isfinite(segment)
 
 
 def _wire_tension(results: Results, model: Model | None = None) -> npt.NDArray[np.float64]:
@@ -57,7 +37,7 @@ def _wire_tension(results: Results, model: Model | None = None) -> npt.NDArray[n
         model: the model run (its cable sections are the wire); None: the wire as
             `pipelay.analysis.stages.wire_segments` finds it.
     """
-    is_wire = _wire_elements(results, model)
+    is_wire = wire_elements(results, model)
     forces = np.where(is_wire, results.section_forces[:, :, 0], -np.inf)
     return np.where(is_wire.any(axis=1), forces.max(axis=1), np.nan)
 
@@ -84,7 +64,7 @@ def stage_tensions(results: Results, path: _PathLike | None = None, model: Model
     Raises:
         pipelay.InputError: naming `results`, for a run without stages.
     """
-    _, names, starts = _stages(results, "stage_tensions")
+    _, names, starts = staged(results, "stage_tensions")
     time = results.time
     figure, axes = _figure(10.0, 4.8, 1, 1)
     (axis,) = axes
@@ -138,10 +118,10 @@ def stage_configurations(
     Raises:
         pipelay.InputError: naming `results`, for a run without stages.
     """
-    stage, names, _ = _stages(results, "stage_configurations")
+    stage, names, _ = staged(results, "stage_configurations")
     time = results.time
     positions = results.positions
-    is_wire = _wire_elements(results, model)
+    is_wire = wire_elements(results, model)
     present = np.isfinite(results.segment)
     heads = head_positions(results, model)
     figure, axes = _figure(10.0, 5.0, 1, 1)
