@@ -7,6 +7,7 @@
     pipelay sweep SCENARIO --over KEY=V1,V2,... [--over ...] -o DIR [--scheduler ADDRESS | --workers N]
     pipelay plot DIR/summary.nc --variable NAME [--limit VALUE] [--select KEY=VALUE] [-o FILE]
     pipelay schema [-o FILE]
+    pipelay capability SCENARIO [--headings-step DEG] [--current M/S] [--max-wind M/S] [--plot FILE]
 
 `pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
 flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
@@ -15,7 +16,9 @@ flat however long the run), then prints a summary read from the file; --plots re
 --scheduler; the cases' results and the summary go to DIR (DIR/summary.nc), and finished cases found there
 are not run again. `pipelay plot`
 on a summary draws the operability map of a statistic over two swept keys. `pipelay schema` prints the
-scenario files' JSON Schema.
+scenario files' JSON Schema. `pipelay capability` solves the scenario's statics for the pipe's load on the
+vessel and prints the DP capability envelope (pipelay.analysis.capability): the largest wind speed the
+thrusters hold at each heading the environment comes from, with a co-linear current and fully developed sea.
 
 Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
 still written; for a sweep: a case failed, the others are written), 2 bad input (the message names the
@@ -37,6 +40,7 @@ import numpy as np
 
 import pipelay as pl
 from pipelay import plots
+from pipelay.analysis.capability import dp_capability
 from pipelay.analysis.lay import TARGETS, find_lay_position
 from pipelay.analysis.suspect import PhysicsWarning, worst_of_each_kind
 from pipelay.analysis.sweep import SUMMARY_TITLE, _label, sweep
@@ -128,6 +132,29 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786")
     where.add_argument("--workers", type=int, help="local worker processes (default: one a core)")
     sweeping.add_argument("--no-progress", action="store_true", help="no progress bar")
+    capability = commands.add_parser(
+        "capability",
+        help="DP capability: the largest wind held at each heading, with the pipe's static pull",
+    )
+    capability.add_argument("scenario", type=Path, help="scenario file (TOML) with a [vessel]")
+    capability.add_argument(
+        "--headings-step",
+        type=float,
+        default=15.0,
+        metavar="DEG",
+        help="degrees between the headings, from 0 (head-on) clockwise (default: 15)",
+    )
+    capability.add_argument(
+        "--current", type=float, default=0.75, metavar="M/S", help="co-linear current (m/s, default: 0.75)"
+    )
+    capability.add_argument(
+        "--max-wind",
+        type=float,
+        default=60.0,
+        metavar="M/S",
+        help="the search's upper limit on the wind speed (m/s, default: 60)",
+    )
+    capability.add_argument("--plot", type=Path, metavar="FILE", help="save the polar plot here (PNG)")
     schema = commands.add_parser("schema", help="the JSON Schema of scenario files")
     schema.add_argument("-o", "--output", type=Path, help="write it to this file instead of printing it")
     return parser
@@ -500,6 +527,34 @@ def _operability(args: argparse.Namespace) -> int:
     return 0
 
 
+def _capability(args: argparse.Namespace) -> int:
+    """`pipelay capability SCENARIO`: the DP capability envelope with the pipe's static load, as a table of
+    heading (deg, environment from) and wind speed (m/s); --plot saves the polar plot."""
+    step = float(args.headings_step)
+    if not (np.isfinite(step) and 0.0 < step <= 360.0):
+        raise pl.InputError(f"--headings-step: must be in (0, 360] degrees, got {args.headings_step!r}")
+    headings = np.radians(np.arange(0.0, 360.0 - 1e-9, step))
+    scenario = load_scenario(args.scenario)
+    with worst_of_each_kind() as suspects:
+        found = dp_capability(scenario, headings, current=args.current, max_wind=args.max_wind)
+    _print_suspects(suspects)
+    load = found.pipe_load + 0.0  # no −0.0 shown
+    print(f"DP capability: {found.label}")
+    print(
+        f"pipe load on the vessel (body frame, static): X {load[0] / 1e3:.1f} kN, Y {load[1] / 1e3:.1f} kN, "
+        f"N {load[5] / 1e3:.1f} kN m"
+    )
+    print("heading: where the environment comes from, relative to the bow, clockwise (90 = from starboard)")
+    print(f"current {found.current:g} m/s and the fully developed sea H_s = 0.0225 V², T_p = 0.77 V with it")
+    print(f"{'heading deg':>11} {'wind m/s':>9}")
+    for heading, speed, limited in zip(found.heading_deg, found.wind_speed, found.at_limit, strict=True):
+        print(f"{heading:11.1f} {speed:9.2f}" + ("  (held to --max-wind)" if limited else ""))
+    if args.plot:
+        found.plot(path=args.plot)
+        print(f"figure: {args.plot}")
+    return 0
+
+
 def _schema(args: argparse.Namespace) -> int:
     try:
         from pipelay.scenario import json_schema
@@ -524,6 +579,7 @@ def main(argv: list[str] | None = None) -> int:
         "plot": _plot,
         "sweep": _sweep,
         "schema": _schema,
+        "capability": _capability,
     }[args.command]
     try:
         return command(args)

@@ -7,8 +7,14 @@
 * `pipelay.analysis.lay`: where to put the vessel for a wanted lay configuration (``pl.lay``,
   ``pl.find_lay_position``);
 * `pipelay.analysis.sweep`: operability sweeps of a scenario on Dask (``pl.sweep``);
-* `pipelay.analysis.stages`: what each stage of a staged lay did (``Results.stage_summary``).
+* `pipelay.analysis.stages`: what each stage of a staged lay did (``Results.stage_summary``);
+* `pipelay.analysis.capability`: the DP capability envelope of a vessel holding a pipe (``dp_capability``,
+  ``Capability``, exported here).
 
 Imports of pipelay: the engine, `pipelay.results` and `pipelay.scenario` (the sweep); neither of those imports
 this package.
 """
+
+from pipelay.analysis.capability import Capability, dp_capability
+
+__all__ = ["Capability", "dp_capability"]
