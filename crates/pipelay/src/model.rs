@@ -469,6 +469,13 @@ impl Model {
                 }
             }
         }
+        if controller.as_ref().is_some_and(|c| c.allocation) && vessel.thrusters.is_empty() {
+            return Err(Error::input(
+                "allocation",
+                "\"qp\"",
+                "needs a vessel with thrusters (pl.Vessel(..., thrusters=...), or pl.Vessel.osv())",
+            ));
+        }
         for force in &environment {
             finite("environment", force.value.as_slice())?;
             finite("environment start", &[force.start])?;
@@ -501,7 +508,53 @@ impl Model {
             controller,
             environment,
             winch: None,
+            hull_loads: false,
         });
+        Ok(())
+    }
+
+    /// Lets wind, current and wave drift act on the vessel's hull through its coefficient tables; each load
+    /// the sea has needs the vessel's table for it.
+    pub fn enable_hull_loads(&mut self) -> Result<()> {
+        let Some(attachment) = self.vessel.as_mut() else {
+            return Err(Error::input(
+                "hull_loads",
+                "True",
+                "needs a vessel (attach_vessel)",
+            ));
+        };
+        let vessel = &attachment.vessel;
+        let sea = self.sea.as_ref();
+        let needs = [
+            (
+                sea.is_some_and(|s| s.wind.is_some()),
+                vessel.wind_coefficients.is_none(),
+                "wind_coefficients",
+                "wind",
+            ),
+            (
+                sea.is_some_and(|s| s.current.is_some()),
+                vessel.current_coefficients.is_none(),
+                "current_coefficients",
+                "current",
+            ),
+            (
+                self.waves.is_some(),
+                vessel.drift_coefficients.is_none(),
+                "drift_coefficients",
+                "waves",
+            ),
+        ];
+        for (present, missing, table, load) in needs {
+            if present && missing {
+                return Err(Error::input(
+                    table,
+                    "None",
+                    format!("must be given for the {load} to act on the hull (hull_loads=True)"),
+                ));
+            }
+        }
+        attachment.hull_loads = true;
         Ok(())
     }
 

@@ -495,6 +495,7 @@ mod tests {
             surface: 0.0,
             lay: Some(lay.clone()),
             winch: None,
+            hull_loads: false,
         };
         // A pipe 0.6 m across, 55 m in 11 elements.
         let section = crate::rod::section::Section::pipe(

@@ -26,8 +26,10 @@ pub struct Snapshot<'a> {
     /// Force and moment the rod exerts on each node's support (N, N·m).
     pub reactions: &'a [Vector6<f64>],
     pub energy: Energy,
-    /// With a vessel: η, ν, τ and χ.
+    /// With a vessel: η (total motion), ν, τ and χ.
     pub vessel: Option<[Vector6<f64>; 4]>,
+    /// With a vessel: what its station keeping records.
+    pub station: Option<StationRecord>,
     /// With a seabed: where the pipe leaves it.
     pub touchdown: Option<Touchdown>,
     /// With rollers: each roller's normal force (N).
@@ -43,6 +45,20 @@ pub struct Snapshot<'a> {
     pub pay_out_energy: f64,
     /// Newton iterations of the step that led to this state.
     pub iterations: usize,
+}
+
+/// A vessel's station keeping at one record.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StationRecord {
+    /// The low-frequency pose (what the DP controls).
+    pub eta_low_frequency: Vector6<f64>,
+    /// The observer's estimate of it, if there is an observer.
+    pub eta_estimate: Option<Vector6<f64>>,
+    /// The controller's command over the last step (body frame).
+    pub tau_commanded: Vector6<f64>,
+    /// With allocation: each thruster's thrust (N) and azimuth (rad).
+    pub thrust: Vec<f64>,
+    pub azimuth: Vec<f64>,
 }
 
 /// Time series of a run, stored flat (row-major: time first) for cheap hand-over to arrays.
@@ -95,6 +111,15 @@ pub struct History {
     pub nu: Vec<f64>,
     pub tau: Vec<f64>,
     pub chi: Vec<f64>,
+    /// With a vessel: its low-frequency η and the controller's command τ_c, (T, 6) each; with an observer its
+    /// estimate η̂ (T, 6); with allocation each thruster's thrust and azimuth, (T, k); empty otherwise.
+    pub eta_low_frequency: Vec<f64>,
+    pub tau_commanded: Vec<f64>,
+    pub eta_estimate: Vec<f64>,
+    pub thrust: Vec<f64>,
+    pub azimuth: Vec<f64>,
+    /// Number of thrusters k (0 without allocation).
+    pub thrusters_count: usize,
     /// Work supplied and energy dissipated since the start of the run (J).
     pub supplied_work: Vec<f64>,
     pub dissipated: Vec<f64>,
@@ -150,7 +175,26 @@ impl History {
         let n = self.nodes;
         let vessel = !self.eta.is_empty();
         let seabed = !self.touchdown_arc_length.is_empty();
-        let fields: [(&str, usize, usize); 29] = [
+        let six = |series: &Vec<f64>| if series.is_empty() { 0 } else { 6 };
+        let k = self.thrusters_count;
+        let fields: [(&str, usize, usize); 34] = [
+            (
+                "eta_low_frequency",
+                self.eta_low_frequency.len(),
+                six(&self.eta_low_frequency),
+            ),
+            (
+                "tau_commanded",
+                self.tau_commanded.len(),
+                six(&self.tau_commanded),
+            ),
+            (
+                "eta_estimate",
+                self.eta_estimate.len(),
+                six(&self.eta_estimate),
+            ),
+            ("thrust", self.thrust.len(), k),
+            ("azimuth", self.azimuth.len(), k),
             ("segment", self.segment.len(), n.saturating_sub(1)),
             ("length", self.length.len(), 1),
             ("pay_out_energy", self.pay_out_energy.len(), 1),
@@ -337,6 +381,18 @@ impl History {
             self.nu.extend_from_slice(nu.as_slice());
             self.tau.extend_from_slice(tau.as_slice());
             self.chi.extend_from_slice(chi.as_slice());
+        }
+        if let Some(station) = &snapshot.station {
+            self.eta_low_frequency
+                .extend_from_slice(station.eta_low_frequency.as_slice());
+            self.tau_commanded
+                .extend_from_slice(station.tau_commanded.as_slice());
+            if let Some(estimate) = &station.eta_estimate {
+                self.eta_estimate.extend_from_slice(estimate.as_slice());
+            }
+            self.thrusters_count = station.thrust.len();
+            self.thrust.extend_from_slice(&station.thrust);
+            self.azimuth.extend_from_slice(&station.azimuth);
         }
         self.supplied_work
             .push(snapshot.supplied_work - self.supplied_offset);

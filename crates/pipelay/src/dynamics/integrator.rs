@@ -25,7 +25,7 @@ use crate::assembly::assembler::Assembler;
 use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::seabed::SeabedContact;
 use crate::dynamics::hand_over;
-use crate::dynamics::history::{History, Snapshot};
+use crate::dynamics::history::{History, Snapshot, StationRecord};
 use crate::dynamics::ledger::{Ledger, StepWork};
 use crate::dynamics::nodal::{node_start, NodalProperties};
 use crate::dynamics::observables::Observables;
@@ -35,6 +35,7 @@ use crate::dynamics::remesh::MeshChange;
 use crate::dynamics::rod_step::{rod_constants, ElementWork, NodeStart, RodConstants};
 use crate::dynamics::stages::Stages;
 use crate::dynamics::state::DynamicState;
+use crate::dynamics::station_keeping::{HullEnvironment, HullValues, StationKeeping};
 use crate::dynamics::vessel_waves::VesselWaves;
 use crate::environment::waves::Kinematics;
 use crate::error::{positive, Error, Result};
@@ -44,7 +45,9 @@ use crate::response::configuration::Response;
 use crate::rod::dynamic_element::{GaussPoint, StressRule};
 use crate::so3::cayley_quaternion;
 use crate::vessel::control::{clamp_integral, shifted};
-use crate::vessel::coupling::{pipe_force_on_vessel, VesselContribution};
+use crate::vessel::coupling::{
+    eta_of, low_frequency_pose, pipe_force_on_vessel, vessel_pose, VesselContribution,
+};
 use crate::vessel::wave_motion::station;
 use nalgebra::{Vector3, Vector6};
 
@@ -131,6 +134,12 @@ pub struct Integrator {
     pub(super) growth: Option<Growth>,
     /// In waves, with a vessel that has RAOs: its wave-frequency motion.
     pub(super) vessel_waves: Option<VesselWaves>,
+    /// Wind, current and wave drift on the hull, and their values over the current step.
+    pub(super) hull: Option<HullEnvironment>,
+    pub(super) hull_values: HullValues,
+    /// A sampled DP loop (allocation, observer), and the thrust it holds over the current step.
+    pub(super) station_keeping: Option<StationKeeping>,
+    pub(super) applied_thrust: Option<Vector6<f64>>,
     /// The stages of the run, if it has any (applied to the model by [`Stages::apply`]).
     pub(super) stages: Option<Stages>,
     /// The axial force the winch's wire took on at the hand-over (N), once it happened in this run.
@@ -198,9 +207,32 @@ impl Integrator {
         let nodal = NodalProperties::new(&model);
         let round_off = round_off(&model);
         let vessel_waves = VesselWaves::new(&model, state.time)?;
+        let hull = HullEnvironment::new(&model)?;
+        let station_keeping = match (&model.vessel, &state.vessel) {
+            (Some(attachment), Some(motion)) => {
+                let node = attachment.node;
+                let (position, body) = crate::vessel::coupling::low_frequency_pose(
+                    attachment,
+                    &state.configuration.positions[node],
+                    &state.configuration.rotations[node],
+                    vessel_waves.as_ref().map(|w| &w.now),
+                );
+                StationKeeping::new(
+                    &model,
+                    &eta_of(&position, &body),
+                    &motion.velocity,
+                    &motion.hold_thrust,
+                )?
+            }
+            _ => None,
+        };
         Ok(Integrator {
             segment_constants: rod_constants(&model),
             vessel_waves,
+            hull,
+            hull_values: HullValues::default(),
+            station_keeping,
+            applied_thrust: None,
             contact,
             round_off,
             increments: vec![0.0; NODE_DOFS * count],
@@ -306,6 +338,7 @@ impl Integrator {
             reactions: &self.reactions,
             energy: observables.energy(),
             vessel: observables.vessel_values(),
+            station: self.station_record(&observables),
             touchdown: observables.touchdown(),
             roller_forces: observables.roller_forces(),
             supplied_work: self.ledger.supplied_work(),
@@ -314,6 +347,36 @@ impl Integrator {
             pay_out_energy: self.ledger.pay_out_energy(),
             iterations,
         }
+    }
+
+    /// What the vessel's station keeping records at the current state.
+    fn station_record(&self, observables: &Observables<'_>) -> Option<StationRecord> {
+        let eta_low_frequency = observables.vessel_low_frequency()?;
+        let thrust = self
+            .state
+            .vessel
+            .as_ref()
+            .map_or_else(Vector6::zeros, |m| m.thrust);
+        let Some(station_keeping) = &self.station_keeping else {
+            return Some(StationRecord {
+                eta_low_frequency,
+                eta_estimate: None,
+                tau_commanded: thrust,
+                thrust: Vec::new(),
+                azimuth: Vec::new(),
+            });
+        };
+        Some(StationRecord {
+            eta_low_frequency,
+            eta_estimate: station_keeping.estimate().map(|(eta, _)| eta),
+            tau_commanded: station_keeping.tau_commanded,
+            thrust: station_keeping.thrusters.iter().map(|s| s.thrust).collect(),
+            azimuth: station_keeping
+                .thrusters
+                .iter()
+                .map(|s| s.azimuth)
+                .collect(),
+        })
     }
 
     /// Advances `steps` time steps, recording into `history` every `record_every` steps.
@@ -486,6 +549,7 @@ impl Integrator {
                 .motion
                 .offset(time_next, &station(attachment, time_next)?)?;
         }
+        self.decide_station_keeping(time_mid, dt)?;
         self.growth = None;
         let grown = match Growth::start(&mut self.model, &mut self.nodal, &self.state, dt)? {
             Some((growth, brought_in)) => {
@@ -514,6 +578,48 @@ impl Integrator {
         self.ledger.book_pay_out(grown + elastic);
         self.remesh();
         Ok(report)
+    }
+
+    /// The hull's environment over the step and, for a sampled controller that has started, the thrust it
+    /// holds over the step, decided from the state at the step's start.
+    fn decide_station_keeping(&mut self, time_mid: f64, dt: f64) -> Result<()> {
+        self.applied_thrust = None;
+        let (Some(attachment), Some(motion)) = (&self.model.vessel, &self.state.vessel) else {
+            return Ok(());
+        };
+        if let Some(hull) = &self.hull {
+            self.hull_values = hull.at(attachment, time_mid)?;
+        }
+        let controller = attachment
+            .controller
+            .as_ref()
+            .filter(|c| time_mid >= c.start);
+        if let (Some(station_keeping), Some(controller)) = (&mut self.station_keeping, controller) {
+            let node = attachment.node;
+            let configuration = &self.state.configuration;
+            let (position, body) = vessel_pose(
+                attachment,
+                &configuration.positions[node],
+                &configuration.rotations[node],
+            );
+            let (low_position, low_body) = low_frequency_pose(
+                attachment,
+                &configuration.positions[node],
+                &configuration.rotations[node],
+                self.vessel_waves.as_ref().map(|w| &w.now),
+            );
+            self.applied_thrust = Some(station_keeping.decide(
+                attachment,
+                controller,
+                &eta_of(&position, &body),
+                &eta_of(&low_position, &low_body),
+                &motion.velocity,
+                &motion.integral,
+                &self.reference_mid,
+                dt,
+            )?);
+        }
+        Ok(())
     }
 
     /// With pay-out: splits or joins the end element when its length calls for it, rebuilds what depends on
@@ -604,7 +710,14 @@ impl Integrator {
             motion.filtered_tension = self.filtered_next;
             // The rod's force on the vessel, −(vessel's force on the rod), is the vessel end's reaction.
             self.reactions[attachment.node] = -self.rod_force_at_vessel;
-            if let Some(controller) = attachment
+            let sampled = self
+                .station_keeping
+                .as_mut()
+                .filter(|_| self.applied_thrust.is_some())
+                .and_then(|station_keeping| station_keeping.accept(dt));
+            if let Some(integral) = sampled {
+                motion.integral = integral;
+            } else if let Some(controller) = attachment
                 .controller
                 .as_ref()
                 .filter(|c| time_mid >= c.start)

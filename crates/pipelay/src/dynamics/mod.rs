@@ -22,5 +22,6 @@ pub mod remesh;
 pub mod rod_step;
 pub mod stages;
 pub mod state;
+pub mod station_keeping;
 pub mod step_residual;
 pub mod vessel_waves;

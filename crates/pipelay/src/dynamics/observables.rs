@@ -11,7 +11,7 @@ use crate::dynamics::nodal::NodalProperties;
 use crate::dynamics::state::DynamicState;
 use crate::model::Model;
 use crate::response::lay_summary::{lay_summary, LaySummary};
-use crate::vessel::coupling::{eta_of, low_frequency_pose};
+use crate::vessel::coupling::{eta_of, low_frequency_pose, vessel_pose};
 use crate::vessel::rigid_body::kinetic_energy;
 use crate::vessel::wave_motion::WaveOffset;
 use crate::vessel::VesselAttachment;
@@ -49,13 +49,26 @@ impl<'a> Observables<'a> {
         )
     }
 
-    /// With a vessel: its η, ν, the thrust τ and the pipe's force χ of the current state.
+    /// With a vessel: its η (the total motion, low and wave frequency), ν, the thrust τ and the pipe's force χ
+    /// of the current state.
     pub fn vessel_values(&self) -> Option<[Vector6<f64>; 4]> {
         let state = &self.state;
         let (attachment, motion) = (self.model.vessel.as_ref()?, state.vessel.as_ref()?);
-        let (position, body) = self.vessel_pose(attachment);
+        let node = attachment.node;
+        let (position, body) = vessel_pose(
+            attachment,
+            &state.configuration.positions[node],
+            &state.configuration.rotations[node],
+        );
         let eta = eta_of(&position, &body);
         Some([eta, motion.velocity, motion.thrust, motion.pipe_force])
+    }
+
+    /// With a vessel: its low-frequency η (the pose the DP controls; η itself without waves).
+    pub fn vessel_low_frequency(&self) -> Option<Vector6<f64>> {
+        let attachment = self.model.vessel.as_ref()?;
+        let (position, body) = self.vessel_pose(attachment);
+        Some(eta_of(&position, &body))
     }
 
     /// Energy of the current state.

@@ -9,6 +9,7 @@ use crate::contact::seabed::{NodeStep, PARALLEL_NODES as PARALLEL_CONTACT_NODES}
 use crate::dynamics::integrator::Integrator;
 use crate::dynamics::ledger::StepWork;
 use crate::dynamics::rod_step::{ElementOutputs, RodStep};
+use crate::dynamics::station_keeping::HullStep;
 use crate::environment::drag::quadratic_jacobian;
 use crate::error::Result;
 use crate::linalg::pool;
@@ -207,6 +208,11 @@ impl Integrator {
                 hold_thrust: motion.hold_thrust,
                 reference: self.reference_mid,
                 waves: self.vessel_waves.as_ref().map(|w| (w.now, w.next)),
+                applied_thrust: self.applied_thrust,
+                hull: self.hull.as_ref().map(|environment| HullStep {
+                    environment,
+                    values: self.hull_values,
+                }),
             };
             let contribution = vessel.contribution(
                 &state.configuration.positions[node],

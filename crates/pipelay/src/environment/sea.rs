@@ -16,6 +16,8 @@ pub struct Sea {
     pub seabed: Option<Seabed>,
     /// The sea state, if any (resolved for the depth and gravity by the model).
     pub waves: Option<Waves>,
+    /// The wind, if any: it acts on a vessel's hull ([`crate::vessel::hull_loads`]).
+    pub wind: Option<super::wind::Wind>,
 }
 
 impl Sea {
@@ -34,9 +36,16 @@ impl Sea {
             current,
             seabed,
             waves: None,
+            wind: None,
         };
         sea.check_seabed_below_surface(&[Vector2::zeros()])?;
         Ok(sea)
+    }
+
+    /// The same sea with wind.
+    pub fn with_wind(mut self, wind: super::wind::Wind) -> Self {
+        self.wind = Some(wind);
+        self
     }
 
     /// The same sea with waves.

@@ -209,6 +209,11 @@ pub struct Pid {
     pub thrust_limit: Option<Vector3<f64>>,
     /// The lay-tension loop that moves the set-point, if any.
     pub tension: Option<TensionControl>,
+    /// Whether τ goes through the thrusters' allocation ([`super::allocation`]) and their dynamics.
+    pub allocation: bool,
+    /// The observer the controller acts on, if any ([`super::observer`]); `None`: it sees the true
+    /// low-frequency pose and velocity.
+    pub observer: Option<super::observer::ObserverSettings>,
 }
 
 /// Checks a gain matrix: finite, symmetric and positive semi-definite (K_p and K_d so, the controller is
@@ -381,7 +386,28 @@ impl Pid {
             integral_limit,
             thrust_limit,
             tension,
+            allocation: false,
+            observer: None,
         })
+    }
+
+    /// The same controller with its command allocated to the thrusters (`allocation`) and acting on an
+    /// observer's estimate (`observer`).
+    pub fn with_station_keeping(
+        mut self,
+        allocation: bool,
+        observer: Option<super::observer::ObserverSettings>,
+    ) -> Self {
+        self.allocation = allocation;
+        self.observer = observer;
+        self
+    }
+
+    /// Whether the controller runs as a sampled loop, once per step on the state at the step's start: with
+    /// allocation or an observer. Otherwise its τ is implicit in the step (at the midpoint), which keeps the
+    /// closed loop passive step by step.
+    pub fn is_sampled(&self) -> bool {
+        self.allocation || self.observer.is_some()
     }
 }
 

@@ -255,6 +255,10 @@ pub struct DynamicVessel<'a> {
     pub reference: (Vector6<f64>, Vector6<f64>),
     /// In waves: the wave-frequency offsets at the step's start and end.
     pub waves: Option<(WaveOffset, WaveOffset)>,
+    /// The thrust a sampled controller holds over the step (body frame), instead of the implicit PID's.
+    pub applied_thrust: Option<Vector6<f64>>,
+    /// Wind, current and wave drift on the hull over the step, if the vessel feels them.
+    pub hull: Option<crate::dynamics::station_keeping::HullStep<'a>>,
 }
 
 /// Outcome of the vessel's contribution at trial increments.
@@ -269,14 +273,16 @@ pub struct VesselContribution {
     pub thrust: Vector6<f64>,
     /// η̃ at the midpoint (for the integral update).
     pub error_mid: Vector6<f64>,
-    /// Work of thrust and environment, Δt ν_{n+½}·(τ + w), and of the wave motion (J).
+    /// Work of thrust and environment (constant forces and the hull's loads), Δt ν_{n+½}·(τ + w), and of the
+    /// wave motion (J).
     pub supplied: f64,
     /// Δt ν_{n+½}·D(ν_{n+½}) (J).
     pub dissipated: f64,
 }
 
 impl DynamicVessel<'_> {
-    /// Body-frame generalised force at the midpoint and the thrust in it.
+    /// Body-frame generalised force at the midpoint, the thrust in it, the controller's error and the
+    /// environment's part (constant forces and the hull's loads).
     fn body_force(
         &self,
         position_mid: &Vector3<f64>,
@@ -284,7 +290,7 @@ impl DynamicVessel<'_> {
         velocity_mid: &Vector6<f64>,
         time_mid: f64,
         dt: f64,
-    ) -> (Vector6<f64>, Vector6<f64>, Vector6<f64>) {
+    ) -> [Vector6<f64>; 4] {
         let attachment = self.attachment;
         let eta = eta_of(position_mid, body_mid);
         let (thrust, error) = match attachment
@@ -292,6 +298,10 @@ impl DynamicVessel<'_> {
             .as_ref()
             .filter(|c| time_mid >= c.start)
         {
+            Some(_) if self.applied_thrust.is_some() => (
+                self.applied_thrust.unwrap_or_else(Vector6::zeros),
+                Vector6::zeros(),
+            ),
             Some(controller) => {
                 let error = eta_error(&eta, &self.reference.0);
                 let integral = clamp_integral(controller, &(self.integral + 0.5 * dt * error));
@@ -302,9 +312,12 @@ impl DynamicVessel<'_> {
             }
             None => (self.hold_thrust, Vector6::zeros()),
         };
-        let environment = environment_at(attachment, time_mid);
+        let mut environment = environment_at(attachment, time_mid);
+        if let Some(hull) = &self.hull {
+            environment += hull.load(body_mid, velocity_mid);
+        }
         let force = thrust + environment - attachment.vessel.damping_force(velocity_mid);
-        (force, thrust, error)
+        [force, thrust, error, environment]
     }
 
     /// Residual, work and (with `with_tangent`, else zero) tangent at increments (Δx, θ) of the end node,
@@ -351,7 +364,8 @@ impl DynamicVessel<'_> {
             let position_mid = position + 0.5 * dx;
             let body_mid = cayley(&(0.5 * theta_body)) * body;
             // The thrust and the controller's error of the body force vessel_step evaluates (once).
-            let control = std::cell::Cell::new((Vector6::zeros(), Vector6::zeros()));
+            let control =
+                std::cell::Cell::new((Vector6::zeros(), Vector6::zeros(), Vector6::zeros()));
             let mut step = vessel_step(
                 &attachment.vessel,
                 &state,
@@ -359,9 +373,9 @@ impl DynamicVessel<'_> {
                 dt,
                 attachment.surface,
                 &|v| {
-                    let (force, thrust, error) =
+                    let [force, thrust, error, environment] =
                         self.body_force(&position_mid, &body_mid, v, time_mid, dt);
-                    control.set((thrust, error));
+                    control.set((thrust, error, environment));
                     force
                 },
             );
@@ -382,10 +396,10 @@ impl DynamicVessel<'_> {
             for k in 3..6 {
                 step.magnitude[k] += force_scale;
             }
-            let (thrust, error) = control.get();
-            (step, thrust, error, wave_work)
+            let (thrust, error, environment) = control.get();
+            (step, thrust, error, environment, wave_work)
         };
-        let (step, thrust, error_mid, wave_work) = evaluate(increment);
+        let (step, thrust, error_mid, environment, wave_work) = evaluate(increment);
         // Tangent by forward differences (6 extra evaluations; O(h) accurate, enough for Newton).
         let mut tangent = Matrix6::zeros();
         for j in (0..6).filter(|_| with_tangent) {
@@ -398,7 +412,6 @@ impl DynamicVessel<'_> {
             plus[j] += h;
             tangent.set_column(j, &((evaluate(&plus).0.residual - step.residual) / h));
         }
-        let environment = environment_at(attachment, time_mid);
         let v = step.velocity_mid;
         VesselContribution {
             residual: step.residual,

@@ -1,13 +1,19 @@
 //! The DP vessel: a rigid body (eq. 10), its Euler angles, its coupling to the pipe's end, its control, its
-//! lay equipment (tensioner and stinger, or tower), its RAOs and the wave-frequency motion they give.
+//! lay equipment (tensioner and stinger, or tower), its RAOs and the wave-frequency motion they give, its
+//! thrusters and their allocation, the observer of its position, and wind, current and wave drift on its hull.
 //!
 //! May use: the basics and [`crate::environment`] (the waves that move it).
+pub mod allocation;
+pub mod capability;
 pub mod control;
 pub mod coupling;
 pub mod euler;
+pub mod hull_loads;
 pub mod lay;
+pub mod observer;
 pub mod raos;
 pub mod rigid_body;
+pub mod thrusters;
 pub mod wave_motion;
 pub mod winch;
 
@@ -48,6 +54,9 @@ pub struct VesselAttachment {
     pub lay: Option<lay::LayEquipment>,
     /// The A&R winch, if any.
     pub winch: Option<winch::Winch>,
+    /// Whether wind, current and wave drift act on the hull through the vessel's coefficient tables
+    /// ([`hull_loads`]); off, the hull feels only `environment` (the paper's model).
+    pub hull_loads: bool,
 }
 
 impl VesselAttachment {

@@ -36,7 +36,30 @@ impl Raos {
 
     /// A table from CSV text; `source` names it in errors.
     pub fn from_csv(text: &str, source: &str) -> Result<Self> {
-        let bad = |what: String| Error::input("raos", source, what);
+        let columns: Vec<String> = DOFS
+            .iter()
+            .flat_map(|d| [format!("{d}_amp"), format!("{d}_phase")])
+            .collect();
+        Self::grid_from_csv(text, source, "raos", &columns, |numbers| {
+            let mut values = [Complex::new(0.0, 0.0); 6];
+            for (dof, value) in values.iter_mut().enumerate() {
+                *value = Complex::from_polar(numbers[2 * dof], numbers[2 * dof + 1]);
+            }
+            values
+        })
+    }
+
+    /// A table of the same grid from a CSV text whose columns are `period_s`, `heading_deg` and `columns`;
+    /// `values` turns a row's numbers (in the order of `columns`) into the 6 values. Errors name `argument`
+    /// and `source`.
+    pub fn grid_from_csv(
+        text: &str,
+        source: &str,
+        argument: &str,
+        columns: &[String],
+        values: impl Fn(&[f64]) -> [Complex<f64>; 6],
+    ) -> Result<Self> {
+        let bad = |what: String| Error::input(argument, source, what);
         let mut lines = text
             .lines()
             .enumerate()
@@ -53,11 +76,12 @@ impl Raos {
         };
         let period_column = column("period_s")?;
         let heading_column = column("heading_deg")?;
-        let dof_columns = DOFS
+        let value_columns = columns
             .iter()
-            .map(|d| Ok((column(&format!("{d}_amp"))?, column(&format!("{d}_phase"))?)))
+            .map(|c| column(c))
             .collect::<Result<Vec<_>>>()?;
         let mut rows: Vec<(f64, f64, [Complex<f64>; 6])> = Vec::new();
+        let mut numbers = vec![0.0; value_columns.len()];
         for (index, line) in lines {
             let fields: Vec<&str> = line.split(',').map(str::trim).collect();
             let number = |c: usize| -> Result<f64> {
@@ -71,11 +95,14 @@ impl Raos {
                     ))),
                 }
             };
-            let mut values = [Complex::new(0.0, 0.0); 6];
-            for (value, (amplitude, phase)) in values.iter_mut().zip(&dof_columns) {
-                *value = Complex::from_polar(number(*amplitude)?, number(*phase)?);
+            for (value, &c) in numbers.iter_mut().zip(&value_columns) {
+                *value = number(c)?;
             }
-            rows.push((number(period_column)?, number(heading_column)?, values));
+            rows.push((
+                number(period_column)?,
+                number(heading_column)?,
+                values(&numbers),
+            ));
         }
         let mut periods: Vec<f64> = rows.iter().map(|r| r.0).collect();
         let mut headings: Vec<f64> = rows.iter().map(|r| r.1).collect();

@@ -15,7 +15,9 @@
 //! quadratic in q with q linear in (x, Λ), exactly integrated by the midpoint of q.
 // Indexing cannot go out of bounds here: 6×6 matrices and 6-vectors indexed by constants.
 #![allow(clippy::indexing_slicing)]
+use super::hull_loads::{DriftCoefficients, HullCoefficients};
 use super::raos::Raos;
+use super::thrusters::{check_on_hull, mss_supply_vessel, Thruster};
 use crate::error::{finite, Error, Result};
 use crate::so3::{cayley, skew};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
@@ -36,6 +38,14 @@ pub struct Vessel {
     /// First-order displacement RAOs: the wave-frequency motion in waves; `None`: the vessel moves only at low
     /// frequency.
     pub raos: Option<Raos>,
+    /// Overall length (m, CO amidships), if known: where thrusters may sit.
+    pub length: Option<f64>,
+    /// Its thrusters (empty: the controller's τ acts directly).
+    pub thrusters: Vec<Thruster>,
+    /// Wind, current and wave-drift coefficients of the hull, if any ([`super::hull_loads`]).
+    pub wind_coefficients: Option<HullCoefficients>,
+    pub current_coefficients: Option<HullCoefficients>,
+    pub drift_coefficients: Option<DriftCoefficients>,
 }
 
 /// Heave, roll and pitch: the DOFs hydrostatics restores.
@@ -124,7 +134,41 @@ impl Vessel {
             restoring,
             quadratic_damping,
             raos: None,
+            length: None,
+            thrusters: Vec::new(),
+            wind_coefficients: None,
+            current_coefficients: None,
+            drift_coefficients: None,
         })
+    }
+
+    /// The same vessel with thrusters on a hull of length `length` (m), each checked to lie on it.
+    pub fn with_thrusters(mut self, thrusters: Vec<Thruster>, length: Option<f64>) -> Result<Self> {
+        if let Some(length) = length {
+            check_on_hull(&thrusters, length)?;
+        } else if !thrusters.is_empty() {
+            return Err(Error::input(
+                "length",
+                "None",
+                "must be given with thrusters (m, overall length): thrusters must lie on the hull",
+            ));
+        }
+        self.length = length;
+        self.thrusters = thrusters;
+        Ok(self)
+    }
+
+    /// The same vessel with wind, current and wave-drift coefficients (`None`: none of that kind).
+    pub fn with_hull_coefficients(
+        mut self,
+        wind: Option<HullCoefficients>,
+        current: Option<HullCoefficients>,
+        drift: Option<DriftCoefficients>,
+    ) -> Self {
+        self.wind_coefficients = wind;
+        self.current_coefficients = current;
+        self.drift_coefficients = drift;
+        self
     }
 
     /// The same vessel with the RAO table `raos` (`None`: none).
@@ -135,7 +179,8 @@ impl Vessel {
 
     /// The 83 m offshore supply vessel of Fossen's MSS toolbox (`osv.m`, Fossen 2021 eqs. 6.111–6.116):
     /// M_RB, M_A (hard-coded in osv.m), D = diag(M11/T1, M22/T2, 2ζ3ω3M33, 2ζ4ω4M44, 2ζ5ω5M55, M66/T6), G;
-    /// with the RAOs computed for its hull by Capytaine (`Raos::osv`).
+    /// with the RAOs computed for its hull by Capytaine (`Raos::osv`), the six thrusters of the MSS supply
+    /// vessel ([`mss_supply_vessel`]) and its wind, current and wave-drift coefficients ([`super::hull_loads`]).
     pub fn osv() -> Self {
         let m_rb = Matrix6::from_row_slice(&[
             4976887.5,
@@ -265,8 +310,13 @@ impl Vessel {
             damping,
             restoring,
             quadratic_damping: None,
-            // The table is shipped with the crate and read by a unit test.
+            // The tables are shipped with the crate and read by unit tests.
             raos: Raos::osv().ok(),
+            length: Some(83.0),
+            thrusters: mss_supply_vessel(),
+            wind_coefficients: HullCoefficients::osv_wind().ok(),
+            current_coefficients: HullCoefficients::osv_current().ok(),
+            drift_coefficients: DriftCoefficients::osv().ok(),
         }
     }
 
