@@ -18,15 +18,19 @@ from typing import Any
 
 from pipelay._core import (
     PID,
+    Allocation,
     Bathymetry,
     Clump,
     Coating,
     ConvergenceError,
     Current,
+    DriftCoefficients,
     Force,
+    HullCoefficients,
     InputError,
     JLay,
     Model,
+    Observer,
     Raos,
     Results,
     Rod,
@@ -42,13 +46,16 @@ from pipelay._core import (
     State,
     Stinger,
     TensionControl,
+    Thruster,
     Touchdown,
     Vessel,
     Waves,
     Winch,
+    Wind,
 )
 from pipelay.analysis import checks, lay, statistics, suspect
 from pipelay.analysis import stages as _stages  # noqa: F401 (attaches Results.stage_summary)
+from pipelay.analysis.capability import Capability, dp_capability
 from pipelay.analysis.lay import find_lay_position
 from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep
@@ -112,15 +119,20 @@ del _old, _new
 
 __all__ = [
     "PID",
+    "Allocation",
     "Bathymetry",
+    "Capability",
     "Clump",
     "Coating",
     "ConvergenceError",
     "Current",
+    "DriftCoefficients",
     "Force",
+    "HullCoefficients",
     "InputError",
     "JLay",
     "Model",
+    "Observer",
     "PhysicsWarning",
     "Raos",
     "Results",
@@ -137,11 +149,14 @@ __all__ = [
     "State",
     "Stinger",
     "TensionControl",
+    "Thruster",
     "Touchdown",
     "Vessel",
     "Waves",
     "Winch",
+    "Wind",
     "checks",
+    "dp_capability",
     "find_lay_position",
     "lay",
     "load",

@@ -15,15 +15,19 @@ _End: TypeAlias = Literal["A", "B"]
 
 __all__ = [
     "PID",
+    "Allocation",
     "Bathymetry",
     "Clump",
     "Coating",
     "ConvergenceError",
     "Current",
+    "DriftCoefficients",
     "Force",
+    "HullCoefficients",
     "InputError",
     "JLay",
     "Model",
+    "Observer",
     "Raos",
     "Results",
     "Rod",
@@ -39,10 +43,14 @@ __all__ = [
     "State",
     "Stinger",
     "TensionControl",
+    "Thruster",
     "Touchdown",
     "Vessel",
     "Waves",
     "Winch",
+    "Wind",
+    "dp_capability_wind",
+    "environment_load",
 ]
 
 class InputError(ValueError):
@@ -325,10 +333,14 @@ class Sea:
         current: Current | None = None,
         seabed: Seabed | None = None,
         waves: Waves | None = None,
+        wind: Wind | None = None,
     ) -> Sea: ...
     @property
     def waves(self) -> Waves | None:
         """The sea state, resolved for this depth."""
+    @property
+    def wind(self) -> Wind | None:
+        """The wind, if any."""
     @property
     def depth(self) -> float:
         """Water depth (m)."""
@@ -559,7 +571,29 @@ class Vessel:
         M_RB: _ArrayLike | None = None,
         quadratic_damping: _ArrayLike | None = None,
         raos: Raos | None = None,
+        length: float | None = None,
+        thrusters: Sequence[Thruster] | None = None,
+        wind_coefficients: HullCoefficients | None = None,
+        current_coefficients: HullCoefficients | None = None,
+        drift_coefficients: DriftCoefficients | None = None,
     ) -> Vessel: ...
+    @property
+    def thrusters(self) -> list[Thruster]:
+        """Its thrusters (the OSV: the six of Fossen's MSS supply vessel)."""
+    @property
+    def length(self) -> float | None:
+        """Overall length (m), if given."""
+    @property
+    def wind_coefficients(self) -> HullCoefficients | None:
+        """Wind coefficients of the hull (m², m³), if any."""
+    @property
+    def current_coefficients(self) -> HullCoefficients | None:
+        """Current coefficients of the hull (m², m³), if any."""
+    @property
+    def drift_coefficients(self) -> DriftCoefficients | None:
+        """Mean wave-drift coefficients (N/m², N·m/m²), if any."""
+    def allocate(self, tau: _ArrayLike) -> Allocation:
+        """One allocation of a commanded τ (6,) (body frame) to the thrusters, without rate limits."""
     @staticmethod
     def osv(raos: Raos | None = None) -> Vessel:
         """The 83 m offshore supply vessel of Fossen's MSS toolbox, with its Capytaine RAOs or `raos`."""
@@ -653,6 +687,8 @@ class PID:
         thrust_limit: _ArrayLike | None = None,
         reference_rate: Callable[[float], _ArrayLike] | None = None,
         tension: TensionControl | None = None,
+        allocation: Literal["qp"] | None = None,
+        observer: Observer | None = None,
     ) -> PID: ...
     @property
     def reference(self) -> _FloatArray:
@@ -662,6 +698,144 @@ class PID:
     @property
     def start(self) -> float:
         """Start time (s)."""
+
+@final
+class Thruster:
+    """A thruster: "tunnel" (pushes to starboard when positive), "azimuth" (along an azimuth it turns) or
+    "main" (ahead when positive), at (l_x, l_y) (m, body frame from CO), with thrust limits (N), rates (N/s,
+    rad/s) and the time constant of its thrust's response (s)."""
+
+    def __new__(
+        cls,
+        kind: Literal["tunnel", "azimuth", "main"],
+        position: _ArrayLike,
+        max_thrust: float,
+        reverse_thrust: float | None = None,
+        thrust_rate: float | None = None,
+        azimuth_rate: float | None = None,
+        time_constant: float = 1.0,
+    ) -> Thruster: ...
+    @property
+    def kind(self) -> str:
+        """ "tunnel", "azimuth" or "main"."""
+    @property
+    def position(self) -> tuple[float, float]:
+        """(l_x, l_y) (m, body frame from CO)."""
+    @property
+    def max_thrust(self) -> float:
+        """Largest forward thrust (N)."""
+    @property
+    def reverse_thrust(self) -> float:
+        """Largest reverse thrust (N)."""
+    @property
+    def thrust_rate(self) -> float | None:
+        """Bound on the thrust's rate (N/s), if any."""
+    @property
+    def azimuth_rate(self) -> float | None:
+        """Bound on the azimuth's rate (rad/s), if any."""
+    @property
+    def time_constant(self) -> float:
+        """Time constant of the thrust's response (s)."""
+
+@final
+class Allocation:
+    """One thrust allocation: each thruster's thrust and azimuth, the τ delivered, and whether it saturated."""
+
+    @property
+    def thrust(self) -> _FloatArray:
+        """Each thruster's thrust (k,) (N)."""
+    @property
+    def azimuth(self) -> _FloatArray:
+        """Each thruster's azimuth (k,) (rad)."""
+    @property
+    def tau(self) -> _FloatArray:
+        """The τ delivered (6,) (body frame)."""
+    @property
+    def saturated(self) -> bool:
+        """Whether the thrusters could not deliver the command."""
+
+@final
+class Observer:
+    """A position observer for the DP controller."""
+
+    @staticmethod
+    def passive(noise: _ArrayLike | None = None, seed: int = 0, wave_period: float | None = None) -> Observer:
+        """Fossen's nonlinear passive observer on x, y, ψ measured with Gaussian noise of standard deviations
+        `noise` (m, m, rad) from `seed`; its notch at `wave_period` (s; None: the sea's peak period)."""
+    @property
+    def noise(self) -> tuple[float, float, float]:
+        """Noise standard deviations (m, m, rad)."""
+    @property
+    def seed(self) -> int:
+        """The noise's seed."""
+
+@final
+class Wind:
+    """Wind of 1-hour mean speed (m/s at 10 m) blowing toward `direction` (rad, from e1 toward e2), with
+    NPD gusts (ISO 19901-1) or steady (spectrum None)."""
+
+    def __new__(
+        cls, speed: float, direction: float = 0.0, spectrum: str | None = ..., seed: int = 0
+    ) -> Wind: ...
+    @property
+    def speed(self) -> float:
+        """Mean speed (m/s)."""
+    @property
+    def direction(self) -> float:
+        """Direction it blows toward (rad)."""
+    def speed_at(self, t: float) -> float:
+        """Mean plus gust at time t (s) (m/s)."""
+
+@final
+class HullCoefficients:
+    """Coefficients C_j(γ) (m², m³) of a flow's load on the hull, F_j = ½ρV_r²C_j(γ), by the relative angle γ
+    the flow travels toward (deg from the bow toward starboard)."""
+
+    def __new__(cls, angles: _ArrayLike, values: _ArrayLike) -> HullCoefficients: ...
+    @staticmethod
+    def read(path: str | os.PathLike[str]) -> HullCoefficients:
+        """A table from a CSV file: angle_deg, surge, sway, heave, roll, pitch, yaw."""
+    @property
+    def angles(self) -> _FloatArray:
+        """Angles (n,) (deg)."""
+    @property
+    def values(self) -> _FloatArray:
+        """Coefficients (n, 6) (m², m³)."""
+    def at(self, angle: float) -> _FloatArray:
+        """C(γ) (6,) at a relative angle (deg)."""
+    def load(self, density: float, relative: _ArrayLike) -> _FloatArray:
+        """½ρV_r²C(γ) (6,) for a flow of velocity (2,) relative to the vessel, body frame (m/s)."""
+
+@final
+class DriftCoefficients:
+    """Mean wave-drift coefficients (N/m², N·m/m²) per period and relative heading (deg, as the RAOs')."""
+
+    @staticmethod
+    def read(path: str | os.PathLike[str]) -> DriftCoefficients:
+        """A table from a CSV file: period_s, heading_deg, surge, sway, heave, roll, pitch, yaw."""
+    @property
+    def periods(self) -> _FloatArray:
+        """Periods (s)."""
+    @property
+    def headings(self) -> _FloatArray:
+        """Headings (deg)."""
+    @property
+    def values(self) -> _FloatArray:
+        """D (periods, headings, 6)."""
+    def at(self, period: float, heading: float) -> _FloatArray:
+        """D (6,) at a period (s) and relative heading (deg)."""
+
+def dp_capability_wind(
+    vessel: Vessel,
+    headings: _ArrayLike,
+    pipe_load: _ArrayLike,
+    current: float = 0.75,
+    max_wind: float = 60.0,
+) -> _FloatArray:
+    """The largest wind speed (m/s) held at each heading (rad, environment from, relative to the bow)."""
+
+def environment_load(vessel: Vessel, wind_speed: float, heading: float, current: float = 0.75) -> _FloatArray:
+    """The mean environmental load (6,) (body frame) of a wind speed from a heading, with its current and sea."""
 
 @final
 class Force:
@@ -802,7 +976,25 @@ class Results:
         """Newton iterations of the step leading to each record (T,)."""
     @property
     def eta(self) -> _FloatArray | None:
-        """Vessel pose η (T, 6) in e, None without a vessel."""
+        """Vessel pose η (T, 6) in e: its total motion (low and wave frequency), None without a vessel."""
+    @property
+    def eta_low_frequency(self) -> _FloatArray | None:
+        """The low-frequency pose (T, 6), what the DP controls, None without a vessel."""
+    @property
+    def eta_wave_frequency(self) -> _FloatArray | None:
+        """The wave-frequency motion η − η_LF (T, 6), angles wrapped, None without a vessel."""
+    @property
+    def eta_estimate(self) -> _FloatArray | None:
+        """The observer's estimate of the low-frequency pose (T, 6), None without an observer."""
+    @property
+    def tau_commanded(self) -> _FloatArray | None:
+        """The controller's command τ_c (T, 6), body frame (N, N·m), None without a vessel."""
+    @property
+    def thrust(self) -> _FloatArray | None:
+        """Each thruster's delivered thrust (T, k) (N), None without allocation."""
+    @property
+    def azimuth(self) -> _FloatArray | None:
+        """Each thruster's azimuth (T, k) (rad), None without allocation."""
     @property
     def nu(self) -> _FloatArray | None:
         """Vessel velocity ν (T, 6), body frame, None without a vessel."""
@@ -866,9 +1058,12 @@ class Model:
         environment: Sequence[Force] | None = None,
         lay: SLay | JLay | None = None,
         winch: Winch | None = None,
+        hull_loads: bool = False,
     ) -> None:
         """Attach a vessel at `end`: starting pose eta (6,), clamp angle β (zyx, rad), controller, forces; or
-        held by lay equipment (`lay`), with an A&R winch (`winch`) to hand the line over to."""
+        held by lay equipment (`lay`), with an A&R winch (`winch`) to hand the line over to. `hull_loads`: the
+        sea's wind, current and waves act on the hull through the vessel's coefficient tables (mean and
+        slowly varying drift); off, the hull feels only `environment` (the paper's model)."""
     def simulation(
         self, state: State | None = None, dt: float = 0.05, stages: Stages | None = None
     ) -> Simulation:

@@ -10,6 +10,7 @@ mod seabed;
 mod simulation;
 mod stages;
 mod state;
+mod station_keeping;
 mod structure;
 mod vessel;
 mod waves;
@@ -51,5 +52,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<lay::Stinger>()?;
     m.add_class::<lay::SLay>()?;
     m.add_class::<lay::JLay>()?;
+    m.add_class::<station_keeping::Thruster>()?;
+    m.add_class::<station_keeping::Allocation>()?;
+    m.add_class::<station_keeping::Observer>()?;
+    m.add_class::<station_keeping::Wind>()?;
+    m.add_class::<station_keeping::HullCoefficients>()?;
+    m.add_class::<station_keeping::DriftCoefficients>()?;
+    m.add_function(wrap_pyfunction!(station_keeping::dp_capability_wind, m)?)?;
+    m.add_function(wrap_pyfunction!(station_keeping::environment_load, m)?)?;
     Ok(())
 }

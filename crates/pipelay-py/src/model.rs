@@ -228,7 +228,7 @@ impl Model {
     /// `lay`: a pl.SLay or pl.JLay holding the pipe at the tensioner or tower (then `angle` stays zero).
     /// `winch`: a pl.Winch, the A&R winch the line is handed over to (a stage with hold="winch"); a line whose
     /// top segment is a cable is held by it from the start.
-    #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None, lay=None, winch=None))]
+    #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None, lay=None, winch=None, hull_loads=false))]
     #[allow(clippy::too_many_arguments)]
     fn attach_vessel(
         &mut self,
@@ -240,6 +240,7 @@ impl Model {
         environment: Option<&Bound<'_, PyAny>>,
         lay: Option<&Bound<'_, PyAny>>,
         winch: Option<&crate::stages::Winch>,
+        hull_loads: bool,
     ) -> PyResult<()> {
         let lay = lay.map(crate::lay::equipment).transpose()?;
         let mut forces = Vec::new();
@@ -273,6 +274,12 @@ impl Model {
                 lay,
             )
             .map_err(to_py)?;
+        if hull_loads {
+            if let Err(error) = self.0.enable_hull_loads() {
+                self.0.vessel = previous;
+                return Err(to_py(error));
+            }
+        }
         let Some(winch) = winch else {
             return Ok(());
         };

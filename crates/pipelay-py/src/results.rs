@@ -46,6 +46,19 @@ impl Results {
         }
         shaped(py, data, &[self.history.len(), 6]).map(Some)
     }
+
+    /// A (T, k) series of the thrusters, if any.
+    fn per_thruster<'py>(
+        &self,
+        py: Python<'py>,
+        data: &[f64],
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let k = self.history.thrusters_count;
+        if k == 0 {
+            return Ok(None);
+        }
+        shaped(py, data, &[self.history.len(), k]).map(Some)
+    }
 }
 
 #[pymethods]
@@ -227,10 +240,59 @@ impl Results {
         }
         Ok(Some(dict))
     }
-    /// Vessel pose η (T, 6) in e (m, rad): None without a vessel.
+    /// Vessel pose η (T, 6) in e (m, rad), its total motion (low and wave frequency): None without a vessel.
     #[getter]
     fn eta<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
         self.series(py, &self.history.eta)
+    }
+    /// The low-frequency pose (T, 6), what the DP controls (η itself without waves): None without a vessel.
+    #[getter]
+    fn eta_low_frequency<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.eta_low_frequency)
+    }
+    /// The wave-frequency motion η − η_LF (T, 6) (angles wrapped to (−π, π]): None without a vessel.
+    #[getter]
+    fn eta_wave_frequency<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let h = &self.history;
+        if h.eta_low_frequency.len() != h.eta.len() {
+            return Ok(None);
+        }
+        let wave: Vec<f64> = h
+            .eta
+            .iter()
+            .zip(&h.eta_low_frequency)
+            .enumerate()
+            .map(|(k, (total, low))| {
+                let difference = total - low;
+                if k % 6 >= 3 {
+                    pipelay::vessel::thrusters::wrap(difference)
+                } else {
+                    difference
+                }
+            })
+            .collect();
+        self.series(py, &wave)
+    }
+    /// The observer's estimate of the low-frequency pose (T, 6) (x̂, ŷ, ψ̂; z, φ, θ zero): None without an
+    /// observer.
+    #[getter]
+    fn eta_estimate<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.eta_estimate)
+    }
+    /// The controller's command τ_c (T, 6), body frame (N, N·m): None without a vessel.
+    #[getter]
+    fn tau_commanded<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.series(py, &self.history.tau_commanded)
+    }
+    /// Each thruster's delivered thrust (T, k) (N): None without allocation.
+    #[getter]
+    fn thrust<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.per_thruster(py, &self.history.thrust)
+    }
+    /// Each thruster's azimuth (T, k) (rad): None without allocation.
+    #[getter]
+    fn azimuth<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.per_thruster(py, &self.history.azimuth)
     }
     /// Vessel velocity ν (T, 6), body frame: None without a vessel.
     #[getter]
@@ -301,7 +363,8 @@ impl Results {
     /// Results rebuilt from arrays (as written by `to_netcdf`): `nodes` (n + 1) and a mapping of the names
     /// time, positions, rotations, velocities, section_forces, reaction_A, reaction_B, pipe_kinetic,
     /// pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, supplied_work, dissipated, iterations and,
-    /// with a vessel, eta, nu, tau, chi. Used by `pl.load`.
+    /// with a vessel, eta, nu, tau, chi (and, if recorded, eta_low_frequency, tau_commanded, eta_estimate,
+    /// thrust, azimuth). Used by `pl.load`.
     #[staticmethod]
     fn _from_arrays(nodes: usize, arrays: &Bound<'_, PyDict>) -> PyResult<Results> {
         let get = |key: &str| -> PyResult<Vec<f64>> {
@@ -386,6 +449,12 @@ impl Results {
         h.nu = optional("nu")?;
         h.tau = optional("tau")?;
         h.chi = optional("chi")?;
+        h.eta_low_frequency = optional("eta_low_frequency")?;
+        h.tau_commanded = optional("tau_commanded")?;
+        h.eta_estimate = optional("eta_estimate")?;
+        h.thrust = optional("thrust")?;
+        h.azimuth = optional("azimuth")?;
+        h.thrusters_count = h.thrust.len() / h.time.len().max(1);
         h.check()
             .map_err(|message| input("results", message, "arrays must have matching lengths"))?;
         Ok(Results::from_history(h))

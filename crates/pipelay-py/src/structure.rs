@@ -595,13 +595,14 @@ pub struct Sea(pub sea::Sea);
 #[pymethods]
 impl Sea {
     #[new]
-    #[pyo3(signature = (depth, density=1025.0, current=None, seabed=None, waves=None))]
+    #[pyo3(signature = (depth, density=1025.0, current=None, seabed=None, waves=None, wind=None))]
     fn new(
         depth: f64,
         density: f64,
         current: Option<&Current>,
         seabed: Option<&crate::seabed::Seabed>,
         waves: Option<&crate::waves::Waves>,
+        wind: Option<&crate::station_keeping::Wind>,
     ) -> PyResult<Self> {
         let sea = sea::Sea::new(
             depth,
@@ -610,6 +611,10 @@ impl Sea {
             seabed.map(|s| s.0.clone()),
         )
         .map_err(to_py)?;
+        let sea = match wind {
+            Some(w) => sea.with_wind(w.0.clone()),
+            None => sea,
+        };
         Ok(Sea(match waves {
             Some(w) => sea.with_waves(w.sea_state.clone()),
             None => sea,
@@ -622,6 +627,11 @@ impl Sea {
             sea_state,
             depth: Some(self.0.depth),
         })
+    }
+    /// The wind, if any.
+    #[getter]
+    fn wind(&self) -> Option<crate::station_keeping::Wind> {
+        self.0.wind.clone().map(crate::station_keeping::Wind)
     }
     /// Water depth (m).
     #[getter]

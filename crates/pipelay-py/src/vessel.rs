@@ -2,6 +2,7 @@
 use crate::convert::{array, float_matrix6, to_numpy};
 use crate::errors::{input, to_py};
 use crate::raos::Raos;
+use crate::station_keeping::{Allocation, DriftCoefficients, HullCoefficients, Observer, Thruster};
 use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
 use pipelay::vessel::control::{Pid, Reference, TensionControl};
@@ -24,8 +25,8 @@ fn matrix_to_numpy<'py>(py: Python<'py>, m: &Matrix6<f64>) -> Bound<'py, PyArray
 #[pymethods]
 impl Vessel {
     #[new]
-    #[pyo3(signature = (M, D, G, *, M_RB=None, quadratic_damping=None, raos=None))]
-    #[allow(non_snake_case)]
+    #[pyo3(signature = (M, D, G, *, M_RB=None, quadratic_damping=None, raos=None, length=None, thrusters=None, wind_coefficients=None, current_coefficients=None, drift_coefficients=None))]
+    #[allow(non_snake_case, clippy::too_many_arguments)]
     fn new(
         M: &Bound<'_, PyAny>,
         D: &Bound<'_, PyAny>,
@@ -33,6 +34,11 @@ impl Vessel {
         M_RB: Option<&Bound<'_, PyAny>>,
         quadratic_damping: Option<&Bound<'_, PyAny>>,
         raos: Option<&Raos>,
+        length: Option<f64>,
+        thrusters: Option<&Bound<'_, PyAny>>,
+        wind_coefficients: Option<&HullCoefficients>,
+        current_coefficients: Option<&HullCoefficients>,
+        drift_coefficients: Option<&DriftCoefficients>,
     ) -> PyResult<Self> {
         let mass = float_matrix6(M, "M")?;
         let damping = float_matrix6(D, "D")?;
@@ -41,9 +47,69 @@ impl Vessel {
         let quadratic = quadratic_damping
             .map(|m| float_matrix6(m, "quadratic_damping"))
             .transpose()?;
-        pipelay::vessel::rigid_body::Vessel::new(mass, damping, restoring, rigid, quadratic)
-            .map(|v| Vessel(v.with_raos(raos.map(|r| r.0.clone()))))
+        let vessel =
+            pipelay::vessel::rigid_body::Vessel::new(mass, damping, restoring, rigid, quadratic)
+                .map_err(to_py)?
+                .with_raos(raos.map(|r| r.0.clone()))
+                .with_hull_coefficients(
+                    wind_coefficients.map(|c| c.0.clone()),
+                    current_coefficients.map(|c| c.0.clone()),
+                    drift_coefficients.map(|c| c.0.clone()),
+                );
+        let mut list = Vec::new();
+        if let Some(items) = thrusters {
+            for (k, item) in items.try_iter()?.enumerate() {
+                let item = item?;
+                let thruster = item.cast::<Thruster>().map_err(|_| {
+                    input(
+                        &format!("thrusters[{k}]"),
+                        item.repr().map_or("?".into(), |r| r.to_string()),
+                        "must be a pl.Thruster",
+                    )
+                })?;
+                list.push(thruster.get().0.clone());
+            }
+        }
+        let thrusters = list;
+        if let Some(length) = length {
+            if !(length.is_finite() && length > 0.0) {
+                return Err(input("length", length, "must be a finite length > 0 (m)"));
+            }
+        }
+        vessel
+            .with_thrusters(thrusters, length)
+            .map(Vessel)
             .map_err(to_py)
+    }
+
+    /// Its thrusters.
+    #[getter]
+    fn thrusters(&self) -> Vec<Thruster> {
+        self.0.thrusters.iter().cloned().map(Thruster).collect()
+    }
+    /// Overall length (m), if given.
+    #[getter]
+    fn length(&self) -> Option<f64> {
+        self.0.length
+    }
+    /// Wind coefficients of the hull, if any.
+    #[getter]
+    fn wind_coefficients(&self) -> Option<HullCoefficients> {
+        self.0.wind_coefficients.clone().map(HullCoefficients)
+    }
+    /// Current coefficients of the hull, if any.
+    #[getter]
+    fn current_coefficients(&self) -> Option<HullCoefficients> {
+        self.0.current_coefficients.clone().map(HullCoefficients)
+    }
+    /// Mean wave-drift coefficients, if any.
+    #[getter]
+    fn drift_coefficients(&self) -> Option<DriftCoefficients> {
+        self.0.drift_coefficients.clone().map(DriftCoefficients)
+    }
+    /// One allocation of a commanded τ (6,) (body frame) to the thrusters, without rate limits.
+    fn allocate(&self, tau: &Bound<'_, PyAny>) -> PyResult<Allocation> {
+        crate::station_keeping::allocate(self, tau)
     }
 
     /// The 83 m offshore supply vessel of Fossen's MSS toolbox (osv.m; 6-DOF, about CO), with the RAOs of
@@ -189,7 +255,7 @@ pub struct PyPid(pub Pid);
 #[pymethods]
 impl PyPid {
     #[new]
-    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None, tension=None))]
+    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None, tension=None, allocation=None, observer=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         kp: &Bound<'_, PyAny>,
@@ -201,7 +267,20 @@ impl PyPid {
         thrust_limit: Option<&Bound<'_, PyAny>>,
         reference_rate: Option<&Bound<'_, PyAny>>,
         tension: Option<&PyTensionControl>,
+        allocation: Option<&str>,
+        observer: Option<&Observer>,
     ) -> PyResult<Self> {
+        let allocation = match allocation {
+            None => false,
+            Some("qp") => true,
+            Some(other) => {
+                return Err(input(
+                    "allocation",
+                    format!("{other:?}"),
+                    "must be \"qp\" (thrust allocation by quadratic programming) or None (τ acts directly)",
+                ))
+            }
+        };
         let Some(reference) = reference else {
             return Err(input(
                 "reference",
@@ -244,7 +323,7 @@ impl PyPid {
                 .transpose()?,
             tension.map(|t| t.0),
         )
-        .map(PyPid)
+        .map(|pid| PyPid(pid.with_station_keeping(allocation, observer.map(|o| o.0.clone()))))
         .map_err(to_py)
     }
 

@@ -94,7 +94,21 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "supplied_work": (("time",), "J", "work supplied since the start of the run"),
     "dissipated": (("time",), "J", "energy dissipated since the start of the run"),
     "iterations": (("time",), "1", "Newton iterations of the step leading to the record"),
-    "eta": (("time", "dof"), "m, rad", "vessel pose [x, y, z, phi, theta, psi] in frame e"),
+    "eta": (
+        ("time", "dof"),
+        "m, rad",
+        "vessel pose [x, y, z, phi, theta, psi] in frame e: total motion (low and wave frequency)",
+    ),
+    "eta_low_frequency": (("time", "dof"), "m, rad", "vessel low-frequency pose, what the DP controls"),
+    "eta_wave_frequency": (
+        ("time", "dof"),
+        "m, rad",
+        "vessel wave-frequency motion, eta - eta_low_frequency",
+    ),
+    "eta_estimate": (("time", "dof"), "m, rad", "the observer's estimate of the low-frequency pose"),
+    "tau_commanded": (("time", "dof"), "N, N m", "the controller's command, body frame"),
+    "thrust": (("time", "thruster"), "N", "each thruster's delivered thrust"),
+    "azimuth": (("time", "thruster"), "rad", "each thruster's azimuth, from the bow toward starboard"),
     "nu": (("time", "dof"), "m s-1, rad s-1", "vessel velocity [u, v, w, p, q, r], body frame"),
     "tau": (("time", "dof"), "N, N m", "thrust applied, body frame"),
     "chi": (("time", "dof"), "N, N m", "force and moment of the pipe on the vessel, body frame"),
@@ -121,7 +135,18 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "length",
         "iterations",
     ),
-    "vessel": ("eta", "nu", "tau", "chi"),
+    "vessel": (
+        "eta",
+        "nu",
+        "tau",
+        "chi",
+        "eta_low_frequency",
+        "eta_wave_frequency",
+        "eta_estimate",
+        "tau_commanded",
+        "thrust",
+        "azimuth",
+    ),
     "seabed": ("touchdown", "touchdown_arc_length", "laid_length"),
     "lay": (
         "roller_reactions",
@@ -189,7 +214,21 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         "iterations": lambda: results.iterations,
         **{
             key: partial(getattr, results, key)
-            for key in ("touchdown", "touchdown_arc_length", "laid_length", "eta", "nu", "tau", "chi")
+            for key in (
+                "touchdown",
+                "touchdown_arc_length",
+                "laid_length",
+                "eta",
+                "nu",
+                "tau",
+                "chi",
+                "eta_low_frequency",
+                "eta_wave_frequency",
+                "eta_estimate",
+                "tau_commanded",
+                "thrust",
+                "azimuth",
+            )
         },
         "roller_reactions": lambda: results.roller_reactions,
         # touchdown_arc_length is recorded with the seabed already.

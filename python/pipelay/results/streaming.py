@@ -18,7 +18,8 @@ pay-out the mesh grows, and the earlier records' extra nodes are NaN, as in the 
 - ``"section_forces"``: section_forces and tension (7 numbers an element);
 - ``"reactions"``: reaction_A and reaction_B;
 - ``"energy"``: the energy parts, total_energy, supplied_work, dissipated, pay_out_energy, length, iterations;
-- ``"vessel"``: eta, nu, tau, chi (with a vessel);
+- ``"vessel"``: eta, nu, tau, chi, eta_low_frequency, eta_wave_frequency, tau_commanded and, with an
+  observer or thrusters, eta_estimate, thrust, azimuth (with a vessel);
 - ``"seabed"``: touchdown, touchdown_arc_length, laid_length (with a seabed);
 - ``"lay"``: the lay summary (top_tension, departure_angle, …) and roller_reactions (with a vessel; rollers).
 
@@ -102,6 +103,7 @@ class _Writer:
         self.records = 0
         self.nodes = 0
         self.rollers = 0
+        self.thrusters = 0  # k, the width of the thrusters' series (set before the first append)
         self.created = False
         self.broken = False
         self.attributes: dict[str, Any] = {}  # further global attributes (the run's stages)
@@ -159,6 +161,7 @@ class _Writer:
             "column": 3,
             "dof": 6,
             "roller": self.rollers,
+            "thruster": self.thrusters,
         }
         return (records, *(sizes[dim] for dim in LAYOUT[name][0][1:]))
 
@@ -188,6 +191,8 @@ class _Writer:
         }
         if "roller_reactions" in names:
             dimensions["roller"] = rollers
+        if "thrust" in names:
+            dimensions["thruster"] = self.thrusters
         file.dimensions = dimensions
         file.attrs.update({**_file_attributes(), "recorded_groups": " ".join(self.groups), **self.attributes})
         time = file.create_variable(
@@ -380,6 +385,8 @@ def _append(
     final = {name: value[-1:] for name, value in small.items()}
     names = [name for name in writer.names if name in _LARGE or name in small]
     rollers = small["roller_reactions"].shape[1] if "roller_reactions" in small else 0
+    if not writer.created and "thrust" in small:
+        writer.thrusters = small["thrust"].shape[1]
     nodes = segment.nodes
     if len(time) > skip:
         with writer.appending(time[skip:], nodes, names, rollers) as put:
