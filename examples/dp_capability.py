@@ -4,8 +4,8 @@ The scenario: the OSV lays a 24-inch steel pipe in 150 m of water over an 80 m s
 along the lay direction until the static top tension at the tensioner is 1000 kN (`find_lay_position`, a few
 static solves); the pipe's force on the vessel there (body frame) is the load the thrusters hold besides the
 environment. `dp_capability` then finds, every 15°, the largest wind speed (1-hour mean at 10 m) at which the
-thrusters balance the wind, a co-linear 0.75 m/s current, the mean drift of the fully developed sea of that
-wind (H_s = 0.0225 V², T_p = 0.77 V) and the pipe; the same for the vessel alone.
+thrusters balance the wind, a co-linear 0.75 m/s current, the mean drift of the sea of that wind on the
+Beaufort scale (H_s the WMO scale's, T_p = 4.2 √H_s) and the pipe; the same for the vessel alone.
 
 Writes ``dp_capability.png`` to ``--out`` (both envelopes on one polar plot: 0° head-on at the top, 90° from
 starboard on the right) and prints the vessel position, the pipe load and the table of both envelopes. About
@@ -84,7 +84,7 @@ def main() -> None:
         path=path,
         title=(
             f"DP capability of the OSV, S-lay at {found.value / 1e3:.0f} kN top tension\n"
-            f"environment from (relative to the bow), current {args.current:g} m/s, fully developed sea\n"
+            f"environment from (relative to the bow), current {args.current:g} m/s, Beaufort sea\n"
             f"pipe load X = {load[0] / 1e3:.0f} kN (body frame)"
         ),
     )

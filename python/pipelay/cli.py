@@ -18,7 +18,7 @@ are not run again. `pipelay plot`
 on a summary draws the operability map of a statistic over two swept keys. `pipelay schema` prints the
 scenario files' JSON Schema. `pipelay capability` solves the scenario's statics for the pipe's load on the
 vessel and prints the DP capability envelope (pipelay.analysis.capability): the largest wind speed the
-thrusters hold at each heading the environment comes from, with a co-linear current and fully developed sea.
+thrusters hold at each heading the environment comes from, with a co-linear current and the Beaufort scale's sea.
 
 Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
 still written; for a sweep: a case failed, the others are written), 2 bad input (the message names the
@@ -545,7 +545,9 @@ def _capability(args: argparse.Namespace) -> int:
         f"N {load[5] / 1e3:.1f} kN m"
     )
     print("heading: where the environment comes from, relative to the bow, clockwise (90 = from starboard)")
-    print(f"current {found.current:g} m/s and the fully developed sea H_s = 0.0225 V², T_p = 0.77 V with it")
+    print(
+        f"current {found.current:g} m/s and the Beaufort scale's sea (H_s of the WMO scale, T_p = 4.2 √H_s) with it"
+    )
     print(f"{'heading deg':>11} {'wind m/s':>9}")
     for heading, speed, limited in zip(found.heading_deg, found.wind_speed, found.at_limit, strict=True):
         print(f"{heading:11.1f} {speed:9.2f}" + ("  (held to --max-wind)" if limited else ""))

@@ -6,8 +6,8 @@ which the thrusters, allocated without rate limits (``Vessel.allocate``), delive
 
 * the mean wind on the hull, ½ρ_a V² C_wind(γ);
 * a co-linear current of `current` m/s, ½ρ_w U_c² C_current(γ);
-* the mean wave drift of a co-linear fully developed sea: JONSWAP (γ = 3.3) with H_s = 0.0225 V² (m) and
-  T_p = 0.77 V (s), the Pierson–Moskowitz relations for the wind speed V (m/s);
+* the mean wave drift of the co-linear sea that goes with the wind on the Beaufort scale: H_s the WMO scale's
+  probable wave height at the wind speed V (m/s), T_p = 4.2 √H_s, JONSWAP (γ = 3.3);
 * the pipe's force and moment on the vessel (body frame), from a static solve of the model.
 
 The engine does the search (``pipelay._core.dp_capability_wind``, a bisection to 1 mm/s); this module reads

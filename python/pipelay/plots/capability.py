@@ -132,7 +132,7 @@ def capability(
         currents = {e.current for e in named.values()}
         current = f"current {first.current:g} m/s" if len(currents) == 1 else "currents differ"
         head = "DP capability" + (f": {first.label}" if len(named) == 1 else "")
-        lines = [head, f"environment from (relative to the bow), {current}, fully developed sea"]
+        lines = [head, f"environment from (relative to the bow), {current}, Beaufort sea"]
         if len(named) == 1:
             lines.append(_load_text(first.pipe_load) + " (body frame)")
         title = "\n".join(lines)
