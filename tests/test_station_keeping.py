@@ -287,3 +287,14 @@ def test_station_keeping_records_survive_a_file(tmp_path) -> None:
 def test_bad_station_keeping_input_names_the_argument(build, argument: str) -> None:
     with pytest.raises(pl.InputError, match="^" + re.escape(argument)):
         build()
+
+
+def test_a_drift_table_with_nan_is_refused(tmp_path) -> None:
+    """A NaN in a drift table names the table, the line and the column."""
+    path = tmp_path / "drift.csv"
+    path.write_text(
+        "period_s,heading_deg,surge,sway,heave,roll,pitch,yaw\n"
+        "5,0,1,2,0,0,0,0\n10,0,nan,1,0,0,0,0\n"
+    )
+    with pytest.raises(pl.InputError, match=r"^drift_coefficients: line 3, column \"surge\""):
+        pl.DriftCoefficients.read(path)
