@@ -293,8 +293,7 @@ def test_a_drift_table_with_nan_is_refused(tmp_path) -> None:
     """A NaN in a drift table names the table, the line and the column."""
     path = tmp_path / "drift.csv"
     path.write_text(
-        "period_s,heading_deg,surge,sway,heave,roll,pitch,yaw\n"
-        "5,0,1,2,0,0,0,0\n10,0,nan,1,0,0,0,0\n"
+        "period_s,heading_deg,surge,sway,heave,roll,pitch,yaw\n5,0,1,2,0,0,0,0\n10,0,nan,1,0,0,0,0\n"
     )
     with pytest.raises(pl.InputError, match=r"^drift_coefficients: line 3, column \"surge\""):
         pl.DriftCoefficients.read(path)
