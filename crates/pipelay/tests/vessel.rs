@@ -313,3 +313,72 @@ fn vessel_in_waves_keeps_the_energy_ledger() {
     assert!(supplied.abs() > 1e4, "the waves do work: {supplied}");
     assert!(worst < 1e-8, "ledger error {worst:e}");
 }
+
+/// The DP loop as engineers design it, sampled once per step: PD on the passive observer's estimate from noisy
+/// measurements, thrust allocated to the OSV's six thrusters (which lag), gusting wind, current and wave drift
+/// on the hull. The plant's ledger closes step by step: the energy change equals the work supplied (delivered
+/// thrust, hull loads, waves) less what is dissipated, to Newton's tolerance; every thruster stays within its
+/// capacity; and the thrust delivered is the thrusters' own.
+#[test]
+fn sampled_dp_loop_keeps_the_energy_ledger() {
+    use pipelay::environment::current::{Current, CurrentProfile};
+    use pipelay::environment::wind::Wind;
+    use pipelay::vessel::control::{Pid, Reference};
+    use pipelay::vessel::observer::ObserverSettings;
+    let mut model = pipe_with_lay(20, tower());
+    let waves = Waves::regular(3.0, 9.0, 2.5)
+        .and_then(|w| w.with_ramp(9.0))
+        .expect("waves");
+    model.waves = Some(WaveField::new(&waves, 800.0, 9.81).expect("field"));
+    let sea = model.sea.take().expect("sea");
+    let current =
+        Current::new(CurrentProfile::Uniform(Vector3::new(0.0, 0.6, 0.0)), 0.0).expect("current");
+    let wind = Wind::new(18.0, 2.0, Some("NPD"), 4).expect("wind");
+    model.sea = Some(Sea {
+        current: Some(current),
+        ..sea.with_wind(wind)
+    });
+    let mass = Vessel::osv().mass().diagonal();
+    let omega = Vector6::new(0.1, 0.1, 0.0, 0.0, 0.0, 0.2);
+    let observer = ObserverSettings::new(Vector3::new(0.3, 0.3, 0.003), 7, None).expect("observer");
+    let reference = Reference::fixed(Vector6::new(850.0, 0.0, 0.0, 0.0, 0.0, 0.0)).expect("ref");
+    let pid = Pid::new(
+        nalgebra::Matrix6::from_diagonal(&omega.component_mul(&omega).component_mul(&mass)),
+        nalgebra::Matrix6::from_diagonal(&(2.0 * omega.component_mul(&mass))),
+        nalgebra::Matrix6::zeros(),
+        reference,
+        1.0,
+        None,
+        None,
+        None,
+    )
+    .expect("pid")
+    .with_station_keeping(true, Some(observer));
+    model.vessel.as_mut().expect("vessel").controller = Some(pid);
+    model.enable_hull_loads().expect("hull loads");
+    let mut sim = common::released_without_dissipation(model, 0.2);
+    let start = sim.observe().energy();
+    let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
+    let mut worst: f64 = 0.0;
+    let mut history =
+        pipelay::dynamics::history::History::starting_at(&sim.snapshot(0)).expect("h");
+    for _ in 0..300 {
+        sim.step().expect("step");
+        history.record(&sim.snapshot(0)).expect("record");
+        let change = sim.observe().energy().total() - start.total();
+        worst = worst
+            .max((change - sim.ledger().supplied_work() + sim.ledger().dissipated()).abs() / scale);
+    }
+    let supplied = sim.ledger().supplied_work();
+    println!("ledger error {worst:.2e} of {scale:.3e} J; work supplied {supplied:.3e} J");
+    assert!(supplied.abs() > 1e4, "the loop does work: {supplied}");
+    assert!(worst < 1e-8, "ledger error {worst:e}");
+    let thrusters = pipelay::vessel::thrusters::mss_supply_vessel();
+    let k = thrusters.len();
+    assert_eq!(history.thrusters_count, k);
+    for (i, thrust) in history.thrust.iter().enumerate() {
+        let limit = thrusters[i % k].max_thrust;
+        assert!(thrust.abs() <= limit * (1.0 + 1e-12), "{thrust} > {limit}");
+    }
+    assert_eq!(history.eta_estimate.len(), history.eta.len());
+}
