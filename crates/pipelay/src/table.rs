@@ -116,6 +116,29 @@ impl Table {
     }
 }
 
+/// The cell of a periodic grid holding `value`: indices (i₀, i₁) of its ends and the fraction t ∈ [0, 1)
+/// of the way from i₀ to i₁. `grid` increases within [0, `period`) and holds at least one point; `value` is
+/// taken modulo `period`, and the cell from the last point wraps to the first + period.
+pub fn periodic_cell(grid: &[f64], value: f64, period: f64) -> (usize, usize, f64) {
+    let n = grid.len();
+    let (Some(&first), Some(&last)) = (grid.first(), grid.last()) else {
+        return (0, 0, 0.0);
+    };
+    let value = value.rem_euclid(period);
+    let k = grid.partition_point(|x| *x <= value);
+    let (i0, i1, lower, upper) = match k {
+        0 => (n - 1, 0, last - period, first),
+        k if k == n => (n - 1, 0, last, first + period),
+        k => (k - 1, k, grid[k - 1], grid[k]),
+    };
+    let t = if upper > lower {
+        (value - lower) / (upper - lower)
+    } else {
+        0.0
+    };
+    (i0, i1, t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -214,21 +214,7 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         "iterations": lambda: results.iterations,
         **{
             key: partial(getattr, results, key)
-            for key in (
-                "touchdown",
-                "touchdown_arc_length",
-                "laid_length",
-                "eta",
-                "nu",
-                "tau",
-                "chi",
-                "eta_low_frequency",
-                "eta_wave_frequency",
-                "eta_estimate",
-                "tau_commanded",
-                "thrust",
-                "azimuth",
-            )
+            for key in (*GROUPS["seabed"], *GROUPS["vessel"])
         },
         "roller_reactions": lambda: results.roller_reactions,
         # touchdown_arc_length is recorded with the seabed already.

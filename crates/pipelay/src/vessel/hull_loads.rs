@@ -96,19 +96,7 @@ impl HullCoefficients {
 
     /// C(γ) at relative angle γ (deg, any value: modulo 360), linear between angles, periodic.
     pub fn at(&self, angle: f64) -> Vector6<f64> {
-        let n = self.angles.len();
-        let angle = angle.rem_euclid(360.0);
-        let k = self.angles.partition_point(|a| *a <= angle);
-        let (i0, i1, lower, upper) = match k {
-            0 => (n - 1, 0, self.angles[n - 1] - 360.0, self.angles[0]),
-            k if k == n => (n - 1, 0, self.angles[n - 1], self.angles[0] + 360.0),
-            k => (k - 1, k, self.angles[k - 1], self.angles[k]),
-        };
-        let t = if upper > lower {
-            (angle - lower) / (upper - lower)
-        } else {
-            0.0
-        };
+        let (i0, i1, t) = crate::table::periodic_cell(&self.angles, angle, 360.0);
         self.values[i0] * (1.0 - t) + self.values[i1] * t
     }
 

@@ -162,19 +162,8 @@ impl Raos {
             .clamp(1, self.periods.len() - 1);
         let tp = (period - self.periods[p - 1]) / (self.periods[p] - self.periods[p - 1]);
         let nh = self.headings.len();
-        let heading = heading.rem_euclid(360.0);
         // Headings are periodic: the cell from the last heading wraps to the first + 360.
-        let h = self.headings.partition_point(|x| *x <= heading);
-        let (h0, h1, lower, upper) = match h {
-            0 => (nh - 1, 0, self.headings[nh - 1] - 360.0, self.headings[0]),
-            h if h == nh => (nh - 1, 0, self.headings[nh - 1], self.headings[0] + 360.0),
-            h => (h - 1, h, self.headings[h - 1], self.headings[h]),
-        };
-        let th = if upper > lower {
-            (heading - lower) / (upper - lower)
-        } else {
-            0.0
-        };
+        let (h0, h1, th) = crate::table::periodic_cell(&self.headings, heading, 360.0);
         let value = |p: usize, h: usize, dof: usize| self.values[(p * nh + h) * 6 + dof];
         let mut out = [Complex::new(0.0, 0.0); 6];
         for (dof, o) in out.iter_mut().enumerate() {
