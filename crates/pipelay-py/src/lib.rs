@@ -1,5 +1,6 @@
 //! Thin PyO3 layer over the `pipelay` engine: conversions, error mapping, GIL release.
 mod callables;
+mod capability;
 mod convert;
 mod errors;
 mod lay;
@@ -58,7 +59,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<station_keeping::Wind>()?;
     m.add_class::<station_keeping::HullCoefficients>()?;
     m.add_class::<station_keeping::DriftCoefficients>()?;
-    m.add_function(wrap_pyfunction!(station_keeping::dp_capability_wind, m)?)?;
-    m.add_function(wrap_pyfunction!(station_keeping::environment_load, m)?)?;
+    m.add_function(wrap_pyfunction!(capability::dp_capability_wind, m)?)?;
+    m.add_function(wrap_pyfunction!(capability::environment_load, m)?)?;
     Ok(())
 }

@@ -1,8 +1,7 @@
-//! Python classes of station keeping: Thruster, Allocation, Observer, Wind, HullCoefficients,
-//! DriftCoefficients, and the capability functions.
+//! Python classes of station keeping: Thruster, Allocation, Observer, Wind, HullCoefficients and
+//! DriftCoefficients.
 use crate::convert::{array, float_array, shaped, to_numpy, vector};
 use crate::errors::{input, to_py};
-use crate::vessel::Vessel;
 use nalgebra::{Vector2, Vector3, Vector6};
 use numpy::PyArray1;
 use pipelay::environment::wind::Wind as EngineWind;
@@ -122,14 +121,6 @@ impl Allocation {
     fn saturated(&self) -> bool {
         self.0.saturated
     }
-}
-
-/// Allocates τ (6,) to the vessel's thrusters (a QP solved by Clarabel, no rate limits).
-pub fn allocate(vessel: &Vessel, tau: &Bound<'_, PyAny>) -> PyResult<Allocation> {
-    let tau = Vector6::from(array::<6>(tau, "tau")?);
-    pipelay::vessel::allocation::allocate(&vessel.0.thrusters, &tau, None)
-        .map(Allocation)
-        .map_err(to_py)
 }
 
 /// A position observer for the DP controller.
@@ -313,47 +304,4 @@ impl DriftCoefficients {
         let value = self.0.at(period, heading).map_err(to_py)?;
         Ok(to_numpy(py, value.as_slice()))
     }
-}
-
-/// The largest wind speed (m/s) the vessel's thrusters hold at each heading (rad, the environment coming
-/// from, relative to the bow), with the pipe's load `pipe_load` (6,) (body frame) and a co-linear current
-/// (m/s) and fully developed sea; `max_wind` if held up to it, 0 if calm cannot be held.
-#[pyfunction]
-#[pyo3(signature = (vessel, headings, pipe_load, current=0.75, max_wind=60.0))]
-pub fn dp_capability_wind<'py>(
-    py: Python<'py>,
-    vessel: &Vessel,
-    headings: &Bound<'_, PyAny>,
-    pipe_load: &Bound<'_, PyAny>,
-    current: f64,
-    max_wind: f64,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let headings = vector(headings, "headings")?;
-    let pipe_load = Vector6::from(array::<6>(pipe_load, "pipe_load")?);
-    let vessel = vessel.0.clone();
-    let speeds = py
-        .detach(|| {
-            pipelay::vessel::capability::capability(
-                &vessel, &headings, &pipe_load, current, max_wind,
-            )
-        })
-        .map_err(to_py)?;
-    Ok(PyArray1::from_vec(py, speeds))
-}
-
-/// The mean environmental load (6,) (body frame) of a wind speed (m/s) from `heading` (rad, relative to the
-/// bow) with its current (m/s) and fully developed sea.
-#[pyfunction]
-#[pyo3(signature = (vessel, wind_speed, heading, current=0.75))]
-pub fn environment_load<'py>(
-    py: Python<'py>,
-    vessel: &Vessel,
-    wind_speed: f64,
-    heading: f64,
-    current: f64,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
-    let load =
-        pipelay::vessel::capability::environment_load(&vessel.0, wind_speed, heading, current)
-            .map_err(to_py)?;
-    Ok(to_numpy(py, load.as_slice()))
 }

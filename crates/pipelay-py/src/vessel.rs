@@ -109,7 +109,10 @@ impl Vessel {
     }
     /// One allocation of a commanded τ (6,) (body frame) to the thrusters, without rate limits.
     fn allocate(&self, tau: &Bound<'_, PyAny>) -> PyResult<Allocation> {
-        crate::station_keeping::allocate(self, tau)
+        let tau = Vector6::from(array::<6>(tau, "tau")?);
+        pipelay::vessel::allocation::allocate(&self.0.thrusters, &tau, None)
+            .map(Allocation)
+            .map_err(to_py)
     }
 
     /// The 83 m offshore supply vessel of Fossen's MSS toolbox (osv.m; 6-DOF, about CO), with the RAOs of

@@ -4,13 +4,14 @@ The usual DP plot's conventions: the heading the environment comes from, relativ
 at the top and increasing clockwise seen from above (90°: from starboard, on the right; 270°: from port);
 the wind speed (m/s, 1-hour mean at 10 m) radially.
 
-Imports of pipelay: `pipelay.plots.canvas` (and, for its type, `pipelay.analysis.capability`).
+Imports of pipelay: `pipelay.plots.canvas`. An envelope is anything with the fields of
+`pipelay.analysis.Capability` (`Envelope`), so that the analysis, which draws itself here, is not imported.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from matplotlib.axes import Axes
@@ -20,10 +21,27 @@ from matplotlib.lines import Line2D
 
 from pipelay.plots.canvas import DPI, _PathLike
 
-if TYPE_CHECKING:
-    from pipelay.analysis.capability import Capability
+__all__ = ["Envelope", "capability"]
 
-__all__ = ["capability"]
+
+class Envelope(Protocol):
+    """What the plot reads of a DP capability envelope (`pipelay.analysis.Capability`)."""
+
+    @property
+    def headings(self) -> np.ndarray: ...
+    @property
+    def wind_speed(self) -> np.ndarray: ...
+    @property
+    def pipe_load(self) -> np.ndarray: ...
+    @property
+    def current(self) -> float: ...
+    @property
+    def max_wind(self) -> float: ...
+    @property
+    def label(self) -> str: ...
+    @property
+    def at_limit(self) -> np.ndarray: ...
+
 
 _STYLES = ("-", "--", "-.", ":")
 _SIDES = {0: "\nhead-on", 90: "\nstarboard", 180: "\nastern", 270: "\nport"}
@@ -53,7 +71,7 @@ def _load_text(load: np.ndarray) -> str:
 
 
 def capability(
-    envelopes: Capability | Sequence[Capability] | Mapping[str, Capability],
+    envelopes: Envelope | Sequence[Envelope] | Mapping[str, Envelope],
     ax: Axes | None = None,
     path: _PathLike | None = None,
     title: str | None = None,

@@ -35,7 +35,7 @@ use crate::dynamics::remesh::MeshChange;
 use crate::dynamics::rod_step::{rod_constants, ElementWork, NodeStart, RodConstants};
 use crate::dynamics::stages::Stages;
 use crate::dynamics::state::DynamicState;
-use crate::dynamics::station_keeping::{HullEnvironment, HullValues, StationKeeping};
+use crate::dynamics::station_keeping::StationKeeping;
 use crate::dynamics::vessel_waves::VesselWaves;
 use crate::environment::waves::Kinematics;
 use crate::error::{positive, Error, Result};
@@ -48,6 +48,7 @@ use crate::vessel::control::{clamp_integral, shifted};
 use crate::vessel::coupling::{
     eta_of, low_frequency_pose, pipe_force_on_vessel, vessel_pose, VesselContribution,
 };
+use crate::vessel::hull_loads::{HullEnvironment, HullValues};
 use crate::vessel::wave_motion::station;
 use nalgebra::{Vector3, Vector6};
 
@@ -207,7 +208,12 @@ impl Integrator {
         let nodal = NodalProperties::new(&model);
         let round_off = round_off(&model);
         let vessel_waves = VesselWaves::new(&model, state.time)?;
-        let hull = HullEnvironment::new(&model)?;
+        let hull = match &model.vessel {
+            Some(attachment) => {
+                HullEnvironment::new(attachment, model.sea.as_ref(), model.waves.as_ref())?
+            }
+            None => None,
+        };
         let station_keeping = match (&model.vessel, &state.vessel) {
             (Some(attachment), Some(motion)) => {
                 let node = attachment.node;

@@ -1,5 +1,4 @@
-//! Station keeping over a step: the environment on the hull (wind, current, wave drift) and, for a sampled
-//! controller, the loop a DP system runs once per step: measure, estimate (the observer), command (the PID on
+//! Station keeping over a step, for a sampled controller: the loop a DP system runs once per step: measure, estimate (the observer), command (the PID on
 //! the estimate), allocate (the QP) and deliver (each thruster's lag and rates), the delivered τ held over the
 //! step. Its work enters the energy ledger as supplied, as the environment's does.
 //!
@@ -10,119 +9,14 @@
 //! environment's, less what it dissipates.
 // Indexing cannot go out of bounds here: 6-vectors of the vessel's DOFs and per-thruster lists built together.
 #![allow(clippy::indexing_slicing)]
-use crate::environment::wind::{Wind, AIR_DENSITY};
 use crate::error::Result;
 use crate::model::Model;
 use crate::vessel::allocation::{allocate, Previous};
 use crate::vessel::control::{clamp_integral, eta_error, pid_thrust, Pid};
-use crate::vessel::hull_loads::{DriftForce, HullCoefficients};
 use crate::vessel::observer::PassiveObserver;
 use crate::vessel::thrusters::{generalised_force, ThrusterState};
-use crate::vessel::wave_motion::station;
 use crate::vessel::VesselAttachment;
-use nalgebra::{Matrix3, Vector2, Vector3, Vector6};
-
-/// Wind, current and wave drift on the hull, for a vessel attached with `hull_loads`.
-#[derive(Debug, Clone)]
-pub struct HullEnvironment {
-    wind: Option<(Wind, HullCoefficients)>,
-    /// The current at the surface: its (e1, e2) velocity (m/s) from its start (s), the coefficients and the
-    /// water's density.
-    current: Option<(Vector2<f64>, f64, HullCoefficients, f64)>,
-    drift: Option<DriftForce>,
-}
-
-/// The hull's environment over one step: the flows' velocities (e) and the drift force (body frame) at the
-/// step's midpoint.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct HullValues {
-    wind: Vector2<f64>,
-    current: Vector2<f64>,
-    drift: Vector6<f64>,
-}
-
-/// The hull's environment and its values over a step.
-#[derive(Debug, Clone, Copy)]
-pub struct HullStep<'a> {
-    pub environment: &'a HullEnvironment,
-    pub values: HullValues,
-}
-
-impl HullEnvironment {
-    /// The hull's environment of `model`, if its vessel feels one.
-    pub fn new(model: &Model) -> Result<Option<Self>> {
-        let Some(attachment) = model.vessel.as_ref().filter(|v| v.hull_loads) else {
-            return Ok(None);
-        };
-        let vessel = &attachment.vessel;
-        let sea = model.sea.as_ref();
-        let wind = sea
-            .and_then(|s| s.wind.clone())
-            .zip(vessel.wind_coefficients.clone());
-        let current = match (sea, &vessel.current_coefficients) {
-            (Some(sea), Some(coefficients)) => sea.current.as_ref().map(|current| {
-                let (velocity, _) =
-                    current.velocity_and_gradient(-sea.depth, sea.depth, f64::INFINITY);
-                (
-                    Vector2::new(velocity.x, velocity.y),
-                    current.start,
-                    coefficients.clone(),
-                    sea.density,
-                )
-            }),
-            _ => None,
-        };
-        let drift = match (&model.waves, &vessel.drift_coefficients) {
-            (Some(field), Some(coefficients)) => Some(DriftForce::new(field, coefficients)?),
-            _ => None,
-        };
-        Ok(Some(HullEnvironment {
-            wind,
-            current,
-            drift,
-        }))
-    }
-
-    /// The environment over the step whose midpoint is `time` (s).
-    pub fn at(&self, attachment: &VesselAttachment, time: f64) -> Result<HullValues> {
-        let wind = self
-            .wind
-            .as_ref()
-            .map_or_else(Vector2::zeros, |(wind, _)| wind.velocity(time));
-        let current = self
-            .current
-            .as_ref()
-            .filter(|(_, start, _, _)| time >= *start)
-            .map_or_else(Vector2::zeros, |(velocity, _, _, _)| *velocity);
-        let drift = match &self.drift {
-            Some(drift) => drift.force(time, &station(attachment, time)?)?,
-            None => Vector6::zeros(),
-        };
-        Ok(HullValues {
-            wind,
-            current,
-            drift,
-        })
-    }
-}
-
-impl HullStep<'_> {
-    /// The load on the hull (body frame) of a vessel with body frame `body` moving at ν = `velocity`.
-    pub fn load(&self, body: &Matrix3<f64>, velocity: &Vector6<f64>) -> Vector6<f64> {
-        let relative = |flow: &Vector2<f64>| {
-            let v = body.transpose() * Vector3::new(flow.x, flow.y, 0.0);
-            Vector2::new(v.x - velocity[0], v.y - velocity[1])
-        };
-        let mut load = self.values.drift;
-        if let Some((_, coefficients)) = &self.environment.wind {
-            load += coefficients.load(AIR_DENSITY, &relative(&self.values.wind));
-        }
-        if let Some((_, _, coefficients, density)) = &self.environment.current {
-            load += coefficients.load(*density, &relative(&self.values.current));
-        }
-        load
-    }
-}
+use nalgebra::{Matrix3, Vector3, Vector6};
 
 /// What a sampled controller decided for the current step, kept until the step is accepted.
 #[derive(Debug, Clone)]

@@ -9,7 +9,6 @@ use crate::contact::seabed::{NodeStep, PARALLEL_NODES as PARALLEL_CONTACT_NODES}
 use crate::dynamics::integrator::Integrator;
 use crate::dynamics::ledger::StepWork;
 use crate::dynamics::rod_step::{ElementOutputs, RodStep};
-use crate::dynamics::station_keeping::HullStep;
 use crate::environment::drag::quadratic_jacobian;
 use crate::error::Result;
 use crate::linalg::pool;
@@ -17,6 +16,7 @@ use crate::model::SupportTarget;
 use crate::rod::element::ElementMatrix;
 use crate::so3::{cayley, cayley_parameter, cayley_tangent};
 use crate::vessel::coupling::DynamicVessel;
+use crate::vessel::hull_loads::HullStep;
 use nalgebra::{Vector3, Vector6};
 use rayon::prelude::*;
 

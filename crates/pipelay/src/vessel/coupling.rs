@@ -258,7 +258,7 @@ pub struct DynamicVessel<'a> {
     /// The thrust a sampled controller holds over the step (body frame), instead of the implicit PID's.
     pub applied_thrust: Option<Vector6<f64>>,
     /// Wind, current and wave drift on the hull over the step, if the vessel feels them.
-    pub hull: Option<crate::dynamics::station_keeping::HullStep<'a>>,
+    pub hull: Option<super::hull_loads::HullStep<'a>>,
 }
 
 /// Outcome of the vessel's contribution at trial increments.

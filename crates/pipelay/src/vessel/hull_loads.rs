@@ -16,9 +16,13 @@
 // Indexing cannot go out of bounds here: tables hold one row per angle, checked when built.
 #![allow(clippy::indexing_slicing)]
 use super::raos::{Raos, DOFS};
+use super::wave_motion::station;
+use super::VesselAttachment;
+use crate::environment::sea::Sea;
 use crate::environment::waves::{ramp_factor, Resolved, WaveField};
+use crate::environment::wind::{Wind, AIR_DENSITY};
 use crate::error::{Error, Result};
-use nalgebra::{Complex, Vector2, Vector3, Vector6};
+use nalgebra::{Complex, Matrix3, Vector2, Vector3, Vector6};
 
 /// Coefficients C_j(γ) (m², m³) of a flow's load on the hull, by relative angle.
 #[derive(Debug, Clone, PartialEq)]
@@ -234,6 +238,111 @@ impl DriftForce {
             force[j] = ramp * ramp * (magnitude[j] * signed[j].conj()).re;
         }
         Ok(force)
+    }
+}
+
+/// Wind, current and wave drift on the hull, for a vessel attached with `hull_loads`.
+#[derive(Debug, Clone)]
+pub struct HullEnvironment {
+    wind: Option<(Wind, HullCoefficients)>,
+    /// The current at the surface: its (e1, e2) velocity (m/s) from its start (s), the coefficients and the
+    /// water's density.
+    current: Option<(Vector2<f64>, f64, HullCoefficients, f64)>,
+    drift: Option<DriftForce>,
+}
+
+/// The hull's environment over one step: the flows' velocities (e) and the drift force (body frame) at the
+/// step's midpoint.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HullValues {
+    wind: Vector2<f64>,
+    current: Vector2<f64>,
+    drift: Vector6<f64>,
+}
+
+/// The hull's environment and its values over a step.
+#[derive(Debug, Clone, Copy)]
+pub struct HullStep<'a> {
+    pub environment: &'a HullEnvironment,
+    pub values: HullValues,
+}
+
+impl HullEnvironment {
+    /// The hull's environment in `sea` and its `waves`, if the vessel `attachment` holds feels one.
+    pub fn new(
+        attachment: &VesselAttachment,
+        sea: Option<&Sea>,
+        waves: Option<&WaveField>,
+    ) -> Result<Option<Self>> {
+        if !attachment.hull_loads {
+            return Ok(None);
+        }
+        let vessel = &attachment.vessel;
+        let wind = sea
+            .and_then(|s| s.wind.clone())
+            .zip(vessel.wind_coefficients.clone());
+        let current = match (sea, &vessel.current_coefficients) {
+            (Some(sea), Some(coefficients)) => sea.current.as_ref().map(|current| {
+                let (velocity, _) =
+                    current.velocity_and_gradient(-sea.depth, sea.depth, f64::INFINITY);
+                (
+                    Vector2::new(velocity.x, velocity.y),
+                    current.start,
+                    coefficients.clone(),
+                    sea.density,
+                )
+            }),
+            _ => None,
+        };
+        let drift = match (waves, &vessel.drift_coefficients) {
+            (Some(field), Some(coefficients)) => Some(DriftForce::new(field, coefficients)?),
+            _ => None,
+        };
+        Ok(Some(HullEnvironment {
+            wind,
+            current,
+            drift,
+        }))
+    }
+
+    /// The environment over the step whose midpoint is `time` (s).
+    pub fn at(&self, attachment: &VesselAttachment, time: f64) -> Result<HullValues> {
+        let wind = self
+            .wind
+            .as_ref()
+            .map_or_else(Vector2::zeros, |(wind, _)| wind.velocity(time));
+        let current = self
+            .current
+            .as_ref()
+            .filter(|(_, start, _, _)| time >= *start)
+            .map_or_else(Vector2::zeros, |(velocity, _, _, _)| *velocity);
+        let drift = match &self.drift {
+            Some(drift) => drift.force(time, &station(attachment, time)?)?,
+            None => Vector6::zeros(),
+        };
+        Ok(HullValues {
+            wind,
+            current,
+            drift,
+        })
+    }
+}
+
+impl HullStep<'_> {
+    /// The load on the hull (body frame) of a vessel with body frame `body` moving at ν = `velocity`.
+    pub fn load(&self, body: &Matrix3<f64>, velocity: &Vector6<f64>) -> Vector6<f64> {
+        let relative = |flow: &Vector2<f64>| {
+            let v = body.transpose() * Vector3::new(flow.x, flow.y, 0.0);
+            Vector2::new(v.x - velocity[0], v.y - velocity[1])
+        };
+        let mut load = self.values.drift;
+        if let Some((_, coefficients)) = &self.environment.wind {
+            load += coefficients.load(AIR_DENSITY, &relative(&self.values.wind));
+        }
+        if let Some((_, _, coefficients, density)) = &self.environment.current {
+            load += coefficients.load(*density, &relative(&self.values.current));
+        }
+        load
     }
 }
 
