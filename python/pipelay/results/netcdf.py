@@ -212,10 +212,7 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         "supplied_work": lambda: results.supplied_work,
         "dissipated": lambda: results.dissipated,
         "iterations": lambda: results.iterations,
-        **{
-            key: partial(getattr, results, key)
-            for key in (*GROUPS["seabed"], *GROUPS["vessel"])
-        },
+        **{key: partial(getattr, results, key) for key in (*GROUPS["seabed"], *GROUPS["vessel"])},
         "roller_reactions": lambda: results.roller_reactions,
         # touchdown_arc_length is recorded with the seabed already.
         **{key: partial(summary, key) for key in GROUPS["lay"][1:]},
