@@ -93,7 +93,7 @@ def _locate(loc: tuple[Any, ...]) -> _Place:
             place.array = place.path
             place.path = f"{place.path}[{part}]"
             node, metadata = _unwrap(typing.get_args(node)[0])
-            place.variants = (node,)
+            place.variants = tuple(_tables_of(node, metadata))  # one model, or a union of kinds
         else:
             node, metadata = _members(node)[part]
         place.node = node

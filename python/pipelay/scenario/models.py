@@ -23,6 +23,7 @@ from pydantic import Discriminator, Field, Tag, model_validator
 
 from pipelay.scenario.models_vessel import (
     ArcStinger,
+    AzimuthThruster,
     Cable,
     Controller,
     ControllerTable,
@@ -31,8 +32,10 @@ from pipelay.scenario.models_vessel import (
     Head,
     JLay,
     Lay,
+    MainThruster,
     MatrixVessel,
     ModelVessel,
+    Observer,
     PayOut,
     RollerStinger,
     Route,
@@ -40,6 +43,8 @@ from pipelay.scenario.models_vessel import (
     SLay,
     Stinger,
     Tension,
+    Thruster,
+    TunnelThruster,
     Vessel,
     VesselTable,
     Winch,
@@ -73,6 +78,7 @@ from pipelay.scenario.values import (
 __all__ = [
     "MAX_ELEMENTS",
     "ArcStinger",
+    "AzimuthThruster",
     "Bathymetry",
     "Cable",
     "Clamp",
@@ -91,9 +97,11 @@ __all__ = [
     "JonswapWaves",
     "Lay",
     "LinearCurrent",
+    "MainThruster",
     "MatrixVessel",
     "ModelVessel",
     "NodesRod",
+    "Observer",
     "Output",
     "PayOut",
     "Pin",
@@ -119,11 +127,14 @@ __all__ = [
     "Supports",
     "Table",
     "Tension",
+    "Thruster",
+    "TunnelThruster",
     "UniformCurrent",
     "Vessel",
     "VesselTable",
     "Waves",
     "Winch",
+    "Wind",
 ]
 
 MAX_ELEMENTS = 1_000_000
@@ -485,6 +496,20 @@ Waves = Annotated[
 ]
 
 
+class Wind(Table):
+    """`pl.Wind`: wind on the vessel's hull (with `vessel.hull_loads`, through its wind coefficients); it does
+    not load the pipe."""
+
+    speed: Annotated[float, Number("m/s", ge=0)] = Field(description="1-hour mean speed at 10 m, ≥ 0")
+    direction: Annotated[float | None, Number("rad")] = api(
+        "direction the wind blows toward, from e1 toward e2 (as the current and the waves)", 0
+    )
+    spectrum: Annotated[Literal["NPD", "none"] | None, Choice(("NPD", "none"))] = api(
+        '`"NPD"`: gusts from the NPD (Frøya) spectrum of ISO 19901-1; `"none"`: a steady wind', "NPD"
+    )
+    seed: Annotated[int | None, Integer(0)] = api("seed of the gusts' random phases, an integer ≥ 0", 0)
+
+
 class Sea(Table):
     """`pl.Sea`; without it the pipe hangs in air (no buoyancy, drag or added mass)."""
 
@@ -495,6 +520,7 @@ class Sea(Table):
     current: Current | None = None
     seabed: Seabed | None = None
     waves: Waves | None = None
+    wind: Wind | None = None
 
 
 _DRIVE_KEYS = ("amplitude", "period", "phase", "ramp")

@@ -1,8 +1,8 @@
 """The scenario format's models of the vessel and what works with it: `[vessel]` (given by a built-in model or
-by its matrices) with its lay equipment (`[vessel.lay]`, `[vessel.lay.stinger]`) and A&R winch
-(`[vessel.winch]`, its wire and head), `[controller]` with its route and tension loop, `[pay_out]` and
-`[[environment]]`. The winch's wire is a `Cable`, the model a cable segment of a `[line]` takes too.
-`pipelay.scenario.models` exposes them with the others.
+by its matrices, with its thrusters `[[vessel.thrusters]]` and hull tables) with its lay equipment
+(`[vessel.lay]`, `[vessel.lay.stinger]`) and A&R winch (`[vessel.winch]`, its wire and head), `[controller]`
+with its route, tension loop and observer, `[pay_out]` and `[[environment]]`. The winch's wire is a `Cable`,
+the model a cable segment of a `[line]` takes too. `pipelay.scenario.models` exposes them with the others.
 
 Imports of pipelay: `pipelay.scenario.values`.
 """
@@ -26,6 +26,7 @@ from pipelay.scenario.values import (
     Choice,
     Either,
     End,
+    Flag,
     Integer,
     Matrix,
     Number,
@@ -41,6 +42,7 @@ from pipelay.scenario.values import (
 
 __all__ = [
     "ArcStinger",
+    "AzimuthThruster",
     "Cable",
     "Controller",
     "ControllerTable",
@@ -49,8 +51,10 @@ __all__ = [
     "Head",
     "JLay",
     "Lay",
+    "MainThruster",
     "MatrixVessel",
     "ModelVessel",
+    "Observer",
     "PayOut",
     "RollerStinger",
     "Route",
@@ -58,6 +62,8 @@ __all__ = [
     "SLay",
     "Stinger",
     "Tension",
+    "Thruster",
+    "TunnelThruster",
     "Vessel",
     "VesselTable",
     "Winch",
@@ -218,6 +224,97 @@ class Winch(Table):
     )
 
 
+def _table_file(path: str, info: ValidationInfo, what: str) -> str:
+    """A table's path, resolved from the scenario's folder (the context's `folder`); it must be a file."""
+    resolved = Path((info.context or {}).get("folder", ".")) / path
+    if not resolved.is_file():
+        raise rule(f"must be {what} (CSV) relative to the scenario's folder; no file {resolved}")
+    return str(resolved)
+
+
+_ThrusterAt = Annotated[
+    list[float],
+    Vector(2, Number("m"), "[l_x, l_y]"),
+    Field(
+        description="where it acts [l_x, l_y], body frame from CO (forward, starboard), on the hull: "
+        "|l_x| ≤ vessel.length / 2"
+    ),
+]
+"""`position`, a key of every kind of thruster."""
+_MaxThrust = Annotated[float, Number("N", gt=0), Field(description="largest forward thrust, > 0")]
+"""`max_thrust`, a key of every kind of thruster."""
+_ThrustRate = Annotated[
+    float | None, Number("N/s", gt=0), api("bound on the thrust's rate of change, > 0; none: no limit")
+]
+"""`thrust_rate`, a key of every kind of thruster."""
+_TimeConstant = Annotated[
+    float | None,
+    Number("s", ge=0),
+    api("time constant T of the thrust's first-order lag, ḟ = (f_c − f)/T, ≥ 0 (0: at once)", 1),
+]
+"""`time_constant`, a key of every kind of thruster."""
+_ReverseThrust = Annotated[
+    float | None, Number("N", ge=0), api("largest reverse thrust, ≥ 0", words="max_thrust")
+]
+"""`reverse_thrust`, a key of the thrusters that push both ways."""
+_TURNS = {"azimuth_rate": 'only kind = "azimuth" turns; a tunnel thruster or main propeller does not'}
+
+
+class TunnelThruster(Table):
+    """`[[vessel.thrusters]]` of kind "tunnel": `pl.Thruster("tunnel", ...)`, pushing athwartships (positive:
+    to starboard)."""
+
+    conflicts: ClassVar[dict[str, str]] = _TURNS
+    kind: Literal["tunnel"]
+    position: _ThrusterAt
+    max_thrust: _MaxThrust
+    reverse_thrust: _ReverseThrust = None
+    thrust_rate: _ThrustRate = None
+    time_constant: _TimeConstant = None
+
+
+class AzimuthThruster(Table):
+    """`[[vessel.thrusters]]` of kind "azimuth": `pl.Thruster("azimuth", ...)`, pushing along an azimuth it
+    turns (no reverse thrust: it turns instead)."""
+
+    conflicts: ClassVar[dict[str, str]] = {
+        "reverse_thrust": "an azimuth thruster turns to push the other way; it has no reverse thrust"
+    }
+    kind: Literal["azimuth"]
+    position: _ThrusterAt
+    max_thrust: _MaxThrust
+    thrust_rate: _ThrustRate = None
+    azimuth_rate: Annotated[float | None, Number("rad/s", gt=0)] = api(
+        "bound on the azimuth's rate of turn, > 0; none: no limit"
+    )
+    time_constant: _TimeConstant = None
+
+
+class MainThruster(Table):
+    """`[[vessel.thrusters]]` of kind "main": `pl.Thruster("main", ...)`, a main propeller pushing ahead
+    (positive) or astern."""
+
+    conflicts: ClassVar[dict[str, str]] = _TURNS
+    kind: Literal["main"]
+    position: _ThrusterAt
+    max_thrust: _MaxThrust
+    reverse_thrust: _ReverseThrust = None
+    thrust_rate: _ThrustRate = None
+    time_constant: _TimeConstant = None
+
+
+Thruster = Annotated[
+    TunnelThruster | AzimuthThruster | MainThruster,
+    Discriminator("kind"),
+    About(
+        """`pl.Thruster`, one table per thruster of a vessel given by its matrices, chosen by `kind`.
+
+        `controller.allocation = "qp"` shares the controller's command among them; a vessel with thrusters
+        needs its `length` (they must lie on the hull). `model = "osv"` has its own six."""
+    ),
+]
+
+
 class VesselTable(Table):
     """`[vessel]`: the keys of `model.attach_vessel` and the RAOs, whichever way the vessel is given."""
 
@@ -231,18 +328,19 @@ class VesselTable(Table):
     raos: Annotated[str | None, Text()] = api(
         "first-order motion RAOs: path of a CSV table", words='the built-in OSV\'s (model = "osv"), else none'
     )
+    hull_loads: Annotated[bool | None, Flag()] = api(
+        "the sea's wind, current and waves push on the hull through the vessel's wind, current and drift "
+        "tables (mean and slowly varying loads); false: the hull feels only `[[environment]]`",
+        False,
+    )
     lay: Lay | None = None
     winch: Winch | None = None
 
     @field_validator("raos")
     @classmethod
     def raos_file(cls, path: str, info: ValidationInfo) -> str:
-        """The RAO table's path, resolved from the scenario's folder (the `folder` of the context); it must be
-        a file."""
-        resolved = Path((info.context or {}).get("folder", ".")) / path
-        if not resolved.is_file():
-            raise rule(f"must be an RAO table (CSV) relative to the scenario's folder; no file {resolved}")
-        return str(resolved)
+        """The RAO table's path, resolved from the scenario's folder; it must be a file."""
+        return _table_file(path, info, "an RAO table")
 
     @model_validator(mode="after")
     def lay_sets_the_angle(self) -> VesselTable:
@@ -253,13 +351,24 @@ class VesselTable(Table):
 
 
 _MATRICES = ("M", "D", "G", "M_RB", "quadratic_damping")
+_HULL_TABLES = ("wind_coefficients", "current_coefficients", "drift_coefficients")
 
 
 class ModelVessel(VesselTable):
     """`[vessel]` with `model`: `pl.Vessel.osv`."""
 
-    conflicts: ClassVar[dict[str, str]] = dict.fromkeys(
-        _MATRICES, "conflicts with vessel.model; give either model or the matrices M, D, G"
+    conflicts: ClassVar[dict[str, str]] = (
+        dict.fromkeys(_MATRICES, "conflicts with vessel.model; give either model or the matrices M, D, G")
+        | dict.fromkeys(
+            ("thrusters", "length"),
+            'conflicts with model = "osv": the OSV has its own thrusters and length (six thrusters, 83 m); '
+            "give the matrices M, D, G for a vessel of your own",
+        )
+        | dict.fromkeys(
+            _HULL_TABLES,
+            'conflicts with model = "osv": the OSV has its own wind, current and drift tables; give the '
+            "matrices M, D, G for a vessel of your own",
+        )
     )
     model: Annotated[str, Choice(("osv",))] = Field(
         description='`"osv"`: the built-in offshore supply vessel'
@@ -289,6 +398,36 @@ class MatrixVessel(VesselTable):
     quadratic_damping: Annotated[list[list[float]] | None, _six_by_six("kg/m, kg, kg·m²")] = api(
         "D_q, positive semi-definite"
     )
+    length: Annotated[float | None, POSITIVE_LENGTH] = api(
+        "overall length, > 0; needed with thrusters (they must lie within ±length/2 of CO)"
+    )
+    thrusters: list[Thruster] = Field(
+        [], description="the thrusters, for `controller.allocation`: `[[vessel.thrusters]]` tables"
+    )
+    wind_coefficients: Annotated[str | None, Text()] = api(
+        "wind coefficients of the hull, for `hull_loads` in a `[sea.wind]`: path of a CSV table "
+        "(`pl.HullCoefficients.read`)"
+    )
+    current_coefficients: Annotated[str | None, Text()] = api(
+        "current coefficients of the hull, for `hull_loads` in a `[sea.current]`: path of a CSV table "
+        "(`pl.HullCoefficients.read`)"
+    )
+    drift_coefficients: Annotated[str | None, Text()] = api(
+        "mean wave-drift coefficients, for `hull_loads` in `[sea.waves]`: path of a CSV table "
+        "(`pl.DriftCoefficients.read`)"
+    )
+
+    @field_validator("wind_coefficients", "current_coefficients")
+    @classmethod
+    def hull_file(cls, path: str, info: ValidationInfo) -> str:
+        """A hull coefficient table's path, resolved from the scenario's folder; it must be a file."""
+        return _table_file(path, info, "a table of hull coefficients")
+
+    @field_validator("drift_coefficients")
+    @classmethod
+    def drift_file(cls, path: str, info: ValidationInfo) -> str:
+        """The drift coefficient table's path, resolved from the scenario's folder; it must be a file."""
+        return _table_file(path, info, "a table of wave-drift coefficients")
 
     @model_validator(mode="before")
     @classmethod
@@ -310,7 +449,14 @@ Vessel = Annotated[
         `raos` is the path (text) of a table of first-order displacement RAOs in pipelay's CSV format
         (`pl.Raos.read`: columns period_s, heading_deg and <dof>_amp, <dof>_phase for surge … yaw), relative to
         the scenario file's folder. Without it, `model = "osv"` moves with the built-in OSV's table, and a
-        vessel given by its matrices has no wave-frequency motion."""
+        vessel given by its matrices has no wave-frequency motion.
+
+        `model = "osv"` has its own thrusters, length and wind, current and drift tables. A vessel given by
+        its matrices takes them as keys: `length`, `[[vessel.thrusters]]` and the paths (relative to the
+        scenario file's folder, as `raos`) of `wind_coefficients`, `current_coefficients`
+        (`pl.HullCoefficients.read`: columns angle_deg, surge … yaw) and `drift_coefficients`
+        (`pl.DriftCoefficients.read`: period_s, heading_deg, surge … yaw). With `hull_loads = true`, each of
+        the sea's wind, current and waves needs its table."""
     ),
 ]
 
@@ -344,6 +490,21 @@ class Tension(Table):
     )
 
 
+class Observer(Table):
+    """`pl.Observer.passive`: Fossen's nonlinear passive observer, `PID(observer=...)`; the controller acts on
+    its estimate of the low-frequency pose from measurements of x, y and ψ with Gaussian noise, instead of the
+    true pose."""
+
+    noise: Annotated[list[float] | None, Vector(3, Number("m, m, rad", ge=0), "[σx, σy, σψ]")] = api(
+        "standard deviations of the measurements' noise [σx, σy, σψ], ≥ 0", [0, 0, 0]
+    )
+    seed: Annotated[int | None, Integer(0)] = api("seed of the noise, an integer ≥ 0", 0)
+    wave_period: Annotated[float | None, Number("s", gt=0, le=60)] = api(
+        "period the wave filter notches, in (0, 60]",
+        words="the sea's peak period when the run starts, else 10 s",
+    )
+
+
 class ControllerTable(Table):
     """`[controller]`: the keys of `pl.PID` whichever way the reference is given."""
 
@@ -363,7 +524,12 @@ class ControllerTable(Table):
     thrust_limit: Annotated[
         list[float] | None, Vector(3, Number("N, N, N·m", gt=0), "[surge, sway, yaw]")
     ] = api("bound on thrust [surge, sway, yaw], > 0")
+    allocation: Annotated[Literal["qp"] | None, Choice(("qp",))] = api(
+        '`"qp"`: the command goes to the vessel\'s thrusters through a quadratic program (thrust allocation)',
+        words="none: the command acts on the vessel directly",
+    )
     tension: Tension | None = None
+    observer: Observer | None = None
 
 
 class FixedController(ControllerTable):

@@ -140,6 +140,14 @@ _STINGER_ARGUMENTS = {
     "roller positions": "vessel.lay.stinger.positions",
     "roller axes": "vessel.lay.stinger.axes",
 }
+_CONTROLLER_ARGUMENTS = {"allocation": "controller.allocation", "observer": "controller.observer"}
+"""The engine's names, in `attach_vessel`'s errors, of what belongs to `[controller]`."""
+_HULL_TABLES: dict[str, Callable[..., Any]] = {
+    "wind_coefficients": pl.HullCoefficients.read,
+    "current_coefficients": pl.HullCoefficients.read,
+    "drift_coefficients": pl.DriftCoefficients.read,
+}
+"""The readers of `[vessel]`'s hull tables, by key."""
 _CURRENTS: dict[str, Callable[..., pl.Current]] = {
     "uniform": pl.Current.uniform,
     "linear": pl.Current.linear,
@@ -232,9 +240,19 @@ def _seabed(seabed: models.Seabed) -> pl.Seabed:
         return pl.Seabed(**seabed.given("bathymetry"), bathymetry=bathymetry)
 
 
+def _wind(wind: models.Wind) -> pl.Wind:
+    """`[sea.wind]`; spectrum = "none" is a steady wind (`spectrum=None`)."""
+    arguments: dict[str, Any] = wind.given("spectrum")
+    if wind.spectrum is not None:
+        arguments["spectrum"] = None if wind.spectrum == "none" else wind.spectrum
+    with _engine("sea.wind", KEYS["sea.wind"]):
+        return pl.Wind(**arguments)
+
+
 def _sea(sea: models.Sea) -> pl.Sea:
-    """`[sea]` with its current, seabed and waves. The waves' `ramp` is passed only when the file gives it."""
-    current = seabed = waves = None
+    """`[sea]` with its current, seabed, waves and wind. The waves' `ramp` is passed only when the file gives
+    it."""
+    current = seabed = waves = wind = None
     if sea.current is not None:
         with _engine("sea.current", KEYS["sea.current"]):
             current = _CURRENTS[sea.current.kind](**sea.current.given())
@@ -243,8 +261,16 @@ def _sea(sea: models.Sea) -> pl.Sea:
     if sea.waves is not None:
         with _engine("sea.waves", KEYS["sea.waves"]):
             waves = _WAVES[sea.waves.kind](**sea.waves.given())
+    if sea.wind is not None:
+        wind = _wind(sea.wind)
     with _engine("sea", KEYS["sea"], _SEABED_SHAPE):
-        return pl.Sea(**sea.given("current", "seabed", "waves"), current=current, seabed=seabed, waves=waves)
+        return pl.Sea(
+            **sea.given("current", "seabed", "waves", "wind"),
+            current=current,
+            seabed=seabed,
+            waves=waves,
+            wind=wind,
+        )
 
 
 def _hold(model: pl.Model, supports: models.Supports) -> None:
@@ -284,27 +310,56 @@ def _lay(lay: models.SLay | models.JLay) -> pl.SLay | pl.JLay:
         return pl.SLay(stinger=stinger, **lay.given("stinger"))
 
 
+def _thrusters(thrusters: list[models.Thruster]) -> tuple[list[pl.Thruster], dict[str, str]]:
+    """The thrusters of `[[vessel.thrusters]]`, and the key paths of the engine's names for their keys in
+    `pl.Vessel`'s errors (`thrusters[1].position`)."""
+    built, elsewhere = [], {}
+    for k, thruster in enumerate(thrusters):
+        with _engine(f"vessel.thrusters[{k}]", KEYS["vessel.thrusters"]):
+            built.append(pl.Thruster(thruster.kind, **thruster.given()))
+        elsewhere[f"thrusters[{k}]"] = f"vessel.thrusters[{k}]"
+        for key in KEYS["vessel.thrusters"]:
+            elsewhere[f"thrusters[{k}].{key}"] = f"vessel.thrusters[{k}].{key}"
+    return built, elsewhere
+
+
 def _vessel(vessel: models.ModelVessel | models.MatrixVessel) -> pl.Vessel:
-    """The vessel of `[vessel]`, with the RAOs of `raos` if given (else the API's default)."""
-    raos: dict[str, Any] = {}
+    """The vessel of `[vessel]`, with the RAOs of `raos` if given (else the API's default); a vessel given by
+    its matrices with its thrusters and hull tables."""
+    tables: dict[str, Any] = {}
     if vessel.raos is not None:
         with _engine("vessel.raos", (), {"path": "vessel.raos", "raos": "vessel.raos"}):
-            raos["raos"] = pl.Raos.read(vessel.raos)
-    with _engine("vessel", KEYS["vessel"]):
-        if isinstance(vessel, models.ModelVessel):
-            return pl.Vessel.osv(**raos)
-        return pl.Vessel(**vessel.given("end", "eta", "angle", "raos", "lay", "winch"), **raos)
+            tables["raos"] = pl.Raos.read(vessel.raos)
+    if isinstance(vessel, models.ModelVessel):
+        with _engine("vessel", KEYS["vessel"]):
+            return pl.Vessel.osv(**tables)
+    for key, read in _HULL_TABLES.items():
+        path = getattr(vessel, key)
+        if path is not None:
+            with _engine(f"vessel.{key}", (), {"path": f"vessel.{key}", key: f"vessel.{key}"}):
+                tables[key] = read(path)
+    thrusters, elsewhere = _thrusters(vessel.thrusters)
+    if thrusters:
+        tables["thrusters"] = thrusters
+    given = vessel.given(
+        "end", "eta", "angle", "raos", "hull_loads", "lay", "winch", "thrusters", *_HULL_TABLES
+    )
+    with _engine("vessel", KEYS["vessel"], elsewhere):
+        return pl.Vessel(**given, **tables)
 
 
 def _controller(controller: models.FixedController | models.RouteController) -> pl.PID:
-    """The PID of `[controller]`, with its route and tension loop."""
-    arguments = controller.given("route", "tension")
+    """The PID of `[controller]`, with its route, tension loop and observer."""
+    arguments = controller.given("route", "tension", "observer")
     if isinstance(controller, models.RouteController):
         with _engine("controller.route", KEYS["controller.route"]):
             arguments["reference"] = pl.Route(**controller.route.given())
     if controller.tension is not None:
         with _engine("controller.tension", KEYS["controller.tension"]):
             arguments["tension"] = pl.TensionControl(**controller.tension.given())
+    if controller.observer is not None:
+        with _engine("controller.observer", KEYS["controller.observer"]):
+            arguments["observer"] = pl.Observer.passive(**controller.observer.given())
     with _engine("controller", KEYS["controller"]):
         return pl.PID(**arguments)
 
@@ -321,7 +376,8 @@ def _winch(winch: models.Winch) -> pl.Winch:
 
 
 def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
-    """Build the vessel, its lay equipment, winch, controller and environment; attach them."""
+    """Build the vessel, its lay equipment, winch, controller and environment; attach them (with the hull's
+    loads if `hull_loads` says so)."""
     vessel = cast(models.ModelVessel | models.MatrixVessel, file.vessel)
     lay = None if vessel.lay is None else _lay(vessel.lay)
     winch = None if vessel.winch is None else _winch(vessel.winch)
@@ -331,7 +387,8 @@ def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
     for i, force in enumerate(file.environment):
         with _engine(f"environment[{i}]", KEYS["environment"]):
             environment.append(pl.Force(**force.given()))
-    with _engine("vessel", KEYS["vessel"], _WINCH_ARGUMENTS):
+    hull_loads = {} if vessel.hull_loads is None else {"hull_loads": vessel.hull_loads}
+    with _engine("vessel", KEYS["vessel"], _WINCH_ARGUMENTS | _CONTROLLER_ARGUMENTS):
         model.attach_vessel(
             vessel.end,
             body,
@@ -341,6 +398,7 @@ def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
             environment=environment,
             lay=lay,
             winch=winch,
+            **hull_loads,
         )
 
 
@@ -400,9 +458,9 @@ def parse_scenario(
 
     Every key is checked before the model is built; nothing is solved (the engine checks the `[[stages]]`,
     `Scenario.stages`, against the model again when a simulation takes them). `origin` names the source in
-    messages; file paths in it (`vessel.raos`) are relative to `folder` (default: the folder of `origin` if it
-    is a file, else the current one). Raises pl.InputError whose message starts with the key path and ends
-    with `(in origin)`.
+    messages; file paths in it (`vessel.raos`, the hull tables) are relative to `folder` (default: the folder
+    of `origin` if it is a file, else the current one). Raises pl.InputError whose message starts with the key
+    path and ends with `(in origin)`.
     """
     try:
         file = _check(data, _folder(origin, folder))

@@ -257,6 +257,15 @@ def _choices(tags: list[str]) -> str:
     return quoted[0] if len(quoted) == 1 else ", ".join(quoted[:-1]) + " or " + quoted[-1]
 
 
+def _entries(annotation: Any, metadata: tuple[Any, ...]) -> tuple[Any, tuple[Any, ...], bool]:
+    """The type and metadata of the table a key holds, under Annotated and Optional, and of an array's entries
+    (a union of kinds in `[[vessel.thrusters]]`); and whether it is an array of tables."""
+    base, metadata = _unwrap(annotation, metadata)
+    if typing.get_origin(base) is not list:
+        return base, metadata, False
+    return (*_unwrap(typing.get_args(base)[0]), True)
+
+
 @functools.cache
 def reference_tables() -> tuple[ReferenceTable, ...]:
     """The reference of the scenario format, from its models: every table (the top level first, then in the
@@ -271,7 +280,7 @@ def reference_tables() -> tuple[ReferenceTable, ...]:
             paths.append(path)
     texts: dict[tuple[type[Table], ...], tuple[str, ...]] = {}
     for models, (_, annotation, metadata) in found.items():
-        about = next((item for item in _unwrap(annotation, metadata)[1] if isinstance(item, About)), None)
+        about = next((item for item in _entries(annotation, metadata)[1] if isinstance(item, About)), None)
         texts[models] = _paragraphs(models[0].__doc__ if len(models) == 1 else about.text if about else "")
     first = {model: paths[0] for models, (paths, _, _) in found.items() for model in models}
     described = {
@@ -280,7 +289,7 @@ def reference_tables() -> tuple[ReferenceTable, ...]:
 
     tables = []
     for models, (paths, annotation, metadata) in found.items():
-        base, _ = _unwrap(annotation, metadata)
+        base, _, entries = _entries(annotation, metadata)
         union = _is_union(base)
         tags = {member: tag for tag, (member, _) in _members(base).items()} if union else {}
         variants = []
@@ -301,8 +310,7 @@ def reference_tables() -> tuple[ReferenceTable, ...]:
             notes = _paragraphs(model.__doc__) if len(models) > 1 else ()
             variants.append(Variant(model, tags.get(model), by_kind, notes, tuple(rows)))
         text = texts[models] or ("",)
-        array = typing.get_origin(base) is list
-        tables.append(ReferenceTable(tuple(paths), array, described[paths[0]], text[1:], tuple(variants)))
+        tables.append(ReferenceTable(tuple(paths), entries, described[paths[0]], text[1:], tuple(variants)))
     return tuple(tables)
 
 
