@@ -1101,6 +1101,9 @@ class Model:
     def sea(self) -> Sea | None:
         """The sea, if any."""
     @property
+    def vessel(self) -> Vessel | None:
+        """The vessel attached to the model, if any."""
+    @property
     def gravity(self) -> float:
         """Gravitational acceleration (m/s²)."""
     @property

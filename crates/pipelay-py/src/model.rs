@@ -319,6 +319,11 @@ impl Model {
     fn sea(&self) -> Option<Sea> {
         self.0.sea.clone().map(Sea)
     }
+    /// The vessel attached to the model, if any.
+    #[getter]
+    fn vessel(&self) -> Option<Vessel> {
+        self.0.vessel.as_ref().map(|a| Vessel(a.vessel.clone()))
+    }
     /// Gravitational acceleration (m/s²).
     #[getter]
     fn gravity(&self) -> f64 {

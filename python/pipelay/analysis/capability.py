@@ -154,17 +154,13 @@ def _load(value: object) -> _FloatArray:
     return load
 
 
-def _scenario_vessel(scenario: Scenario) -> Vessel:
-    """The vessel of a scenario's `[vessel]` table (its RAOs do not enter a static capability)."""
-    table = scenario.source.get("vessel")
-    if not isinstance(table, dict):
-        raise InputError("model_or_scenario: the scenario has no [vessel] to hold the pipe")
-    if table.get("model") == "osv":
-        return Vessel.osv()
-    raise InputError(
-        "vessel: a scenario's vessel given by its matrices has no thrusters; pass vessel=pl.Vessel(..., "
-        "thrusters=...) as well"
-    )
+def _model_vessel(model: Model) -> Vessel:
+    """The vessel attached to `model`."""
+    if model.vessel is None:
+        raise InputError(
+            "model_or_scenario: has no vessel to hold the pipe (a scenario's [vessel], a model's attach_vessel)"
+        )
+    return model.vessel
 
 
 def _static_pipe_load(model: Model, steps: int | None = None, start: str = "auto") -> _FloatArray:
@@ -191,17 +187,13 @@ def _resolve(subject: object, vessel: Vessel | None, solve: bool) -> tuple[Vesse
     if isinstance(subject, Scenario):
         title = subject.source.get("title")
         label = str(title) if title else (file or "scenario")
-        found = vessel if vessel is not None else _scenario_vessel(subject)
+        found = vessel if vessel is not None else _model_vessel(subject.model)
         if not solve:
             return found, np.zeros(6), label
         return found, _static_pipe_load(subject.model, subject.static_steps, subject.static_start), label
     if isinstance(subject, Model):
-        if vessel is None:
-            raise InputError(
-                "vessel: a pl.Model does not give back the vessel attached to it; pass it as vessel=, e.g. "
-                "dp_capability(model, vessel=pl.Vessel.osv())"
-            )
-        return vessel, (_static_pipe_load(subject) if solve else np.zeros(6)), "model"
+        found = vessel if vessel is not None else _model_vessel(subject)
+        return found, (_static_pipe_load(subject) if solve else np.zeros(6)), "model"
     raise InputError(
         "model_or_scenario: must be a pl.Model with a vessel, a scenario (a pipelay.scenario.Scenario or the "
         f"path of a scenario file) or a pl.Vessel, got {type(subject).__name__}"
@@ -222,8 +214,8 @@ def dp_capability(
     thrusters balance, with the co-linear current and sea that go with it and the pipe's load.
 
     Args:
-        model_or_scenario: a `pl.Model` with a vessel attached (its static state gives the pipe's load; pass
-            the vessel as `vessel`, since a model does not give it back), a scenario (a parsed
+        model_or_scenario: a `pl.Model` with a vessel attached (its static state gives the pipe's load), a
+            scenario (a parsed
             `pipelay.scenario.Scenario`, or the path of a scenario file: its `[vessel]`, and the pipe's load
             from its statics), or a `pl.Vessel` alone (no pipe: a zero load unless `pipe_load` is given).
         headings: where the environment comes from (rad, relative to the bow: 0 head-on, π/2 from starboard,
