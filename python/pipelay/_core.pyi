@@ -596,7 +596,8 @@ class Vessel:
         """One allocation of a commanded τ (6,) (body frame) to the thrusters, without rate limits."""
     @staticmethod
     def osv(raos: Raos | None = None) -> Vessel:
-        """The 83 m offshore supply vessel of Fossen's MSS toolbox, with its Capytaine RAOs or `raos`."""
+        """The 83 m offshore supply vessel of Fossen's MSS toolbox, with its Capytaine RAOs or `raos`, the six
+        thrusters of the MSS supply vessel, its length and its wind, current and wave-drift tables."""
     @property
     def raos(self) -> Raos | None:
         """First-order displacement RAOs (its wave-frequency motion in waves), if any."""
@@ -674,7 +675,9 @@ class TensionControl:
 @final
 class PID:
     """PID on η: τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t), from `start` (s); the reference is
-    η_ref (6,), a pl.Route or a callable of t (with `reference_rate`, or central differences)."""
+    η_ref (6,), a pl.Route or a callable of t (with `reference_rate`, or central differences). With
+    `allocation="qp"` its command goes to the vessel's thrusters through a QP each step; with `observer` it acts
+    on the observer's estimate (both make it a loop sampled once per step)."""
 
     def __new__(
         cls,

@@ -116,7 +116,8 @@ impl Vessel {
     }
 
     /// The 83 m offshore supply vessel of Fossen's MSS toolbox (osv.m; 6-DOF, about CO), with the RAOs of
-    /// its hull computed by Capytaine, or `raos`.
+    /// its hull computed by Capytaine, or `raos`, the six thrusters of the MSS supply vessel, its length and
+    /// its wind, current and wave-drift tables.
     #[staticmethod]
     #[pyo3(signature = (raos=None))]
     fn osv(raos: Option<&Raos>) -> Self {
@@ -250,7 +251,8 @@ impl PyRoute {
 /// callable of t returning (6,) (with `reference_rate`, a callable returning η̇_ref, or central differences
 /// over 1 ms). `tension`: a pl.TensionControl moving the set-point to hold the top tension.
 /// `integral_limit` (6,) bounds ∫η̃; `thrust_limit` (3,) bounds the thrust in surge (N), sway (N)
-/// and yaw (N·m).
+/// and yaw (N·m). `allocation="qp"`: the command goes to the vessel's thrusters through a QP each step;
+/// `observer` (a pl.Observer): the controller acts on its estimate.
 #[pyclass(module = "pipelay", name = "PID", frozen)]
 #[derive(Clone)]
 pub struct PyPid(pub Pid);
