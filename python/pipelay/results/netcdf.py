@@ -11,12 +11,18 @@ have are NaN (the last valid node of a record is end B). A run streamed to a fil
 ``node`` and ``element`` unlimited, holding the variables of the groups it recorded (``GROUPS``) and a global
 attribute ``recorded_groups``.
 
+Both writers mark the file with the global attributes ``pipelay_format`` (the layout's version, an integer:
+`FORMAT`) and ``pipelay_version`` (the pipelay that wrote it). `load` reads any format up to its own (files
+without the attribute, from before it, too) and refuses a newer one, and a file that is not a pipelay results
+file, an empty, truncated or damaged one, with an InputError naming the file and what is wrong with it.
+
 Imports of pipelay: the engine (`pipelay._core`) and `pipelay.results.atomic`.
 """
 
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Iterable, Sequence
 from datetime import UTC, datetime
 from functools import partial
@@ -28,7 +34,12 @@ import numpy as np
 from pipelay._core import InputError, Results
 from pipelay.results.atomic import _atomic_write
 
-__all__ = ["GROUPS", "LAYOUT", "LOAD_GROUPS", "load", "to_netcdf", "to_xarray"]
+__all__ = ["FORMAT", "GROUPS", "LAYOUT", "LOAD_GROUPS", "load", "to_netcdf", "to_xarray"]
+
+# The version of the file layout both writers write (global attribute ``pipelay_format``) and the newest
+# `load` reads. Raise it when a change would make an older pipelay misread a new file (a variable's meaning, units or
+# dimensions changed); adding a variable older readers ignore does not need it.
+FORMAT = 1
 
 AXES = ["x", "y", "z"]
 FORCE_DOFS = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"]
@@ -268,14 +279,30 @@ def with_stages(results: Results, attributes: Any) -> Results:
     return results._with_stages(names, starts.tolist())
 
 
-def _file_attributes() -> dict[str, str]:
-    """The global attributes of a results file."""
+def _file_attributes() -> dict[str, Any]:
+    """The global attributes of a results file: its title, conventions, creation time, the order of a force's
+    components, and the layout's version (``pipelay_format``, an integer) with the pipelay that wrote it."""
     return {
-        "title": "pipelay simulation results",
+        "title": TITLE,
+        "pipelay_format": FORMAT,
+        "pipelay_version": _version(),
         "conventions": "SI units; frame e: origin at the seabed end, e1 lay direction, e3 down",
         "created": datetime.now(UTC).isoformat(timespec="seconds"),
         "force_dofs": " ".join(FORCE_DOFS),
     }
+
+
+TITLE = "pipelay simulation results"
+
+
+def _version() -> str:
+    """The installed pipelay's version ("unknown" when run from a source tree it was not installed from)."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("pipelay")
+    except metadata.PackageNotFoundError:
+        return "unknown"
 
 
 def to_netcdf(results: Results, path: str | os.PathLike[str]) -> Path:
@@ -288,28 +315,146 @@ def to_netcdf(results: Results, path: str | os.PathLike[str]) -> Path:
 
 def load(path: str | os.PathLike[str]) -> Results:
     """Reads results written by ``Results.to_netcdf`` or streamed by ``Simulation.run(..., output=path)`` back,
-    bit for bit. A streamed file recorded with only some groups (``record=...``) loads if it has the groups a
-    Results is made of (``LOAD_GROUPS``: positions, rotations, velocities, section_forces, reactions, energy);
-    the optional ones (vessel, seabed, lay) are then None in the Results. A file without one of those groups
-    raises InputError naming the missing groups: read it with ``xarray.open_dataset(path)``."""
+    bit for bit (the ``.part`` file of a run still going or killed, too: it holds the records written so far).
+    A streamed file recorded with only some groups (``record=...``) loads if it has the groups a Results is
+    made of (``LOAD_GROUPS``: positions, rotations, velocities, section_forces, reactions, energy); the optional
+    ones (vessel, seabed, lay) are then None in the Results. A file without one of those groups raises
+    InputError naming the missing groups: read it with ``xarray.open_dataset(path)``.
+
+    Raises InputError naming the file and the problem for a path that is no file, an empty file, one that is
+    not netCDF-4 (HDF5; a text file, a netCDF-3 file), a netCDF file that is not a pipelay results file, a
+    truncated or damaged file, and a file of a newer format (``pipelay_format`` above `FORMAT`: upgrade
+    pipelay)."""
+    import h5py
     import xarray as xr
 
     target = Path(path)
     if not target.is_file():
         raise InputError(f"path: no results file at {str(target)!r}")
-    with xr.open_dataset(target, engine="h5netcdf") as dataset:
+    _check_signature(target)
+    try:
+        # h5py first: a file it cannot open or whose attributes it cannot read fails here, not half-way into
+        # h5netcdf's File (which then complains on stderr as it is collected); the format is checked before
+        # anything else is read.
+        with h5py.File(target, "r", locking=False) as file:
+            _check_format(target, {key: file.attrs[key] for key in file.attrs})
+        # phony_dims: an HDF5 file that is not netCDF opens too, and is refused below for its variables.
+        dataset = xr.open_dataset(target, engine="h5netcdf", phony_dims="sort")
+    except InputError:
+        raise
+    except Exception as error:  # noqa: BLE001 - h5py and h5netcdf raise OSError, ValueError, KeyError ...
+        raise _unreadable(target, error) from None
+    with dataset:
+        attributes = dict(dataset.attrs)
         missing = [name for name in _REQUIRED if name not in dataset.data_vars]
         if missing:
+            if len(missing) == len(_REQUIRED) and not _is_ours(dataset, attributes):
+                others = ", ".join(sorted(map(str, dataset.data_vars))[:8]) or "none"
+                raise InputError(
+                    f"path: {str(target)!r} is a netCDF-4 (HDF5) file but not a pipelay results file: it has "
+                    f"none of the variables {', '.join(_REQUIRED[:6])}, … and no pipelay_format attribute "
+                    f"(its variables: {others})"
+                )
             groups = [group for group in GROUPS if any(name in GROUPS[group] for name in missing)]
             raise InputError(
                 f"path: a results file with the groups {', '.join(LOAD_GROUPS)} to make a Results (read any "
                 f"results file with xarray.open_dataset), got {str(target)!r} without {', '.join(groups)}"
             )
-        arrays = {name: dataset[name].values for name in dataset.data_vars if name in LAYOUT}
-        arrays["time"] = dataset["time"].values
-        nodes = int(dataset.sizes["node"])
-        attributes = dict(dataset.attrs)
-    return with_stages(Results._from_arrays(nodes, arrays), attributes)
+        try:
+            arrays = {name: dataset[name].values for name in dataset.data_vars if name in LAYOUT}
+            arrays["time"] = dataset["time"].values
+            nodes = int(dataset.sizes["node"])
+        except Exception as error:  # noqa: BLE001 - a chunk cut off or damaged: OSError, RuntimeError ...
+            raise _unreadable(target, error) from None
+    try:
+        results = Results._from_arrays(nodes, arrays)
+    except (InputError, ValueError, TypeError) as error:
+        raise InputError(
+            f"path: {str(target)!r} is not a valid pipelay results file: its arrays do not make a Results "
+            f"({error})"
+        ) from None
+    return with_stages(results, attributes)
+
+
+# HDF5's signature, at byte 0 or, after a user block, at 512, 1024, 2048, ... (the HDF5 file format).
+_HDF5 = b"\x89HDF\r\n\x1a\n"
+
+
+def _check_signature(target: Path) -> None:
+    """Raises InputError if `target` is empty or not an HDF5 file (a netCDF-4 file is one)."""
+    size = target.stat().st_size
+    if size == 0:
+        raise InputError(f"path: {str(target)!r} is empty (0 bytes), not a pipelay results file")
+    with open(target, "rb") as file:
+        head = file.read(8)
+        offset = 512
+        while offset + 8 <= size:
+            if head == _HDF5:
+                return
+            file.seek(offset)
+            head, offset = file.read(8), 2 * offset
+        if head == _HDF5:
+            return
+        file.seek(0)
+        start = file.read(16)
+    if size < len(_HDF5) and _HDF5.startswith(start):
+        raise InputError(f"path: {str(target)!r} is truncated: {size} bytes, the start of an HDF5 signature")
+    if start[:3] == b"CDF":
+        raise InputError(
+            f"path: {str(target)!r} is a netCDF-3 (classic) file, not a pipelay results file: those are "
+            "netCDF-4 (HDF5), written by Results.to_netcdf or a streamed run"
+        )
+    raise InputError(
+        f"path: {str(target)!r} is not a pipelay results file: not a netCDF-4 (HDF5) file (it starts with "
+        f"{start!r})"
+    )
+
+
+def _unreadable(target: Path, error: BaseException) -> InputError:
+    """The InputError for an HDF5 file h5py or h5netcdf could not read: truncated, damaged, or not netCDF."""
+    reason = str(error) or type(error).__name__
+    cut = re.search(r"eof = (\d+).*stored_eof = (\d+)", reason)
+    if cut:
+        return InputError(
+            f"path: {str(target)!r} is truncated: it has {int(cut.group(1))} of the {int(cut.group(2))} "
+            "bytes its header announces (a copy cut short, a full disk?)"
+        )
+    return InputError(
+        f"path: {str(target)!r} is an HDF5 file that cannot be read as a pipelay results file (truncated or "
+        f"damaged, or not netCDF-4): {type(error).__name__}: {reason}"
+    )
+
+
+def _check_format(target: Path, attributes: dict[str, Any]) -> None:
+    """Raises InputError if the file's ``pipelay_format`` is not a format number or is newer than `FORMAT`
+    (a file without it, from before the attribute, is format 1)."""
+    if "pipelay_format" not in attributes:
+        return
+    value = attributes["pipelay_format"]
+    number = np.asarray(value)  # netCDF attributes are arrays: one number for this one
+    if number.size == 1:
+        number = number.reshape(())
+    if number.shape != () or number.dtype.kind not in "iu" or int(number) < 1:
+        raise InputError(
+            f"path: {str(target)!r} has a pipelay_format attribute that is not a format number (an integer "
+            f">= 1), got {number.tolist()!r}"
+        )
+    if int(number) > FORMAT:
+        writer = attributes.get("pipelay_version")
+        written = f", written by pipelay {writer}" if isinstance(writer, str) else ""
+        raise InputError(
+            f"path: the file's format {int(number)} is newer than this pipelay reads ({FORMAT}); upgrade "
+            f"pipelay to read {str(target)!r}{written}"
+        )
+
+
+def _is_ours(dataset: Any, attributes: dict[str, Any]) -> bool:
+    """Whether a netCDF file is a pipelay results file (then one missing groups, not someone else's file)."""
+    return (
+        "pipelay_format" in attributes
+        or attributes.get("title") == TITLE
+        or any(name in LAYOUT for name in dataset.data_vars)
+    )
 
 
 def _attach() -> None:

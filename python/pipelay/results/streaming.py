@@ -9,8 +9,10 @@ Results of the last record only; the whole series is in the file (``pl.load(path
 ``xarray.open_dataset(path)``).
 
 The file has the layout of ``Results.to_netcdf`` (pipelay.results.netcdf: the same variables, dimensions and
-attributes, plus the global attribute ``recorded_groups``) with ``time``, ``node`` and ``element`` unlimited: with
-pay-out the mesh grows, and the earlier records' extra nodes are NaN, as in the engine's own records.
+attributes, the format's version ``pipelay_format`` among them, plus the global attribute ``recorded_groups``)
+with ``time``, ``node`` and ``element`` unlimited: with pay-out the mesh grows, and the earlier records' extra
+nodes are NaN, as in the engine's own records. ``pl.load`` reads the ``.part`` file too (the records written so
+far).
 
 ``record`` chooses the variables (``GROUPS``; ``time`` always):
 
