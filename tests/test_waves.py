@@ -226,3 +226,19 @@ def test_j_lay_waves_example_keeps_its_ledger() -> None:
     assert hang_off[late, 2].std() > 0.1
     assert np.abs(results.eta_low_frequency[:, :2] - results.eta_low_frequency[0, :2]).max() < 0.1
     assert np.abs(balance).max() < 1e-9 * np.abs(energy).max()
+
+
+def test_seas_beyond_the_theory_are_refused_naming_the_limit() -> None:
+    """A regular wave of H/L ≈ 1.3 (H 50 m, T 5 s) breaks: the model refuses it, naming Miche's limit (5.57 m
+    here); a JONSWAP sea of Hs 30 m at Tp 4 s is far steeper than DNV-RP-C205 allows (S_p = 1.2 > 1/15); a
+    swell higher than 0.78 of the depth breaks too; the limits themselves are accepted."""
+    section = pl.Section.pipe(0.3, 0.02)
+    rod = pl.Rod.straight((0, 0, 0), (0, 0, -100), 4, section)
+    with pytest.raises(pl.InputError, match=r"^waves: must not break: H ≤ .*= 5\.57\d m \(Miche"):
+        pl.Model(rod, pl.Sea(800.0, waves=pl.Waves.regular(50.0, 5.0)))
+    pl.Model(rod, pl.Sea(800.0, waves=pl.Waves.regular(5.5, 5.0)))
+    with pytest.raises(pl.InputError, match=r"^hs: must keep the sea within DNV-RP-C205's steepness limit"):
+        pl.Waves.jonswap(30.0, 4.0)
+    pl.Waves.jonswap(6.6, 8.0)
+    with pytest.raises(pl.InputError, match=r"^waves: must not break: .*0\.78 h"):
+        pl.Model(rod, pl.Sea(10.0, waves=pl.Waves.regular(9.0, 20.0)))

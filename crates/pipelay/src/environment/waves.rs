@@ -108,6 +108,7 @@ impl Waves {
                 "must be a peak enhancement factor from 1 (Pierson–Moskowitz) to 10",
             ));
         }
+        check_steepness(hs, tp)?;
         let peak = std::f64::consts::TAU / tp;
         let density = |omega: f64| {
             let sigma = if omega <= peak { 0.07 } else { 0.09 };
@@ -264,6 +265,69 @@ impl Waves {
     }
 }
 
+/// DNV-RP-C205's limit on a sea state's steepness S_p = 2πH_s/(g T_p²) (§3.5.5.4): 1/15 for T_p ≤ 8 s, 1/25
+/// for T_p ≥ 15 s, linear in between.
+pub fn steepness_limit(tp: f64) -> f64 {
+    let t = ((tp - 8.0) / 7.0).clamp(0.0, 1.0);
+    (1.0 - t) / 15.0 + t / 25.0
+}
+
+/// Refuses a sea state steeper than DNV-RP-C205's limit: linear wave theory does not describe it.
+fn check_steepness(hs: f64, tp: f64) -> Result<()> {
+    let g = 9.81;
+    let steepness = std::f64::consts::TAU * hs / (g * tp * tp);
+    let limit = steepness_limit(tp);
+    if steepness > limit {
+        return Err(Error::input(
+            "hs",
+            format!("{hs} m at tp = {tp} s (steepness S_p = 2πH_s/(gT_p²) = {steepness:.4})"),
+            format!(
+                "must keep the sea within DNV-RP-C205's steepness limit S_p ≤ {limit:.4} (1/15 for T_p ≤ 8 s, \
+                 1/25 from 15 s): H_s ≤ {:.3} m at this T_p",
+                limit * g * tp * tp / std::f64::consts::TAU
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The breaking index: a wave breaks in water of depth h when its height exceeds 0.78 h (McCowan).
+const BREAKING_INDEX: f64 = 0.78;
+
+/// Refuses waves beyond breaking in `depth` (m): a regular wave steeper than Miche's limit
+/// H ≤ (L/7) tanh(kh) (H/L ≤ 1/7 in deep water) or higher than the depth-limited 0.78 h, and a sea state whose
+/// significant height exceeds 0.78 h.
+fn check_breaking(waves: &Waves, components: &[Resolved], depth: f64) -> Result<()> {
+    let depth_limit = BREAKING_INDEX * depth;
+    if let [regular] = components {
+        let height = 2.0 * regular.amplitude;
+        let length = std::f64::consts::TAU / regular.number;
+        let miche = length / 7.0 * (regular.number * depth).tanh();
+        let period = std::f64::consts::TAU / regular.frequency;
+        if height > miche.min(depth_limit) {
+            return Err(Error::input(
+                "waves",
+                format!("a regular wave of height {height} m and period {period} s in {depth} m of water"),
+                format!(
+                    "must not break: H ≤ min((L/7)·tanh(kh), 0.78 h) = {:.3} m (Miche's steepness limit, \
+                     H/L ≤ 1/7 in deep water, and the depth-limited height; L = {length:.1} m)",
+                    miche.min(depth_limit)
+                ),
+            ));
+        }
+        return Ok(());
+    }
+    let hs = waves.significant_height();
+    if hs > depth_limit {
+        return Err(Error::input(
+            "waves",
+            format!("a sea of significant height {hs:.3} m in {depth} m of water"),
+            format!("must not break: H_s ≤ 0.78 h = {depth_limit:.3} m (the depth-limited height)"),
+        ));
+    }
+    Ok(())
+}
+
 /// A direction offset from cos^{2s}(Δ/2) on (−π, π], by rejection.
 fn spread_angle(rng: &mut ChaCha8Rng, s: f64) -> f64 {
     loop {
@@ -386,6 +450,7 @@ impl WaveField {
                 }
             })
             .collect();
+        check_breaking(waves, &components, depth)?;
         // Sorted by wave number, so that a deep point's sum stops at the first component decayed there.
         components.sort_by(|a, b| a.number.total_cmp(&b.number));
         Ok(WaveField {
@@ -652,5 +717,45 @@ mod tests {
         assert!(Waves::jonswap(2.0, 9.0, 3.3, 0.0, Some(1000.0), 0, 10).is_ok());
         assert!(Waves::from_spectrum(&[0.5, 0.4], &[1.0, 1.0], 0.0, None, 0, 10).is_err());
         assert!(Waves::from_spectrum(&[0.4, 0.5], &[1.0, f64::NAN], 0.0, None, 0, 10).is_err());
+    }
+
+    /// Seas beyond the theory are refused, naming the limit: a regular wave of H/L ≈ 1.3, one higher than the
+    /// depth-limited 0.78 h, and JONSWAP seas steeper than DNV-RP-C205's S_p limits; the limits themselves
+    /// are accepted.
+    #[test]
+    fn seas_beyond_breaking_or_steepness_are_refused() {
+        let field = |waves: Waves, depth: f64| WaveField::new(&waves, depth, 9.81);
+        // H 50 m at T 5 s: L = 39 m in deep water.
+        let message = field(Waves::regular(50.0, 5.0, 0.0).unwrap(), 800.0)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.starts_with("waves: must not break") && message.contains("Miche"),
+            "{message}"
+        );
+        // The deep-water limit H = L/7 (L = gT²/2π = 39.03 m at 5 s): 5.57 m breaks at 1.01 of it, not 0.99.
+        let limit = 9.81 * 25.0 / std::f64::consts::TAU / 7.0;
+        assert!(field(Waves::regular(0.99 * limit, 5.0, 0.0).unwrap(), 800.0).is_ok());
+        assert!(field(Waves::regular(1.01 * limit, 5.0, 0.0).unwrap(), 800.0).is_err());
+        // In 10 m of water a 9 m, 20 s swell exceeds 0.78 h = 7.8 m.
+        assert!(field(Waves::regular(9.0, 20.0, 0.0).unwrap(), 10.0).is_err());
+        assert!(field(Waves::regular(7.0, 20.0, 0.0).unwrap(), 10.0).is_ok());
+        // JONSWAP Hs 30 m at Tp 4 s: S_p = 1.2; at Tp 8 s the limit 1/15 is Hs = 6.66 m, at 15 s 1/25: 14.05 m.
+        let error = Waves::jonswap(30.0, 4.0, 3.3, 0.0, None, 0, 10)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.starts_with("hs: must keep the sea within DNV-RP-C205"),
+            "{error}"
+        );
+        let largest = |tp: f64| steepness_limit(tp) * 9.81 * tp * tp / std::f64::consts::TAU;
+        assert!((largest(8.0) - 6.662).abs() < 1e-3 && (largest(15.0) - 14.05).abs() < 1e-2);
+        for tp in [6.0, 8.0, 11.5, 15.0, 20.0] {
+            assert!(Waves::jonswap(0.999 * largest(tp), tp, 3.3, 0.0, None, 0, 10).is_ok());
+            assert!(Waves::jonswap(1.001 * largest(tp), tp, 3.3, 0.0, None, 0, 10).is_err());
+        }
+        // A sea of Hs 6 m in 5 m of water breaks.
+        let sea = Waves::jonswap(6.0, 12.0, 3.3, 0.0, None, 0, 50).unwrap();
+        assert!(field(sea, 5.0).unwrap_err().to_string().contains("0.78 h"));
     }
 }

@@ -135,9 +135,10 @@ mod tests {
     #[test]
     fn seas_outside_the_table_are_input_errors() {
         let raos = Raos::osv().unwrap();
+        // 0.5 m high: a 2 s wave of 1 m would break (L/7 = 0.89 m).
         for period in [2.0, 35.0] {
             let field =
-                WaveField::new(&Waves::regular(1.0, period, 0.0).unwrap(), 500.0, 9.81).unwrap();
+                WaveField::new(&Waves::regular(0.5, period, 0.0).unwrap(), 500.0, 9.81).unwrap();
             let message = WaveMotion::new(&field, &raos).unwrap_err().to_string();
             assert!(message.starts_with("waves: "), "{message}");
             assert!(message.contains("[3, 30] s"), "{message}");
