@@ -21,6 +21,8 @@ use pyo3::types::PyDict;
 pub struct Simulation {
     integrator: Integrator,
     last_iterations: usize,
+    /// The fingerprint of the model as given (before stages changed it): what a checkpoint stores.
+    fingerprint: Vec<(&'static str, String)>,
 }
 
 impl Simulation {
@@ -31,6 +33,7 @@ impl Simulation {
         state: DynamicState,
         dt: f64,
         stages: Option<Stages>,
+        fingerprint: Vec<(&'static str, String)>,
     ) -> PyResult<Self> {
         let options = DynamicOptions {
             time_step: dt,
@@ -43,8 +46,59 @@ impl Simulation {
         Ok(Simulation {
             integrator,
             last_iterations: 0,
+            fingerprint,
         })
     }
+}
+
+/// Checks that a checkpoint's model fingerprint (if it has one: older checkpoints do not) matches `now`, the
+/// model's it resumes into, but in the parts named in `allow`; names the parts that differ.
+fn check_fingerprint(
+    arrays: &Bound<'_, PyDict>,
+    now: &[(&'static str, String)],
+    allow: &[String],
+) -> PyResult<()> {
+    let parts = pipelay::fingerprint::PARTS;
+    if let Some(unknown) = allow.iter().find(|a| !parts.contains(&a.as_str())) {
+        return Err(input(
+            "allow",
+            format!("{unknown:?}"),
+            &format!("must name parts of a model: {}", parts.join(", ")),
+        ));
+    }
+    let Some(stored) = arrays.get_item("fingerprint")? else {
+        return Ok(());
+    };
+    let stored: Vec<String> = stored
+        .try_iter()?
+        .map(|item| item.and_then(|i| i.str().map(|s| s.to_string())))
+        .collect::<PyResult<_>>()?;
+    let stored: std::collections::HashMap<&str, &str> = stored
+        .iter()
+        .filter_map(|entry| entry.split_once('='))
+        .collect();
+    let differing: Vec<&str> = now
+        .iter()
+        .filter(|(part, digest)| stored.get(part).is_some_and(|d| d != digest))
+        .map(|(part, _)| *part)
+        .filter(|part| !allow.iter().any(|a| a == part))
+        .collect();
+    if differing.is_empty() {
+        return Ok(());
+    }
+    Err(input(
+        "model",
+        format!("a model that differs from the checkpoint's in {}", differing.join(", ")),
+        &format!(
+            "must be the model the checkpoint was saved from, so that the run continues as it would have \
+             (a deliberate change: pl.resume(..., allow=[{}]))",
+            differing
+                .iter()
+                .map(|p| format!("{p:?}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    ))
 }
 
 /// The stages of `list` from `start_time`, checked and applied to `model` stepped with `dt` (s).
@@ -153,11 +207,12 @@ impl Simulation {
                 .dynamic_state(&model.0)
                 .map_err(to_py)?,
         };
+        let fingerprint = model.0.fingerprint();
         let mut engine = model.0.clone();
         let stages = stages
             .map(|list| applied_stages(&mut engine, list, state.time, dt))
             .transpose()?;
-        Simulation::from_state(engine, state, dt, stages)
+        Simulation::from_state(engine, state, dt, stages, fingerprint)
     }
 
     /// The stages' names, None without stages.
@@ -357,6 +412,12 @@ impl Simulation {
         if let Some(stages) = self.integrator.stages() {
             rows("stage_starts", stages.starts.clone(), 1)?;
         }
+        let fingerprint: Vec<String> = self
+            .fingerprint
+            .iter()
+            .map(|(part, digest)| format!("{part}={digest}"))
+            .collect();
+        dict.set_item("fingerprint", fingerprint)?;
         let model = self.integrator.model();
         if model.pay_out.is_some() {
             // Pay-out changes the mesh: the checkpoint carries the rod's reference as it is now.
@@ -496,14 +557,18 @@ impl Simulation {
     }
 
     /// A simulation of `model` restored from `_checkpoint` arrays: it continues exactly as the original.
-    /// `stages`: those the original ran through.
+    /// `stages`: those the original ran through. The model must be the one the checkpoint was saved from,
+    /// but in the parts named in `allow` (a deliberate change).
     #[staticmethod]
-    #[pyo3(signature = (model, arrays, stages=None))]
+    #[pyo3(signature = (model, arrays, stages=None, allow=Vec::new()))]
     fn _restore(
         model: &crate::model::Model,
         arrays: &Bound<'_, PyDict>,
         stages: Option<&crate::stages::Stages>,
+        allow: Vec<String>,
     ) -> PyResult<Simulation> {
+        let fingerprint = model.0.fingerprint();
+        check_fingerprint(arrays, &fingerprint, &allow)?;
         let get = |key: &str| -> PyResult<Vec<f64>> {
             match arrays.get_item(key)? {
                 Some(value) => flat(&value, key),
@@ -662,7 +727,7 @@ impl Simulation {
             slips,
         };
         let ledger = get("ledger")?;
-        let mut simulation = Simulation::from_state(model, state, dt, stages)?;
+        let mut simulation = Simulation::from_state(model, state, dt, stages, fingerprint)?;
         match ledger[..] {
             [supplied, dissipated] => simulation
                 .integrator

@@ -28,6 +28,7 @@ pub mod contact;
 pub mod dynamics;
 pub mod environment;
 pub mod error;
+pub mod fingerprint;
 pub mod linalg;
 pub mod memory;
 pub mod model;

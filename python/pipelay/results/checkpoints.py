@@ -8,6 +8,7 @@ Imports of pipelay: the engine (`pipelay._core`) and `pipelay.results.atomic`.
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -32,15 +33,27 @@ def checkpoint(simulation: Simulation, path: str | os.PathLike[str]) -> Path:
     return target
 
 
-def resume(model: Model, path: str | os.PathLike[str], stages: Stages | None = None) -> Simulation:
-    """The simulation saved by ``checkpoint``, continued on `model` (the same model it was saved from) through
-    `stages`, those the original ran through (a pl.Stages; None for a run without stages)."""
+def resume(
+    model: Model,
+    path: str | os.PathLike[str],
+    stages: Stages | None = None,
+    *,
+    allow: Sequence[str] = (),
+) -> Simulation:
+    """The simulation saved by ``checkpoint``, continued on `model` through `stages`, those the original ran
+    through (a pl.Stages; None for a run without stages).
+
+    The checkpoint stores a fingerprint of the model it was saved from, part by part ("line", "sea",
+    "gravity", "supports", "point_loads", "attachments", "pay_out", "vessel", "controller", "environment"):
+    resuming into a model that differs raises `pl.InputError` naming the parts, unless they are in `allow` (a
+    deliberate change, which then no longer continues the original run exactly). The time step and the time
+    come from the checkpoint; the end time is the new run's (``Simulation.run(t_end)``)."""
     target = Path(path)
     if not target.is_file():
         raise InputError(f"path: no checkpoint file at {str(target)!r}")
     with np.load(target) as data:
         arrays = {key: data[key] for key in data.files}
-    return Simulation._restore(model, arrays, stages)
+    return Simulation._restore(model, arrays, stages, list(allow))
 
 
 def _attach() -> None:
