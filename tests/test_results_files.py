@@ -165,6 +165,19 @@ def test_a_bad_file_is_an_input_error_naming_the_file_and_the_problem(
         assert int(found.group(2)) == good.stat().st_size
 
 
+def test_pipelay_plot_of_a_bad_file_exits_2_naming_it(
+    good: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`pipelay plot` of a truncated file: exit 2 and the error, no traceback."""
+    from pipelay.cli import main
+
+    path = tmp_path / "half.nc"
+    _half(path, good)
+    assert main(["plot", str(path), "--plots", str(tmp_path / "figures")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"pipelay: error: path: {str(path)!r} is truncated") and "Traceback" not in err, err
+
+
 def test_every_cut_of_a_file_is_an_input_error(good: Path, tmp_path: Path) -> None:
     """A file cut anywhere (at 40 places from byte 1 to its last byte but one) is an InputError naming it."""
     data = good.read_bytes()
