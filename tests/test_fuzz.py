@@ -18,8 +18,18 @@ API constructors: random numbers (the whole float range with NaN and ±inf, ints
   object where a number is asked for), with the same note naming that argument: Python's convention
   (`math.sqrt("1")`), and the traceback shows which argument.
 
-The static solves and the huge sizes run in a subprocess with a time limit, so that a hang or a crash of the
-engine fails its test instead of killing pytest. Every test is derandomized (the same cases on every run) and
+The newer inputs (4.): line segments, coatings and linings, attachments, stages, thrusters, wind, the observer,
+allocation and hull tables, mutated only in their own tables of the examples that have them and of two files
+written here (a line of segments with attachments; a DP vessel of matrices with thrusters of its own, wind,
+observer, allocation and stages), read (`parse_scenario`, `pipelay check`) and, cut to a few elements, solved
+and run 0.6 s: an InputError, a ConvergenceError, or finite numbers. Their API calls (pl.Segment,
+pl.Rod.segments, pl.Coating, Section.pipe(coatings=, lining=, grade=), pl.Clump, Model.attach, pl.Stage(s),
+pl.Thruster, pl.Wind, pl.Observer.passive, pl.HullCoefficients, pl.Vessel(thrusters=...), Vessel.allocate) as
+above, and what they accept must give finite numbers (a section's properties, an allocation, the gusts, ...).
+What this found in the engine is pinned by strict xfails at the end (`known_bug` lets the search go past it).
+
+The static solves, the runs and the huge sizes run in a subprocess with a time limit, so that a hang or a crash
+of the engine fails its test instead of killing pytest. Every test is derandomized (the same cases on every run) and
 keeps no example database, so CI is reproducible; `PIPELAY_FUZZ=10 pytest tests/test_fuzz.py` searches ten times
 as many new cases.
 """
@@ -150,19 +160,38 @@ def number_changes(x: float) -> list[object]:
     return changes
 
 
+def within(path: KeyPath, focus: tuple[str, ...] | None) -> bool:
+    """Whether `path` lies in (or is) one of the `focus` tables or keys (dotted, array indices left out:
+    "pipe.coatings" holds ("line", "segments", 0, "pipe", "coatings", 1, "density")); None: everywhere."""
+    if focus is None:
+        return True
+    dotted = "." + ".".join(key for key in path if isinstance(key, str)) + "."
+    return any(f".{table}." in dotted for table in focus)
+
+
 @st.composite
-def mutations(draw: st.DrawFn, data: dict[str, Any]) -> dict[str, Any]:
-    """One random change of `data` (in place)."""
+def mutations(
+    draw: st.DrawFn,
+    data: dict[str, Any],
+    focus: tuple[str, ...] | None = None,
+    sources: dict[str, dict[str, Any]] = EXAMPLES,
+) -> dict[str, Any]:
+    """One random change of `data` (in place); with `focus`, only of the values in those tables (`within`),
+    grafts from `sources` (default: the examples)."""
     kind = draw(st.sampled_from(("replace", "change", "delete", "add", "nest", "unnest", "resize", "graft")))
-    paths = slots(data)
+    paths = [path for path in slots(data) if within(path, focus)]
     if kind == "add" or not paths:
-        tables = [()] + [path for path in paths if isinstance(at(data, path), dict)]
+        tables = [path for path in paths if isinstance(at(data, path), dict)]
+        tables = [(), *tables] if focus is None else tables or [()]
         table = at(data, draw(st.sampled_from(tables)))
         table[draw(st.sampled_from(KEY_NAMES) | st.text(max_size=8))] = draw(toml_values)
         return data
     if kind == "graft":  # a value from another example at the same path (a lay, a route, a seabed ...)
-        other = EXAMPLES[draw(st.sampled_from(sorted(EXAMPLES)))]
-        path = draw(st.sampled_from(slots(other)))
+        other = sources[draw(st.sampled_from(sorted(sources)))]
+        grafts = [path for path in slots(other) if within(path, focus)]
+        if not grafts:
+            return data
+        path = draw(st.sampled_from(grafts))
         target: Any = data
         for key in path[:-1]:
             if isinstance(target, dict) and isinstance(key, str):
@@ -856,3 +885,816 @@ def test_a_huge_wave_spreading_is_refused_or_quick() -> None:
 def test_a_negative_wave_seed_is_an_input_error(call: Callable[[], object]) -> None:
     with pytest.raises(pl.InputError, match="seed"):
         call()
+
+
+# 4. The inputs added since: line segments, coatings, attachments, stages, thrusters, wind and the observer.
+# Scenario files (the examples that have them and two written here, a line of segments and a DP vessel of
+# matrices with thrusters of its own) are mutated in those tables only; those of a few elements are then
+# solved and run a few steps, in a subprocess; the API calls that take them are fuzzed as in 3., and what a
+# call accepts must give finite numbers (a Section's properties, an allocation, the wind's gusts, ...).
+
+OSV = pl.Vessel.osv()
+HULL_TABLES = {
+    "wind.csv": "angle_deg,surge,sway,heave,roll,pitch,yaw\n0,300,0,0,0,0,0\n90,0,700,0,0,0,-2000\n"
+    "180,-250,0,0,0,0,0\n270,0,-700,0,0,0,2000\n",
+    "current.csv": "angle_deg,surge,sway,heave,roll,pitch,yaw\n0,20,0,0,0,0,0\n90,0,900,0,0,0,-500\n"
+    "180,-20,0,0,0,0,0\n270,0,-900,0,0,0,500\n",
+    "drift.csv": "period_s,heading_deg,surge,sway,heave,roll,pitch,yaw\n3,0,800,0,0,0,0,0\n"
+    "3,90,0,4000,0,0,0,100\n3,180,-900,0,0,0,0,0\n3,270,0,-4000,0,0,0,-100\n30,0,10,0,0,0,0,0\n"
+    "30,90,0,50,0,0,0,1\n30,180,-10,0,0,0,0,0\n30,270,0,-50,0,0,0,-1\n",
+}
+for _name, _table in HULL_TABLES.items():  # beside the scenario files written to WORK, which name them
+    (WORK / _name).write_text(_table)
+
+# A 500 m line of three segments (a coated and lined pipe, a section, a cable: 10 elements) hanging from B in
+# a current, with two attachments.
+LINE_FILE: dict[str, Any] = {
+    "line": {
+        "start": [0.0, 0.0, 500.0],
+        "direction": [0.0, 0.0, -1.0],
+        "length": 500.0,
+        "segments": [
+            {
+                "length": 200.0,
+                "elements": 4,
+                "pipe": {
+                    "outer_diameter": 0.3239,
+                    "wall_thickness": 0.0254,
+                    "grade": "X70",
+                    "coatings": [
+                        {"thickness": 0.003, "density": 940.0, "youngs_modulus": 1e9},
+                        {"thickness": 0.05, "density": 2400.0},
+                    ],
+                    "lining": {"thickness": 0.003, "density": 8000.0, "youngs_modulus": 2e11},
+                },
+            },
+            {
+                "length": 100.0,
+                "elements": 2,
+                "section": {
+                    "EA": 1e9,
+                    "GA": 1e9,
+                    "GJ": 1e6,
+                    "EI": [1e6, 1e6],
+                    "mass": 80.0,
+                    "outer_diameter": 0.3,
+                },
+            },
+            {
+                "length": 200.0,
+                "elements": 4,
+                "cable": {"diameter": 0.08, "mass": 28.0, "EA": 5.5e8, "damping": 1e4},
+            },
+        ],
+    },
+    "sea": {"depth": 1000.0, "current": {"kind": "uniform", "velocity": [0.3, 0.0, 0.0]}},
+    "supports": {"B": {"kind": "pin"}},
+    "attachments": [
+        {"arc_length": 100.0, "mass": 800.0, "volume": 2.5, "drag_area": 3.0, "added_mass": 0.8},
+        {"arc_length": 350.0, "mass": 5000.0},
+    ],
+}
+# A 10 m rod (4 elements) hanging from a vessel of the OSV's matrices with four thrusters of its own, its hull
+# in wind, current and waves, under the observer-based PID with QP allocation, through two stages (0.6 s).
+DP_FILE: dict[str, Any] = {
+    "section": {
+        "EA": 1e7,
+        "GA": 1e7,
+        "GJ": 1e4,
+        "EI": 1e4,
+        "mass": 30.0,
+        "outer_diameter": 0.1,
+        "drag": [1.2, 0.0],
+    },
+    "rod": {"start": [10.0, 0.0, 10.0], "end": [10.0, 0.0, 0.0], "elements": 4},
+    "sea": {
+        "depth": 100.0,
+        "current": {"kind": "uniform", "velocity": [0.0, 0.3, 0.0]},
+        "waves": {"kind": "jonswap", "hs": 1.5, "tp": 8.0, "direction": 2.5, "seed": 2, "components": 20},
+        "wind": {"speed": 12.0, "direction": 2.0, "spectrum": "NPD", "seed": 3},
+    },
+    "vessel": {
+        "end": "B",
+        "eta": [10.0, 0.0, -100.0, 0.0, 0.0, 0.0],
+        "angle": [0.0, -math.pi / 2, 0.0],
+        "M": OSV.M.tolist(),
+        "D": OSV.D.tolist(),
+        "G": OSV.G.tolist(),
+        "M_RB": OSV.M_RB.tolist(),
+        "hull_loads": True,
+        "length": 80.0,
+        "wind_coefficients": "wind.csv",
+        "current_coefficients": "current.csv",
+        "drift_coefficients": "drift.csv",
+        "thrusters": [
+            {
+                "kind": "tunnel",
+                "position": [30.0, 0.0],
+                "max_thrust": 2e5,
+                "reverse_thrust": 1.5e5,
+                "thrust_rate": 5e4,
+                "time_constant": 0.5,
+            },
+            {
+                "kind": "azimuth",
+                "position": [-35.0, 7.0],
+                "max_thrust": 4e5,
+                "thrust_rate": 2e4,
+                "azimuth_rate": 0.1,
+                "time_constant": 2.0,
+            },
+            {"kind": "azimuth", "position": [-35.0, -7.0], "max_thrust": 4e5, "azimuth_rate": 0.1},
+            {"kind": "main", "position": [-38.0, 0.0], "max_thrust": 3e5, "reverse_thrust": 2e5},
+        ],
+    },
+    "controller": {
+        "kp": [55768.9, 69768.9, 0, 0, 0, 1.3941e8],
+        "kd": [1.11538e6, 1.39538e6, 0, 0, 0, 1.3941e9],
+        "ki": [557.689, 697.689, 0, 0, 0, 2.78819e6],
+        "reference": [10.5, 0.2, -100.0, 0.0, 0.0, 0.01],
+        "allocation": "qp",
+        "observer": {"noise": [0.1, 0.1, 0.001], "seed": 4, "wave_period": 7.5},
+    },
+    "stages": [
+        {"name": "hold", "duration": 0.3},
+        {"name": "move", "duration": 0.3, "setpoint": [11.0, 0.5, 0.02], "ramp": 0.1},
+    ],
+    "solver": {"dt": 0.1},
+}
+NEW_FILES: dict[str, dict[str, Any]] = {
+    "line.toml": LINE_FILE,
+    "dp.toml": DP_FILE,
+    **{
+        name: EXAMPLES[name]
+        for name in ("j_lay_dp.toml", "j_lay_laydown.toml", "s_lay_abandonment.toml", "s_lay_concrete.toml")
+    },
+}
+# The tables and keys of those inputs (`within`): only these are mutated.
+NEW_KEYS = (
+    "line",
+    "pipe.coatings",
+    "pipe.lining",
+    "pipe.grade",
+    "attachments",
+    "stages",
+    "vessel.winch",
+    "vessel.thrusters",
+    "vessel.length",
+    "vessel.hull_loads",
+    "vessel.model",
+    "vessel.wind_coefficients",
+    "vessel.current_coefficients",
+    "vessel.drift_coefficients",
+    "sea.wind",
+    "controller.allocation",
+    "controller.observer",
+)
+
+
+@st.composite
+def mutated_new_inputs(draw: st.DrawFn, most: int = 3) -> tuple[str, dict[str, Any]]:
+    """A scenario with the new inputs (NEW_FILES) with one to `most` changes of them (grafts from the others:
+    the DP vessel's thrusters onto the OSV, the line's attachments onto an S-lay, ...)."""
+    name = draw(st.sampled_from(sorted(NEW_FILES)))
+    data = copy.deepcopy(NEW_FILES[name])
+    for _ in range(draw(st.integers(1, most))):
+        draw(mutations(data, NEW_KEYS, NEW_FILES))
+    return name, data
+
+
+def test_the_new_inputs_files_are_valid() -> None:
+    """The unmutated files are read (so that the mutations start from valid ones)."""
+    for name, data in NEW_FILES.items():
+        parse_scenario(data, name, WORK)
+
+
+@fuzz_settings(700)
+@given(mutated_new_inputs())
+def test_a_mutated_new_input_is_read_or_refused_with_an_input_error(case: tuple[str, dict[str, Any]]) -> None:
+    _, data = case
+    try:
+        parse_scenario(data, "fuzz.toml", WORK)
+    except pl.InputError as error:
+        check_message(error, "fuzz.toml")
+        event("InputError")
+    else:
+        event("valid")
+
+
+@fuzz_settings(200)
+@given(mutated_new_inputs())
+def test_pipelay_check_of_a_mutated_new_input_exits_0_or_2_without_a_traceback(
+    case: tuple[str, dict[str, Any]],
+) -> None:
+    name, data = case
+    text = toml_document(data)
+    assert same(tomllib.loads(text), data), text
+    path = WORK / name  # beside the hull tables
+    path.write_text(text, encoding="utf-8")
+    code, out, err = cli("check", str(path))
+    event(f"exit {code}")
+    assert code in (0, 2), (code, out, err)
+    assert "Traceback" not in err
+    if code == 2:
+        assert err.startswith("pipelay: error: ") and err.rstrip().endswith(f"(in {path})"), err
+
+
+# Solved and run: the line (10 elements) and the DP rod (4), their new inputs' numbers replaced by finite ones
+# of any size (counts small), or mutated.
+
+RUN_FILES = ("dp.toml", "line.toml")
+# Series of a run that must be finite (NaN only pads nodes a record did not have, here none).
+FINITE_SERIES = (
+    "positions",
+    "velocities",
+    "section_forces",
+    "eta",
+    "nu",
+    "tau",
+    "chi",
+    "thrust",
+    "azimuth",
+    "eta_estimate",
+    "supplied_work",
+    "dissipated",
+)
+
+
+@st.composite
+def small_new_runs(draw: st.DrawFn) -> dict[str, Any]:
+    data = copy.deepcopy(NEW_FILES[draw(st.sampled_from(RUN_FILES))])
+    for _ in range(draw(st.integers(1, 3))):
+        numbers = [p for p in slots(data) if type(at(data, p)) in (int, float) and within(p, NEW_KEYS)]
+        if draw(st.sampled_from(("number", "number", "number", "any"))) == "number" and numbers:
+            path = draw(st.sampled_from(numbers))
+            counts = path[-1] == "elements"
+            integer = isinstance(at(data, path), int)
+            at(data, path[:-1])[path[-1]] = draw(
+                st.integers(-1, 6) if counts else st.integers(-(2**63), 2**63 - 1) if integer else finite
+            )
+        else:
+            draw(mutations(data, NEW_KEYS, NEW_FILES))
+    line = data.get("line")
+    segments = line.get("segments") if isinstance(line, dict) else None
+    if isinstance(segments, list):  # cheap lines only: at most 8 elements a segment, 4 segments
+        del segments[4:]
+        for segment in segments:
+            if isinstance(segment, dict) and isinstance(segment.get("elements"), int):
+                segment["elements"] = min(segment["elements"], 8)
+    return data
+
+
+def run_new_input(data: dict[str, Any]) -> None:
+    """Statics and 0.6 s at Δt = 0.1 s: an InputError, a ConvergenceError, or finite numbers."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # PhysicsWarnings of the odd lines made
+        try:
+            scenario = parse_scenario(data, "run.toml", WORK)
+            state = scenario.model.static()
+            assert np.isfinite(state.positions).all(), toml_document(data)
+            simulation = scenario.model.simulation(state, dt=0.1, stages=scenario.stages)
+            results = simulation.run(0.6, progress=False)
+        except (pl.InputError, pl.ConvergenceError) as error:
+            event(type(error).__name__)
+            return
+    event("ran")
+    for name in FINITE_SERIES:
+        value = getattr(results, name)
+        if value is not None:
+            assert np.isfinite(value).all(), f"{name} not finite:\n{toml_document(data)}"
+
+
+@fuzz_settings(300)
+@given(small_new_runs())
+def new_input_runs(data: dict[str, Any]) -> None:
+    """Run by `test_a_mutated_new_input_...` in a subprocess."""
+    run_new_input(data)
+
+
+def test_a_mutated_new_input_solves_and_runs_or_raises_an_input_or_convergence_error() -> None:
+    in_subprocess("new_input_runs", timeout=90.0 * max(LONGER, 1))
+
+
+# The API calls.
+
+CABLE = pl.Section.cable(0.08, 28.0, 5.5e8)
+KINDS = Arg(
+    st.sampled_from(["", "Tunnel", "azimuths", "main ", "bow"]) | st.text(max_size=4),
+    st.sampled_from(["tunnel", "azimuth", "main"]),
+)
+
+
+@st.composite
+def accepted_segments(draw: st.DrawFn, weird: bool) -> pl.Segment:
+    """A Segment of any length and count it accepts (weird), or of a plausible one."""
+    length = draw(floats if weird else st.floats(1.0, 500.0))
+    elements = draw(st.integers(-2, 20) if weird else st.integers(1, 8))
+    section = draw(st.sampled_from([SECTION, CABLE]))
+    try:
+        return pl.Segment(length, section, elements)
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.Segment(10.0, section, 2)
+
+
+@st.composite
+def accepted_coatings(draw: st.DrawFn, weird: bool) -> pl.Coating:
+    """A Coating of any numbers it accepts (weird), or of plausible ones."""
+    numbers = (
+        (floats, floats, floats)
+        if weird
+        else (st.floats(1e-4, 0.1), st.floats(100.0, 9000.0), st.floats(0.0, 1e11))
+    )
+    thickness, density, modulus = (draw(number) for number in numbers)
+    try:
+        return pl.Coating(thickness, density, modulus)
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.Coating(0.01, 1000.0)
+
+
+@st.composite
+def accepted_clumps(draw: st.DrawFn, weird: bool) -> pl.Clump:
+    """A Clump of any numbers it accepts (weird), or of plausible ones."""
+    numbers = [floats] * 4 if weird else [st.floats(0.0, 1e4), st.floats(0.0, 10.0)] * 2
+    try:
+        return pl.Clump(*(draw(number) for number in numbers))
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.Clump(100.0)
+
+
+@st.composite
+def accepted_stages(draw: st.DrawFn, weird: bool) -> pl.Stage:
+    """A Stage of any duration and speeds it accepts (weird), or of plausible ones."""
+    number = floats if weird else st.floats(-1.0, 1.0)
+    keywords: dict[str, Any] = {
+        key: draw(number) for key in ("pay_out", "route_speed", "winch_speed") if draw(st.booleans())
+    }
+    if draw(st.booleans()):
+        keywords["setpoint"] = draw(st.lists(number, min_size=3, max_size=3))
+    if draw(st.booleans()):
+        keywords["hold"] = draw(st.sampled_from(["tensioner", "winch"]))
+    name = draw(st.text(max_size=3) if weird else st.sampled_from(["lay", "hand-over", "rest"]))
+    try:
+        return pl.Stage(name, draw(floats if weird else st.floats(0.1, 1e3)), **keywords)
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.Stage("lay", 10.0)
+
+
+@st.composite
+def accepted_thrusters(draw: st.DrawFn, weird: bool) -> pl.Thruster:
+    """A Thruster of any numbers it accepts (weird), or of plausible ones (on an 80 m hull)."""
+    kind = draw(KINDS.plausible)
+    number = floats if weird else st.floats(1e3, 1e6)
+    keywords: dict[str, Any] = {
+        "position": draw(st.lists(floats if weird else st.floats(-40.0, 40.0), min_size=2, max_size=2)),
+        "max_thrust": draw(number),
+    }
+    if draw(st.booleans()):
+        keywords["thrust_rate"] = draw(number)
+    if kind == "azimuth" and draw(st.booleans()):
+        keywords["azimuth_rate"] = draw(floats if weird else st.floats(0.01, 1.0))
+    if kind != "azimuth" and draw(st.booleans()):
+        keywords["reverse_thrust"] = draw(number)
+    if draw(st.booleans()):
+        keywords["time_constant"] = draw(floats if weird else st.floats(0.0, 10.0))
+    try:
+        return pl.Thruster(kind, **keywords)
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.Thruster("tunnel", (0.0, 0.0), 1e5)
+
+
+@st.composite
+def accepted_tables(draw: st.DrawFn, weird: bool) -> pl.HullCoefficients:
+    """HullCoefficients of any angles and numbers they accept (weird), or of plausible ones."""
+    angles = draw(arrays(3) if weird else st.just([0.0, 90.0, 180.0]))
+    values = draw(
+        arrays(3, 6)
+        if weird
+        else st.lists(st.lists(st.floats(-1e4, 1e4), min_size=6, max_size=6), min_size=3, max_size=3)
+    )
+    try:
+        return pl.HullCoefficients(angles, values)
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.HullCoefficients([0.0, 180.0], [[1.0] * 6, [-1.0] * 6])
+
+
+@st.composite
+def accepted_observers(draw: st.DrawFn, weird: bool) -> pl.Observer:
+    """A passive observer of any noise and wave period it accepts (weird), or of plausible ones."""
+    noise = draw(st.lists(floats if weird else st.floats(0.0, 1.0), min_size=3, max_size=3))
+    period = draw(st.none() | (floats if weird else st.floats(1.0, 30.0)))
+    try:
+        return pl.Observer.passive(noise, draw(st.integers(0, 2**63 - 1)), period)
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.Observer.passive()
+
+
+@st.composite
+def accepted_vessels(draw: st.DrawFn, weird: bool) -> pl.Vessel:
+    """The OSV, or its matrices with thrusters of any numbers they accept (weird; maybe none), or with
+    plausible ones and the OSV's wind and current tables."""
+    if not weird and draw(st.booleans()):
+        return OSV
+    thrusters = draw(
+        listed(accepted_thrusters, most=6).weird if weird else st.lists(accepted_thrusters(False), max_size=4)
+    )
+    tables = (
+        {}
+        if weird
+        else {"wind_coefficients": OSV.wind_coefficients, "current_coefficients": OSV.current_coefficients}
+    )
+    try:
+        return pl.Vessel(
+            OSV.M, OSV.D, OSV.G, thrusters=thrusters, length=draw(st.sampled_from([None, 80.0])), **tables
+        )
+    except (pl.InputError, OverflowError, TypeError):
+        return pl.Vessel(OSV.M, OSV.D, OSV.G)
+
+
+def attach_vessel(
+    vessel: pl.Vessel, allocation: Any = None, observer: Any = None, hull_loads: Any = False, wind: Any = None
+) -> None:
+    """`vessel` attached at B of DP_FILE's rod (in its sea, in `wind`) under its PID with `allocation` and
+    `observer`."""
+    sea = pl.Sea(100.0, current=pl.Current.uniform([0.0, 0.3, 0.0]), wind=wind)
+    model = pl.Model(pl.Rod.straight((10.0, 0.0, 10.0), (10.0, 0.0, 0.0), 4, SECTION), sea=sea)
+    gains = DP_FILE["controller"]
+    controller = pl.PID(
+        np.diag(gains["kp"]),
+        gains["kd"],
+        reference=gains["reference"],
+        allocation=allocation,
+        observer=observer,
+    )
+    model.attach_vessel(
+        "B",
+        vessel,
+        eta=DP_FILE["vessel"]["eta"],
+        angle=DP_FILE["vessel"]["angle"],
+        controller=controller,
+        hull_loads=hull_loads,
+    )
+
+
+def listed(items: Callable[[bool], st.SearchStrategy[Any]], most: int = 4) -> Arg:
+    """A list of accepted items: of any numbers (weird; maybe empty), or plausible (at least one)."""
+    return Arg(st.lists(items(True), max_size=most), st.lists(items(False), min_size=1, max_size=most))
+
+
+def one(items: Callable[[bool], st.SearchStrategy[Any]]) -> Arg:
+    """An accepted item: of any numbers (weird), or plausible."""
+    return Arg(items(True), items(False))
+
+
+def allocate(
+    tau: Any, thrusters: list[pl.Thruster] | None = None, length: float | None = None
+) -> pl.Allocation:
+    """`tau` allocated to the OSV's thrusters, or to `thrusters` on a hull of the OSV's matrices (length 200
+    m unless given)."""
+    vessel = (
+        OSV
+        if thrusters is None
+        else pl.Vessel(OSV.M, OSV.D, OSV.G, thrusters=thrusters, length=200.0 if length is None else length)
+    )
+    return vessel.allocate(tau)
+
+
+def new_api(sizes: st.SearchStrategy[int], huge: bool = False) -> dict[str, Call]:
+    """The calls that take the new inputs (as `api`)."""
+    return {
+        "Segment": (
+            lambda **kw: pl.Segment(section=SECTION, **kw),
+            {"length": num(1.0, 500.0), "elements": sized(sizes, 1, 60, huge)},
+            {},
+        ),
+        "Rod.segments": (
+            pl.Rod.segments,
+            {
+                "start": vec(3),
+                "direction": Arg(
+                    arrays(3), st.sampled_from([[0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.5]])
+                ),
+                "segments": listed(accepted_segments),
+            },
+            {},
+        ),
+        "Coating": (
+            pl.Coating,
+            {"thickness": num(1e-4, 0.1), "density": num(100.0, 9000.0)},
+            {"youngs_modulus": num(0.0, 1e11)},
+        ),
+        "Section.pipe coatings": (
+            lambda **kw: pl.Section.pipe(0.3239, 0.0254, **kw),
+            {},
+            {
+                "coatings": listed(accepted_coatings),
+                "lining": one(accepted_coatings),
+                "grade": Arg(
+                    st.sampled_from(["", "x65", "X65 ", "X90"]) | st.text(max_size=3), st.just("X65")
+                ),
+            },
+        ),
+        "Clump": (
+            pl.Clump,
+            {"mass": num(0.0, 1e4)},
+            {"volume": num(0.0, 10.0), "drag_area": num(0.0, 10.0), "added_mass": num(0.0, 2.0)},
+        ),
+        "model.attach": (
+            lambda arc_length, attachment: small_model().attach(arc_length, attachment),
+            {"arc_length": num(0.0, 10.0), "attachment": one(accepted_clumps)},
+            {},
+        ),
+        "Stage": (
+            pl.Stage,
+            {"name": Arg(st.text(max_size=4), st.sampled_from(["lay", "hand-over"]))},
+            {
+                "duration": num(0.1, 1e3),
+                "pay_out": num(-1.0, 1.0),
+                "route_speed": num(-1.0, 1.0),
+                "hold": Arg(
+                    st.sampled_from(["", "Winch", "tensioner ", "crane"]),
+                    st.sampled_from(["tensioner", "winch"]),
+                ),
+                "winch_speed": num(-1.0, 1.0),
+                "setpoint": vec(3),
+                "statics": Arg(st.booleans(), st.booleans()),
+                "ramp": num(0.0, 0.1),
+            },
+        ),
+        "Stages": (pl.Stages, {"stages": listed(accepted_stages)}, {}),
+        "Thruster": (
+            pl.Thruster,
+            {"kind": KINDS, "position": vec(2, -40.0, 40.0), "max_thrust": num(1e3, 1e6)},
+            {
+                "reverse_thrust": num(0.0, 1e6),
+                "thrust_rate": num(1e2, 1e6),
+                "azimuth_rate": num(0.01, 1.0),
+                "time_constant": num(0.0, 10.0),
+            },
+        ),
+        "Wind": (
+            pl.Wind,
+            {"speed": num(0.0, 40.0)},
+            {
+                "direction": num(-3.0, 3.0),
+                "spectrum": Arg(
+                    st.sampled_from(["", "npd", "NPD ", "JONSWAP"]), st.sampled_from(["NPD", None])
+                ),
+                "seed": SEEDS,
+            },
+        ),
+        "Observer.passive": (
+            pl.Observer.passive,
+            {},
+            {"noise": vec(3, 0.0, 1.0), "seed": SEEDS, "wave_period": num(1.0, 30.0)},
+        ),
+        "HullCoefficients": (
+            pl.HullCoefficients,
+            {
+                "angles": Arg(arrays(3) | arrays(2), st.just([0.0, 90.0, 180.0])),
+                "values": Arg(arrays(3, 6) | arrays(2, 6), st.just([[1.0, 2.0, 0.0, 0.0, 0.0, 3.0]] * 3)),
+            },
+            {},
+        ),
+        "Vessel thrusters": (
+            lambda **kw: pl.Vessel(OSV.M, OSV.D, OSV.G, **kw),
+            {},
+            {
+                "thrusters": listed(accepted_thrusters, most=6),
+                "length": num(80.0, 200.0),
+                "wind_coefficients": one(accepted_tables),
+                "current_coefficients": one(accepted_tables),
+            },
+        ),
+        "model.attach_vessel": (
+            attach_vessel,
+            {"vessel": one(accepted_vessels)},
+            {
+                "allocation": Arg(st.sampled_from(["", "QP", "lp", "qp "]), st.sampled_from(["qp", None])),
+                "observer": one(accepted_observers),
+                "hull_loads": Arg(st.booleans(), st.booleans()),
+                "wind": Arg(
+                    st.builds(pl.Wind, st.floats(0.0, 1e150)), st.builds(pl.Wind, st.floats(0.0, 40.0))
+                ),
+            },
+        ),
+        "vessel.allocate": (
+            allocate,
+            {"tau": Arg(arrays(6), st.lists(st.floats(-3e6, 3e6), min_size=6, max_size=6))},
+            {"thrusters": listed(accepted_thrusters, most=6), "length": num(80.0, 200.0)},
+        ),
+    }
+
+
+# What an accepted call must give finite: the numbers of its result.
+OUTPUTS: dict[str, Callable[[Any], list[Any]]] = {
+    "Segment": lambda segment: [segment.length],
+    "Rod.segments": lambda rod: [rod.nodes, rod.length],
+    "Coating": lambda coating: [coating.thickness, coating.density, coating.youngs_modulus],
+    "Section.pipe coatings": lambda section: [
+        section.EA,
+        section.GA,
+        section.GJ,
+        section.EI,
+        section.mass,
+        section.inertia,
+        section.displaced_area,
+        section.hydrodynamic_diameter,
+        section.submerged_weight,
+    ],
+    "Clump": lambda clump: [clump.mass, clump.volume, clump.drag_area, clump.added_mass],
+    "Stage": lambda stage: [stage.duration, stage.ramp, stage.setpoint or []],
+    "Stages": lambda stages: [stages.duration],
+    "Thruster": lambda thruster: [thruster.position, thruster.max_thrust, thruster.reverse_thrust],
+    "Wind": lambda wind: [wind.speed, wind.direction, *(wind.speed_at(t) for t in (0.0, 7.3, 600.0, 3600.0))],
+    "Observer.passive": lambda observer: [observer.noise],
+    "HullCoefficients": lambda table: [
+        table.values,
+        *(table.at(angle) for angle in (0.0, 45.0, 200.0, 359.5)),
+    ],
+    "vessel.allocate": lambda allocation: [allocation.thrust, allocation.azimuth, allocation.tau],
+}
+
+
+def known_bug(name: str, arguments: dict[str, Any], error: BaseException | None, wrong: str | None) -> bool:
+    """A failure this fuzzing found in the engine, pinned by a strict xfail below (`error`: the exception,
+    None for non-finite numbers): skipped here so that the search goes on for others."""
+    if name == "vessel.allocate" and isinstance(error, pl.ConvergenceError):
+        thrusters = arguments.get("thrusters") or OSV.thrusters
+        capacity = sum(thruster.max_thrust for thruster in thrusters)
+        return "thrust allocation" in str(error) and np.max(np.abs(arguments["tau"])) > 1000 * capacity
+    if name in ("Wind", "Observer.passive") and isinstance(error, OverflowError):
+        seed = arguments.get("seed")
+        return isinstance(seed, int) and -(2**63) <= seed < 0 and "'seed'" in " ".join(error.__notes__)
+    if name == "Wind" and error is None:
+        return arguments.get("spectrum", "NPD") == "NPD" and arguments["speed"] > 1e150
+    if name == "Stages" and error is None:
+        return sum(stage.duration for stage in arguments["stages"]) > 1.7e308
+    if name in ("Vessel thrusters", "vessel.allocate", "Stages") and isinstance(error, TypeError):
+        return wrong in ("thrusters", "stages") and not getattr(error, "__notes__", None)
+    return False
+
+
+def call_new(calls: dict[str, Call], name: str, arguments: dict[str, Any], wrong: str | None = None) -> None:
+    """Make the call: it succeeds with finite numbers or raises an accepted exception."""
+    try:
+        result = calls[name][0](**arguments)
+        outputs = OUTPUTS.get(name, lambda result: [])(result)
+    except Exception as error:  # noqa: BLE001 - which exceptions are allowed is the point
+        if known_bug(name, arguments, error, wrong):
+            event(f"{name}: known bug")
+            return
+        assert accepted(error, arguments, wrong), f"{name}(**{arguments!r}) raised {error!r}"
+        event(f"{name}: {type(error).__name__}")
+        return
+    numbers = np.concatenate([np.ravel(np.asarray(value, dtype=float)) for value in outputs] or [np.zeros(0)])
+    if not np.isfinite(numbers).all() and known_bug(name, arguments, None, wrong):
+        event(f"{name}: known bug")
+        return
+    assert np.isfinite(numbers).all(), f"{name}(**{arguments!r}) gave {outputs!r}"
+    event(f"{name}: ok")
+
+
+NEW_CALLS = new_api(SMALL_SIZES)
+NEW_HUGE = {name: c for name, c in new_api(HUGE_SIZES, huge=True).items() if name == "Segment"}
+
+
+@fuzz_settings(2000)
+@given(api_calls(NEW_CALLS))
+def test_a_call_with_the_new_inputs_succeeds_with_finite_numbers_or_raises_an_input_error(
+    case: tuple[str, dict[str, Any], str | None],
+) -> None:
+    call_new(NEW_CALLS, *case)
+
+
+@fuzz_settings(100)
+@given(api_calls(NEW_HUGE))
+def new_huge_size_cases(case: tuple[str, dict[str, Any], str | None]) -> None:
+    """Run by `test_huge_segments_...` in a subprocess: a Segment of any count, and a line of it."""
+    name, arguments, wrong = case
+    call_new(NEW_HUGE, name, arguments, wrong)
+    with contextlib.suppress(pl.InputError, MemoryError, OverflowError, TypeError):
+        segment = NEW_HUGE[name][0](**arguments)
+        with contextlib.suppress(pl.InputError, MemoryError):
+            pl.Rod.segments([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [segment, segment])
+
+
+def test_huge_segments_are_refused_without_allocating_or_crashing() -> None:
+    in_subprocess("new_huge_size_cases", timeout=60.0 * max(LONGER, 1))
+
+
+# Found by the fuzzing of the new inputs, in the engine (not fixed here; `known_bug` lets the search go on
+# past them): each flips to a failure ("XPASS strict") once fixed.
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=pl.ConvergenceError,
+    reason="Vessel.allocate of a command beyond ~2400 times the thrusters' capacity (here 1e10 N of surge on "
+    "the OSV's 2.4 MN) raises ConvergenceError: Clarabel ends PrimalInfeasible instead of saturating",
+)
+def test_a_huge_command_is_allocated_saturated_or_refused_with_an_input_error() -> None:
+    try:
+        allocation = OSV.allocate([1e10, 0.0, 0.0, 0.0, 0.0, 0.0])
+    except pl.InputError as error:
+        assert "tau" in str(error)
+        return
+    assert allocation.saturated and np.isfinite(allocation.thrust).all()
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="pl.Wind accepts any finite speed, and from 5.3e153 m/s its NPD gusts (speed_at) are NaN",
+)
+def test_an_accepted_wind_speed_gives_finite_gusts() -> None:
+    try:
+        wind = pl.Wind(1e154)
+    except pl.InputError as error:
+        assert "speed" in str(error)
+        return
+    assert math.isfinite(wind.speed_at(0.0))
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=OverflowError,
+    reason="a negative seed (inside 64 bits) raises OverflowError (can't convert negative int to unsigned), "
+    "as the waves' seeds did before they were fixed",
+)
+@pytest.mark.parametrize(
+    "call",
+    [lambda: pl.Wind(10.0, seed=-1), lambda: pl.Observer.passive(seed=-1)],
+    ids=["Wind", "Observer.passive"],
+)
+def test_a_negative_wind_or_observer_seed_is_an_input_error(call: Callable[[], object]) -> None:
+    with pytest.raises(pl.InputError, match="seed"):
+        call()
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="pl.Stages adds its durations to inf (two stages of 1e308 s) without refusing them; a run then "
+    "says 't_end: must be a finite time ..., got inf' of a t_end it was not given",
+)
+def test_stages_whose_total_duration_overflows_are_refused() -> None:
+    try:
+        total = pl.Stages([pl.Stage("a", 1e308), pl.Stage("b", 1e308)]).duration
+    except pl.InputError as error:
+        assert "duration" in str(error)
+        return
+    assert math.isfinite(total)
+
+
+THRUSTER: Any = pl.Thruster("tunnel", (30.0, 0.0), 2e5)  # given for a list of them
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="a list argument given something not iterable, a single pl.Thruster or pl.Stage for the list, "
+    "raises TypeError (\"'pipelay.Thruster' object is not iterable\") without the note naming the argument",
+)
+@pytest.mark.parametrize(
+    ("argument", "build"),
+    [
+        ("thrusters", lambda: pl.Vessel(OSV.M, OSV.D, OSV.G, length=80.0, thrusters=THRUSTER)),
+        ("stages", lambda: pl.Stages(pl.Stage("lay", 10.0))),  # type: ignore[arg-type]
+    ],
+    ids=["Vessel", "Stages"],
+)
+def test_a_single_item_for_the_list_is_refused_naming_the_argument(
+    argument: str, build: Callable[[], object]
+) -> None:
+    try:
+        build()
+    except pl.InputError as error:
+        assert argument in str(error)
+    except TypeError as error:
+        assert f"'{argument}'" in " ".join(getattr(error, "__notes__", [])), error
+    else:
+        pytest.fail(f"a single item was taken for the list {argument}")
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="a line 1e200 m long is refused with a message that misstates why: Rod.segments says 'nodes 0 and "
+    "1 coincide at [0.0, 0.0, 0.0]' and Rod.straight 'end: must differ from start ... the same point as "
+    "start'",
+)
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda: pl.Rod.segments([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [pl.Segment(1e200, SECTION, 3)]),
+        lambda: pl.Rod.straight([0.0, 0.0, 0.0], [1e200, 0.0, 0.0], 3, SECTION),
+    ],
+    ids=["Rod.segments", "Rod.straight"],
+)
+def test_a_very_long_line_is_built_or_refused_for_its_length(build: Callable[[], pl.Rod]) -> None:
+    try:
+        rod = build()
+    except pl.InputError as error:
+        assert "coincide" not in str(error) and "same point" not in str(error), error
+        return
+    assert np.isfinite(rod.nodes).all() and math.isfinite(rod.length)
