@@ -192,7 +192,14 @@ impl Stages {
     #[new]
     fn new(stages: &Bound<'_, PyAny>) -> PyResult<Self> {
         let mut list = Vec::new();
-        for (k, item) in stages.try_iter()?.enumerate() {
+        let iterator = stages.try_iter().map_err(|_| {
+            input(
+                "stages",
+                stages.repr().map_or("?".into(), |r| r.to_string()),
+                "must be a sequence of pl.Stage (a list, even of one)",
+            )
+        })?;
+        for (k, item) in iterator.enumerate() {
             let item = item?;
             let stage = item.cast::<Stage>().map_err(|_| {
                 input(

@@ -137,9 +137,10 @@ impl Observer {
     #[pyo3(signature = (noise=None, seed=0, wave_period=None))]
     fn passive(
         noise: Option<&Bound<'_, PyAny>>,
-        seed: u64,
+        seed: i64,
         wave_period: Option<f64>,
     ) -> PyResult<Self> {
+        let seed = crate::waves::checked_seed(seed)?;
         let noise = match noise {
             Some(noise) => Vector3::from(array::<3>(noise, "noise")?),
             None => Vector3::zeros(),
@@ -170,7 +171,8 @@ pub struct Wind(pub EngineWind);
 impl Wind {
     #[new]
     #[pyo3(signature = (speed, direction=0.0, spectrum=Some("NPD".to_string()), seed=0))]
-    fn new(speed: f64, direction: f64, spectrum: Option<String>, seed: u64) -> PyResult<Self> {
+    fn new(speed: f64, direction: f64, spectrum: Option<String>, seed: i64) -> PyResult<Self> {
+        let seed = crate::waves::checked_seed(seed)?;
         EngineWind::new(speed, direction, spectrum.as_deref(), seed)
             .map(Wind)
             .map_err(to_py)

@@ -58,7 +58,14 @@ impl Vessel {
                 );
         let mut list = Vec::new();
         if let Some(items) = thrusters {
-            for (k, item) in items.try_iter()?.enumerate() {
+            let iterator = items.try_iter().map_err(|_| {
+                input(
+                    "thrusters",
+                    items.repr().map_or("?".into(), |r| r.to_string()),
+                    "must be a sequence of pl.Thruster (a list, even of one)",
+                )
+            })?;
+            for (k, item) in iterator.enumerate() {
                 let item = item?;
                 let thruster = item.cast::<Thruster>().map_err(|_| {
                     input(

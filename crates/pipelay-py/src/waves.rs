@@ -34,7 +34,7 @@ impl Waves {
 }
 
 /// A seed, checked non-negative.
-fn checked_seed(seed: i64) -> PyResult<u64> {
+pub(crate) fn checked_seed(seed: i64) -> PyResult<u64> {
     u64::try_from(seed).map_err(|_| input("seed", seed, "must be an integer >= 0"))
 }
 

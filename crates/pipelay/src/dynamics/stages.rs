@@ -158,7 +158,15 @@ impl Stages {
         let mut starts = vec![start_time];
         for (k, stage) in stages.iter().enumerate() {
             stage.check(&format!("stages[{k}]."))?;
-            starts.push(starts[k] + stage.duration);
+            let end = starts[k] + stage.duration;
+            if !end.is_finite() {
+                return Err(Error::input(
+                    format!("stages[{k}].duration"),
+                    stage.duration,
+                    "must keep the stages' end finite (their durations add up beyond the largest number)",
+                ));
+            }
+            starts.push(end);
         }
         Ok(Stages {
             holds: vec![Hold::Tensioner; stages.len()],

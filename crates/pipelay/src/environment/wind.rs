@@ -10,6 +10,8 @@ use nalgebra::Vector2;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// The largest mean wind speed accepted (m/s): well beyond any storm's 1-hour mean at 10 m.
+pub const MAX_SPEED: f64 = 100.0;
 /// Air density at 15 °C (kg/m³).
 pub const AIR_DENSITY: f64 = 1.226;
 /// The reference height of the speed (m).
@@ -50,11 +52,14 @@ pub fn npd_spectrum(speed: f64, frequency: f64) -> f64 {
 impl Wind {
     /// A checked wind: speed ≥ 0 (m/s), finite direction (rad), spectrum "NPD" or none (a steady wind).
     pub fn new(speed: f64, direction: f64, spectrum: Option<&str>, seed: u64) -> Result<Self> {
-        if !(speed.is_finite() && speed >= 0.0) {
+        if !(speed.is_finite() && (0.0..=MAX_SPEED).contains(&speed)) {
             return Err(Error::input(
                 "speed",
                 speed,
-                "must be a finite mean wind speed ≥ 0 (m/s, 1-hour mean at 10 m)",
+                format!(
+                    "must be a mean wind speed from 0 to {MAX_SPEED} m/s (1-hour mean at 10 m; the NPD \
+                     spectrum is fitted below 40 m/s)"
+                ),
             ));
         }
         finite("direction", &[direction])?;

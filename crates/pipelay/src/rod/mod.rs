@@ -18,6 +18,10 @@ use crate::so3::{minimal_rotation, quat_from_matrix};
 use element::ElementReference;
 use nalgebra::{UnitQuaternion, Vector3};
 
+/// The longest line a rod may be (m): beyond it the nodes' coordinates lose the precision that tells them
+/// apart (1e8 m is 2500 times round the Earth).
+pub const LONGEST_LINE: f64 = 1e8;
+
 /// A rod in its stress-free reference configuration.
 #[derive(Debug, Clone)]
 pub struct Rod {
@@ -144,6 +148,14 @@ impl Rod {
         }
         finite("start", start.as_slice())?;
         finite("end", end.as_slice())?;
+        let span = (end - start).amax();
+        if span > LONGEST_LINE {
+            return Err(Error::input(
+                "end",
+                format!("{:?}, {span:e} m from start", end.as_slice()),
+                format!("must make a line of at most {LONGEST_LINE:e} m"),
+            ));
+        }
         if (end - start).norm() <= 1e-12 * start.norm().max(end.norm()).max(1.0) {
             return Err(Error::input(
                 "end",
@@ -212,6 +224,14 @@ impl Rod {
             ));
         };
         let axis = direction.normalize();
+        let length: f64 = segments.iter().map(|s| s.length.abs()).sum();
+        if length > LONGEST_LINE {
+            return Err(Error::input(
+                "segments",
+                format!("segments of {length:e} m in all"),
+                format!("must make a line of at most {LONGEST_LINE:e} m"),
+            ));
+        }
         let total: usize = segments.iter().map(|s| s.elements).sum();
         crate::memory::check(
             "segments",

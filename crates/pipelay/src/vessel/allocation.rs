@@ -95,6 +95,7 @@ pub fn allocate(
         ));
     }
     crate::error::finite("tau", tau.as_slice())?;
+    let tau = &within_reach(thrusters, tau);
     let mut allocation = within_rates(thrusters, tau, previous)?;
     // An azimuth thruster turns toward where the allocation without rate limits wants it: within its sector
     // alone it could never turn round to push the other way.
@@ -113,6 +114,26 @@ pub fn allocate(
     }
     Ok(allocation)
 }
+
+/// τ scaled down, its direction kept, to at most ten times what the thrusters can deliver together (forces by
+/// their summed capacity, moments by it times the longest arm): beyond that it saturates them all the same,
+/// and the QP's scaling would lose its precision.
+fn within_reach(thrusters: &[Thruster], tau: &Vector6<f64>) -> Vector6<f64> {
+    let capacity: f64 = thrusters.iter().map(|t| t.max_thrust).sum();
+    let arm = thrusters
+        .iter()
+        .map(|t| t.position.norm())
+        .fold(1.0, f64::max);
+    let size = (tau[0].abs().max(tau[1].abs()) / capacity).max(tau[5].abs() / (capacity * arm));
+    if size > REACH {
+        tau * (REACH / size)
+    } else {
+        *tau
+    }
+}
+
+/// How far beyond the thrusters' summed capacity a command is taken as it is ([`within_reach`]).
+const REACH: f64 = 10.0;
 
 /// The allocation within the rates of `previous` (if given): the penalised problem, then the exact one if
 /// the command is within reach.
