@@ -34,22 +34,38 @@ others go on. The summary, assembled from the JSON files, is written to ``<outpu
 and also when Ctrl-C stops the sweep (KeyboardInterrupt is then raised again). The output folder must be on a
 filesystem the workers share, at the same path.
 
+Faults. A worker process that dies while it runs a case (killed, out of memory, a crash) is restarted by its
+nanny and the case is run again from its start, on any worker; its files are those of an undisturbed run. A
+case whose worker dies `ALLOWED_FAILURES` + 1 times (on the sweep's own cluster; a given client's scheduler
+keeps its ``distributed.scheduler.allowed-failures``) is a failure of this call ("KilledWorker: ...", not
+saved: run again next time) and the others go on. A lost scheduler (its connection closed, or no answer
+within `SCHEDULER_TIMEOUT`) stops the sweep with ConnectionError after writing the summary of the finished
+cases; calling `sweep` again with the same folder, on a running cluster, runs only the rest. Without a client,
+`sweep` must not be called from the top level of a script (it raises RuntimeError): the local cluster's worker
+processes start by re-running the script, which would start the sweep again in each of them; put the call
+under ``if __name__ == "__main__":``.
+
 Imports of pipelay: the engine, `pipelay.scenario`, `pipelay.results` and `pipelay.analysis.extremes`.
 """
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import itertools
 import json
+import linecache
 import os
 import re
+import sys
+import time
 import warnings
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
+from types import FrameType
 from typing import Any
 
 import numpy as np
@@ -67,7 +83,17 @@ from pipelay.scenario import (
 )
 from pipelay.scenario.schema import reference_tables
 
-__all__ = ["STATISTICS", "Sweep", "case_statistics", "run", "run_case", "start", "sweep"]
+__all__ = [
+    "ALLOWED_FAILURES",
+    "SCHEDULER_TIMEOUT",
+    "STATISTICS",
+    "Sweep",
+    "case_statistics",
+    "run",
+    "run_case",
+    "start",
+    "sweep",
+]
 
 Factory = Callable[[dict[str, Any]], "Scenario | dict[str, Any]"]
 """Builds a case's scenario from the case {dotted key: value}."""
@@ -100,6 +126,19 @@ model are computed: the vessel's without a vessel, strain without a section, uti
 wall thickness (`[pipe]`), the touchdown's without contact are absent (NaN in the summary)."""
 
 SUMMARY_TITLE = "pipelay sweep summary"
+
+ALLOWED_FAILURES = 2
+"""Times a case is run again on the sweep's own local cluster after the worker running it died
+(``distributed.scheduler.allowed-failures`` of its scheduler): a case whose worker dies once more is a failure."""
+
+SCHEDULER_TIMEOUT = 60.0
+"""Longest wait for the scheduler to answer (s): a scheduler silent for longer is taken as lost."""
+
+PROBE_EVERY = 10.0
+"""Interval between the sweep's checks that its scheduler still answers (s)."""
+
+POLL = 0.1
+"""Interval between the sweep's looks for finished cases (s)."""
 
 
 # --- one case --------------------------------------------------------------------------------------------
@@ -313,6 +352,79 @@ def _cases(
     return cases, origin
 
 
+# --- where the sweep is called from ----------------------------------------------------------------------
+
+GUARD = 'if __name__ == "__main__":'
+UNGUARDED = (
+    "pl.sweep was called from the top level of a script: the local cluster's worker processes start by "
+    "running the script again (Python's 'spawn' start method), which would start the sweep again in each of "
+    f"them. Put the call under `{GUARD}` (or give the address of a running scheduler: client='tcp://...')"
+)
+
+
+def _top_level_frame() -> FrameType | None:
+    """The frame of the main script's top-level code that led to this call, or None (an interactive
+    interpreter, ``python -c``, a package's ``__main__``: the worker processes do not run it again).
+
+    Raises SystemExit with `UNGUARDED` in a worker process that is running the script again (its top level is
+    ``__mp_main__``): a one-line message instead of a traceback from each worker.
+    """
+    main = sys.modules.get("__main__")
+    found = None
+    frame = sys._getframe(1)
+    while frame is not None:
+        if frame.f_code.co_name == "<module>":
+            if frame.f_globals.get("__name__") == "__mp_main__":
+                raise SystemExit(f"pipelay: error: {UNGUARDED}")
+            if main is not None and frame.f_globals is vars(main):
+                found = frame
+        frame = frame.f_back  # type: ignore[assignment]
+    spec = getattr(main, "__spec__", None)
+    if spec is not None and (spec.name == "__main__" or spec.name.endswith(".__main__")):
+        return None  # multiprocessing does not import a package's __main__ again
+    script = getattr(main, "__file__", None)
+    if found is None or script is None:
+        return None
+    try:  # the script's own code (a compiled script's names its source), not a notebook's cell, say
+        same = Path(found.f_code.co_filename).resolve() == Path(script).resolve() or script.endswith(".pyc")
+    except (OSError, RuntimeError):
+        return None
+    return found if same else None
+
+
+def _guarded(frame: FrameType) -> bool | None:
+    """Whether the line `frame` (a script's top level) runs sits in an ``if`` on ``__name__``; None if the
+    script's source cannot be read."""
+    try:
+        tree = ast.parse("".join(linecache.getlines(frame.f_code.co_filename)))
+    except (SyntaxError, ValueError):
+        return None
+    if not tree.body:
+        return None
+    line = frame.f_lineno
+    return any(
+        isinstance(node, ast.If)
+        and node.lineno <= line <= (node.end_lineno or node.lineno)
+        and any(isinstance(name, ast.Name) and name.id == "__name__" for name in ast.walk(node.test))
+        for node in ast.walk(tree)
+    )
+
+
+def _refuse_unguarded(local: bool) -> None:
+    """Raises RuntimeError (`UNGUARDED`) if the sweep is to start its own local cluster (`local`) from the top
+    level of a script outside an ``if __name__ == "__main__":`` block, before anything runs: its worker
+    processes would fail to start. In a worker process running such a script again, raises SystemExit."""
+    frame = _top_level_frame()
+    if not local or frame is None:
+        return
+    import dask
+
+    if dask.config.get("distributed.worker.multiprocessing-method", "spawn") == "fork":
+        return  # a forked worker does not run the script again
+    if _guarded(frame) is False:
+        raise RuntimeError(UNGUARDED)
+
+
 # --- the sweep -------------------------------------------------------------------------------------------
 
 
@@ -364,10 +476,15 @@ def sweep(
     Raises:
         InputError: `over` is not a mapping of keys to lists of distinct values, or (scenario file) a case
             has a bad key or value: at once, before anything runs.
+        RuntimeError: no `client`, and the call is at the top level of a script, outside
+            ``if __name__ == "__main__":`` (the local cluster's workers would run the script again): at once.
+        ConnectionError: the scheduler is lost (its connection closed, or no answer within `SCHEDULER_TIMEOUT`
+            s), after writing the summary of the cases finished so far; a second call runs only the rest.
         KeyboardInterrupt: Ctrl-C, after writing the summary of the cases finished so far.
     """
     from tqdm import tqdm  # type: ignore[import-untyped]
 
+    _refuse_unguarded(local=client is None)
     grid = _grid(over)
     cases, origin = _cases(scenario, grid, checks)
     directory = Path(output)
@@ -387,8 +504,23 @@ def sweep(
         _discard_partial(directory, [case for case in pending if case.name not in records])
         _write_summary(directory, grid, cases, records, origin)
         raise
+    except _Lost as lost:
+        # The files are the truth: a case may have finished after its record was last looked for. Its workers
+        # may still be running cases: their temporary files stay theirs.
+        for case in pending:
+            if case.name not in records and (record := _read(directory, case)) is not None:
+                records[case.name] = record
+        _write_summary(directory, grid, cases, records, origin)
+        unfinished = sum(case.name not in records for case in pending)
+        raise ConnectionError(
+            f"sweep: lost the Dask scheduler at {lost.address} ({lost.reason}) with {unfinished} of the "
+            f"{len(pending)} cases to run not finished; the finished ones are kept in {directory / 'cases'} "
+            f"(and in {directory / 'summary.nc'}): call pl.sweep again with the same output folder, on a running "
+            "cluster, to run only the rest"
+        ) from None
     finally:
         bar.close()
+    _discard_partial(directory, pending)  # every task is over: what is left is a killed worker's
     return _write_summary(directory, grid, cases, records, origin)
 
 
@@ -411,13 +543,22 @@ def _connected(client: Any, workers: int | None, pending: int) -> Iterator[Any]:
     elif client is not None:
         yield client
     else:
+        import dask
+
         count = min(workers or os.cpu_count() or 1, pending)
-        with (
-            LocalCluster(
-                n_workers=count, threads_per_worker=1, processes=True, dashboard_address=":0"
-            ) as cluster,
-            Client(cluster) as local,
-        ):
+        try:
+            with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
+                cluster = LocalCluster(
+                    n_workers=count, threads_per_worker=1, processes=True, dashboard_address=":0"
+                )
+        except Exception as error:
+            # Workers that did not start because each ran the script again (the script's source unread):
+            # they said so, one line each; say it here too, without the cluster's traceback.
+            frame = _top_level_frame()
+            if frame is None or _guarded(frame):
+                raise
+            raise RuntimeError(f"{UNGUARDED}; the local cluster did not start: {error}") from None
+        with cluster, Client(cluster) as local:
             yield local
 
 
@@ -428,24 +569,113 @@ def _compute(
     records: dict[str, dict[str, Any]],
     bar: Any,
 ) -> None:
-    """Runs the pending cases, one task each, putting their records in `records` as they finish; a task that
-    fails in another way (a lost worker, a full disk) gets a record with its error that is not saved (the case
-    is run again next time). Ctrl-C cancels the tasks not finished."""
+    """Runs the pending cases, one task each, putting their records in `records` as they finish (`_outcome`).
+    A finished task is let go at once: a worker lost afterwards does not make the scheduler run its case again.
+    No wait is unbounded: the scheduler is asked every `PROBE_EVERY` s whether it is still there. With no
+    worker (an adaptive or batch cluster may start them later), it waits, warning once after
+    `SCHEDULER_TIMEOUT` s.
+
+    Raises _Lost if the scheduler is lost (the client's connection closed, or no answer within
+    `SCHEDULER_TIMEOUT`), with the cases finished so far in `records`. Ctrl-C cancels the tasks not finished.
+    """
     from distributed import as_completed
 
     # An absolute path: the workers may run elsewhere (on a filesystem shared at the same path).
     futures = {client.submit(_task, case, directory.absolute(), pure=False): case for case in pending}
+    address = client.scheduler.address
+    finished = as_completed(list(futures), loop=client.loop)
+    probed, workerless = time.monotonic(), None
     try:
-        for future in as_completed(futures):
-            case = futures[future]
-            try:
-                records[case.name] = future.result()
-            except Exception as error:  # noqa: BLE001 - recorded as the case's failure
-                records[case.name] = {"name": case.name, "error": f"{type(error).__name__}: {error}"}
-            bar.update()
+        while futures:
+            batch = finished.next_batch(block=False)
+            if not batch:
+                if time.monotonic() - probed > PROBE_EVERY:
+                    workers = _probe(client, address)
+                    probed = time.monotonic()
+                    if workers:
+                        workerless = None
+                    elif workerless is None:
+                        workerless = probed
+                    elif probed - workerless > SCHEDULER_TIMEOUT:
+                        warnings.warn(
+                            f"sweep: the scheduler at {address} has had no worker for {SCHEDULER_TIMEOUT:g} s; the"
+                            " sweep waits for one (Ctrl-C stops it and keeps the finished cases)",
+                            RuntimeWarning,
+                            stacklevel=3,
+                        )
+                        workerless = float("inf")  # once
+                time.sleep(POLL)
+                continue
+            for future in batch:
+                case = futures.pop(future)
+                record = _outcome(future, case, directory, client, address)
+                if record is None:  # its result was lost after it finished, and its record is not on disk
+                    futures[future] = case
+                    finished.add(future)  # the scheduler runs it again
+                    continue
+                records[case.name] = record
+                bar.update()
+            # Let the scheduler forget the finished tasks (and their workers the records) at once: a worker
+            # lost later does not make it run their cases again.
+            del batch, future
     except KeyboardInterrupt:
         client.cancel(list(futures))
         raise
+
+
+def _outcome(future: Any, case: _Case, directory: Path, client: Any, address: str) -> dict[str, Any] | None:
+    """The record of a case whose task is over (`future`): the task's, or a failure of this call only (not
+    saved: the next call runs the case again) if the task failed in another way: its worker died
+    `ALLOWED_FAILURES` + 1 times (KilledWorker), a full disk, a task cancelled by someone else. None if the
+    result was lost after the task finished (its worker gone) and the case's record is not on disk either.
+
+    Raises _Lost if the task was cancelled because the scheduler is lost."""
+    from concurrent.futures import CancelledError
+
+    from distributed.scheduler import KilledWorker
+
+    if future.status in ("pending", "lost"):
+        return _read(directory, case)
+    try:
+        record: dict[str, Any] = future.result(timeout=SCHEDULER_TIMEOUT)
+        return record
+    except KilledWorker as error:
+        message = (
+            f"KilledWorker: the worker running this case died {error.allowed_failures + 1} times (a crash, a"
+            f" kill or too much memory; distributed.scheduler.allowed-failures = {error.allowed_failures});"
+            " not saved: the next call runs it again"
+        )
+    except CancelledError as error:
+        _probe(client, address)  # raises _Lost if the scheduler is lost
+        message = f"{type(error).__name__}: {error}"
+    except TimeoutError as error:
+        if future.status != "error":  # not the task's own error: no result within the timeout
+            _probe(client, address)
+            return _read(directory, case)
+        message = f"{type(error).__name__}: {error}"
+    except Exception as error:  # noqa: BLE001 - recorded as the case's failure
+        message = f"{type(error).__name__}: {error}"
+    return {"name": case.name, "error": message}
+
+
+class _Lost(Exception):
+    """The scheduler at `address` is lost, for `reason`."""
+
+    def __init__(self, address: str, reason: str) -> None:
+        super().__init__(address, reason)
+        self.address, self.reason = address, reason
+
+
+def _probe(client: Any, address: str) -> int:
+    """The number of workers of `client`'s scheduler (at `address`). Raises _Lost if the scheduler is lost:
+    the client's connection is not up, or the scheduler does not answer within `SCHEDULER_TIMEOUT` (s)."""
+    if client.status != "running":
+        raise _Lost(address, "the connection to it closed")
+    try:
+        identity = client.sync(client.scheduler.identity, n_workers=0, callback_timeout=SCHEDULER_TIMEOUT)
+    except (OSError, TimeoutError, RuntimeError):
+        raise _Lost(address, f"no answer within {SCHEDULER_TIMEOUT:g} s") from None
+    return int(identity["n_workers"])
 
 
 def _unit(key: str) -> str:
@@ -519,5 +749,10 @@ def _write_summary(
             "failed": len(failures),
         },
     )
-    _atomic_write(directory / "summary.nc", lambda temporary: summary.to_netcdf(temporary, engine="h5netcdf"))
+    # Not under a distributed client's lock (xarray takes one when a client is the default): the scheduler may
+    # be gone, and a summary of numpy arrays needs no dask.
+    import dask
+
+    with dask.config.set(scheduler="synchronous"):
+        _atomic_write(directory / "summary.nc", lambda path: summary.to_netcdf(path, engine="h5netcdf"))
     return Sweep(summary=summary, failures=failures, cases=finished, output=directory)
