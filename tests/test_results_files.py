@@ -19,6 +19,7 @@ import pipelay as pl
 import pytest
 import xarray as xr
 from pipelay.results import netcdf
+from test_streaming import KILLED  # the same killed run, loaded here
 
 SECTION = pl.Section.pipe(0.3, 0.02, contents_density=0.0, drag=(0.1, 1.0), added_mass=(0.0, 1.0))
 
@@ -186,26 +187,6 @@ def test_every_cut_of_a_file_is_an_input_error(good: Path, tmp_path: Path) -> No
         path.write_bytes(data[:size])
         with pytest.raises(pl.InputError, match=re.escape(repr(str(path)))):
             pl.load(path)
-
-
-KILLED = """
-import os, signal
-import numpy as np
-import pipelay as pl
-from pipelay import streaming
-
-streaming.SEGMENT_RECORDS = 10
-section = pl.Section.pipe(0.3, 0.02, contents_density=0.0, drag=(0.1, 1.0), added_mass=(0.0, 1.0))
-model = pl.Model(pl.Rod.straight((0, 0, 100), (0, 0, 0), 20, section), sea=pl.Sea(300.0))
-
-def position(t):
-    if t > 2.0 - 1e-9:
-        os.kill(os.getpid(), signal.SIGKILL)
-    return np.array([0.3 * np.sin(t), 0.0, 0.0])
-
-model.drive("B", position=position)
-model.simulation(model.static(), dt=0.05).run(10.0, progress=False, output={path!r})
-"""
 
 
 def test_the_part_file_of_a_killed_run_loads(run: pl.Results, tmp_path: Path) -> None:
