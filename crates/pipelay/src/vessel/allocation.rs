@@ -99,7 +99,9 @@ pub fn allocate(
     let mut allocation = within_rates(thrusters, tau, previous)?;
     // An azimuth thruster turns toward where the allocation without rate limits wants it: within its sector
     // alone it could never turn round to push the other way.
-    if let Some(previous) = previous {
+    // (Only azimuth thrusters turn: without them the problem without rate limits has nothing to add.)
+    let turning = thrusters.iter().any(|t| t.fixed_azimuth().is_none());
+    if let Some(previous) = previous.filter(|_| turning) {
         let wanted = within_rates(thrusters, tau, None)?;
         for (k, thruster) in thrusters.iter().enumerate() {
             if thruster.fixed_azimuth().is_none() {
