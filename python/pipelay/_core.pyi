@@ -906,6 +906,12 @@ class Simulation:
     def stage_starts(self) -> list[float] | None:
         """Each stage's start time and the last one's end (s), None without stages."""
     @property
+    def pipe_walls(self) -> list[tuple[float, float] | None]:
+        """Each segment's steel wall (outer diameter, wall thickness) (m); None for one without."""
+    @property
+    def water(self) -> tuple[float, float] | None:
+        """The sea's (depth (m), density (kg/m³)), None without a sea."""
+    @property
     def stages_end(self) -> float | None:
         """The end of the last stage (s), None without stages."""
     @property
@@ -1026,6 +1032,16 @@ class Results:
     @property
     def stage_starts(self) -> _FloatArray | None:
         """Each stage's start time and the last one's end (s), None without stages."""
+    @property
+    def pipe_walls(self) -> list[tuple[float, float] | None]:
+        """Each segment's steel wall (outer diameter, wall thickness) (m), from end A; None for a segment
+        without one (a cable, a section given by its stiffnesses); [] when the results do not say."""
+    @property
+    def water(self) -> tuple[float, float] | None:
+        """The sea's (depth (m), density (kg/m³)) of the run; None without a sea or when not recorded."""
+    def _with_line(
+        self, walls: list[tuple[float, float] | None], water: tuple[float, float] | None
+    ) -> Results: ...
     def stage_summary(self, model: Model | None = None, checks: Mapping[str, Any] | None = None) -> Any:
         """Per stage, the extremes users check (a pandas.DataFrame): see pipelay.analysis.stages."""
 

@@ -5,6 +5,7 @@ use crate::errors::input;
 use numpy::{PyArray1, PyArrayMethods};
 use pipelay::dynamics::history::History;
 use pipelay::dynamics::stages::{Stage, Stages};
+use pipelay::model::Model;
 use pipelay::response::lay_summary::LAY_FIELDS;
 use pyo3::prelude::*;
 
@@ -16,6 +17,36 @@ pub struct Results {
     last_node: usize,
     /// The run's stages: their names and start times (the last entry the end of the last), if it had any.
     stages: Option<(Vec<String>, Vec<f64>)>,
+    /// The line's steel walls and the sea, as the fatigue of the run needs them.
+    line: LineRecord,
+}
+
+/// What a run's stresses need of its model: each segment's steel wall and the sea.
+#[derive(Clone, Debug, Default)]
+pub struct LineRecord {
+    /// Each segment's (outer diameter, wall thickness) of its steel tube (m); None for a segment without a
+    /// wall (a cable, or a section given by its stiffnesses).
+    pub walls: Vec<Option<(f64, f64)>>,
+    /// The sea's (depth (m), density (kg/m³)), None without a sea.
+    pub water: Option<(f64, f64)>,
+}
+
+impl LineRecord {
+    /// The record of `model`'s line and sea.
+    pub fn of(model: &Model) -> Self {
+        LineRecord {
+            walls: model
+                .rod
+                .sections
+                .iter()
+                .map(|section| match (&section.wall, section.cable) {
+                    (Some(wall), false) => Some((section.outer_diameter, wall.thickness)),
+                    _ => None,
+                })
+                .collect(),
+            water: model.sea.as_ref().map(|sea| (sea.depth, sea.density)),
+        }
+    }
 }
 
 impl Results {
@@ -26,7 +57,14 @@ impl Results {
             history,
             last_node,
             stages: None,
+            line: LineRecord::default(),
         }
+    }
+
+    /// These results marked with the line and sea of the model that made them.
+    pub fn with_line(mut self, model: &Model) -> Self {
+        self.line = LineRecord::of(model);
+        self
     }
 
     /// These results marked with the stages of their run.
@@ -357,7 +395,59 @@ impl Results {
             history: self.history.clone(),
             last_node: self.last_node,
             stages: Some((names, starts)),
+            line: self.line.clone(),
         })
+    }
+
+    /// These results marked with the steel walls of the line's segments, (outer diameter, wall thickness) (m)
+    /// or None each, and the sea's (depth (m), density (kg/m³)) or None: used by `pl.load`.
+    fn _with_line(
+        &self,
+        walls: Vec<Option<(f64, f64)>>,
+        water: Option<(f64, f64)>,
+    ) -> PyResult<Results> {
+        for (k, wall) in walls.iter().enumerate() {
+            if let Some((diameter, thickness)) = wall {
+                if !(diameter.is_finite()
+                    && thickness.is_finite()
+                    && 0.0 < *thickness
+                    && 2.0 * thickness <= *diameter)
+                {
+                    return Err(input(
+                        &format!("pipe_walls[{k}]"),
+                        format!("({diameter}, {thickness})"),
+                        "must be a finite outer diameter and a wall thickness in (0, diameter/2] (m)",
+                    ));
+                }
+            }
+        }
+        if let Some((depth, density)) = water {
+            if !(depth.is_finite() && depth > 0.0 && density.is_finite() && density > 0.0) {
+                return Err(input(
+                    "water",
+                    format!("({depth}, {density})"),
+                    "must be a positive depth (m) and density (kg/m³)",
+                ));
+            }
+        }
+        Ok(Results {
+            history: self.history.clone(),
+            last_node: self.last_node,
+            stages: self.stages.clone(),
+            line: LineRecord { walls, water },
+        })
+    }
+
+    /// Each segment's steel wall, (outer diameter, wall thickness) (m), from end A; None for a segment without
+    /// one (a cable, or a section given by its stiffnesses); an empty list when the results do not say.
+    #[getter]
+    fn pipe_walls(&self) -> Vec<Option<(f64, f64)>> {
+        self.line.walls.clone()
+    }
+    /// The sea's (depth (m), density (kg/m³)) of the run, None without a sea or when the results do not say.
+    #[getter]
+    fn water(&self) -> Option<(f64, f64)> {
+        self.line.water
     }
 
     /// Results rebuilt from arrays (as written by `to_netcdf`): `nodes` (n + 1) and a mapping of the names

@@ -228,6 +228,18 @@ impl Simulation {
         self.integrator.stages().map(|s| s.starts.clone())
     }
 
+    /// Each segment's steel wall, (outer diameter, wall thickness) (m), None for one without (what
+    /// `Results.pipe_walls` gives).
+    #[getter]
+    fn pipe_walls(&self) -> Vec<Option<(f64, f64)>> {
+        crate::results::LineRecord::of(self.integrator.model()).walls
+    }
+    /// The sea's (depth (m), density (kg/m³)), None without a sea (what `Results.water` gives).
+    #[getter]
+    fn water(&self) -> Option<(f64, f64)> {
+        crate::results::LineRecord::of(self.integrator.model()).water
+    }
+
     /// The end of the last stage (s), None without stages.
     #[getter]
     fn stages_end(&self) -> Option<f64> {
@@ -376,7 +388,9 @@ impl Simulation {
         if let Some(bar) = &bar {
             bar.call_method0("close")?;
         }
-        let results = Results::from_history(history).with_stages(self.integrator.stages());
+        let results = Results::from_history(history)
+            .with_stages(self.integrator.stages())
+            .with_line(self.integrator.model());
         match outcome {
             Ok(()) => Ok(results),
             Err(error) => {

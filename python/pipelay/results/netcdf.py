@@ -257,6 +257,7 @@ def to_xarray(results: Results) -> Any:
     }
     dataset = xr.Dataset(variables, coords=coords, attrs=_file_attributes())
     dataset.attrs.update(stage_attributes(results.stage_names, results.stage_starts))
+    dataset.attrs.update(line_attributes(results.pipe_walls, results.water))
     if results.stage is not None:
         dataset["stage"] = xr.Variable(("time",), results.stage, {"long_name": "stage index of the record"})
     return dataset
@@ -277,6 +278,39 @@ def with_stages(results: Results, attributes: Any) -> Results:
     names = str(attributes["stage_names"]).split("\n")
     starts = np.atleast_1d(np.asarray(attributes["stage_starts"], dtype=float))
     return results._with_stages(names, starts.tolist())
+
+
+def line_attributes(
+    walls: Sequence[tuple[float, float] | None], water: tuple[float, float] | None
+) -> dict[str, Any]:
+    """The global attributes that describe a run's line and sea, as its stresses need them (fatigue):
+    ``pipe_wall_outer_diameter`` and ``pipe_wall_thickness`` (m, one per segment from end A; NaN for a segment
+    without a steel wall), ``water_depth`` (m) and ``water_density`` (kg/m³) (none without a sea)."""
+    attributes: dict[str, Any] = {}
+    if walls:
+        attributes["pipe_wall_outer_diameter"] = np.array([np.nan if w is None else w[0] for w in walls])
+        attributes["pipe_wall_thickness"] = np.array([np.nan if w is None else w[1] for w in walls])
+    if water is not None:
+        attributes["water_depth"], attributes["water_density"] = float(water[0]), float(water[1])
+    return attributes
+
+
+def with_line(results: Results, attributes: Any) -> Results:
+    """`results` marked with the line and sea a file's `attributes` describe (as written by
+    ``line_attributes``); files written before these attributes existed leave `results` as they are."""
+    walls: list[tuple[float, float] | None] = []
+    if "pipe_wall_outer_diameter" in attributes:
+        diameters = np.atleast_1d(np.asarray(attributes["pipe_wall_outer_diameter"], dtype=float))
+        thicknesses = np.atleast_1d(np.asarray(attributes["pipe_wall_thickness"], dtype=float))
+        walls = [
+            None if np.isnan(d) else (float(d), float(t)) for d, t in zip(diameters, thicknesses, strict=True)
+        ]
+    water = None
+    if "water_depth" in attributes:
+        water = (float(attributes["water_depth"]), float(attributes["water_density"]))
+    if not walls and water is None:
+        return results
+    return results._with_line(walls, water)
 
 
 def _file_attributes() -> dict[str, Any]:
@@ -373,7 +407,7 @@ def load(path: str | os.PathLike[str]) -> Results:
             f"path: {str(target)!r} is not a valid pipelay results file: its arrays do not make a Results "
             f"({error})"
         ) from None
-    return with_stages(results, attributes)
+    return with_line(with_stages(results, attributes), attributes)
 
 
 # HDF5's signature, at byte 0 or, after a user block, at 512, 1024, 2048, ... (the HDF5 file format).

@@ -59,6 +59,7 @@ from pipelay.results.netcdf import (
     LAYOUT,
     _arrays,
     _file_attributes,
+    line_attributes,
     stage_attributes,
     with_stages,
 )
@@ -294,6 +295,7 @@ def stream(
     bar = None
     writer = _Writer(Path(output), groups, total // every + 1)
     writer.attributes = stage_attributes(simulation.stage_names, simulation.stage_starts)
+    writer.attributes.update(line_attributes(simulation.pipe_walls, simulation.water))
     try:
         if progress and total >= 200:
             from tqdm import tqdm
