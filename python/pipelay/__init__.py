@@ -53,7 +53,7 @@ from pipelay._core import (
     Winch,
     Wind,
 )
-from pipelay.analysis import checks, lay, statistics, suspect
+from pipelay.analysis import checks, fatigue, lay, statistics, suspect
 from pipelay.analysis import stages as _stages  # noqa: F401 (attaches Results.stage_summary)
 from pipelay.analysis.capability import Capability, dp_capability
 from pipelay.analysis.lay import find_lay_position
@@ -103,12 +103,14 @@ def _checking_run(run: Callable[..., Results]) -> Callable[..., Results]:
 Model.static = _checking_static(Model.static)  # type: ignore[method-assign]
 Simulation.run = _checking_run(Simulation.run)  # type: ignore[method-assign]
 
-# The modules' old import paths, kept for compatibility: each is registered as the module itself (not a
-# copy), so an attribute set through either name is set for both, and a later `import pipelay.sweep` finds
-# the module registered instead of binding it over `pl.sweep`, the function. The files at the old paths
-# re-export the same names for type checkers and readers.
+# The modules' old import paths, kept for compatibility, and `pipelay.fatigue`, the short path of
+# `pipelay.analysis.fatigue`: each is registered as the module itself (not a copy), so an attribute set through
+# either name is set for both, and a later `import pipelay.sweep` finds the module registered instead of
+# binding it over `pl.sweep`, the function. The files at the old paths re-export the same names for type
+# checkers and readers.
 for _old, _new in {
     "checks": "analysis.checks",
+    "fatigue": "analysis.fatigue",
     "lay": "analysis.lay",
     "statistics": "analysis.statistics",
     "streaming": "results.streaming",
@@ -157,6 +159,7 @@ __all__ = [
     "Wind",
     "checks",
     "dp_capability",
+    "fatigue",
     "find_lay_position",
     "lay",
     "load",

@@ -8,6 +8,8 @@
     pipelay plot DIR/summary.nc --variable NAME [--limit VALUE] [--select KEY=VALUE] [-o FILE]
     pipelay schema [-o FILE]
     pipelay capability SCENARIO [--headings-step DEG] [--current M/S] [--max-wind M/S] [--plot FILE]
+    pipelay fatigue SCENARIO --scatter TABLE.csv --hours H -o DIR [--curve D] [--environment ENV] [--scf F]
+        [--method rainflow|dirlik|narrow_band] [--start S] [--scheduler ADDRESS | --workers N]
 
 `pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
 flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
@@ -19,6 +21,10 @@ on a summary draws the operability map of a statistic over two swept keys. `pipe
 scenario files' JSON Schema. `pipelay capability` solves the scenario's statics for the pipe's load on the
 vessel and prints the DP capability envelope (pipelay.analysis.capability): the largest wind speed the
 thrusters hold at each heading the environment comes from, with a co-linear current and the Beaufort scale's sea.
+`pipelay fatigue` runs the scenario in every sea state of the scatter diagram TABLE.csv (columns hs, tp,
+probability and optionally heading in degrees) as a sweep, and prints the fatigue damage of a standby of H hours
+(pipelay.analysis.fatigue): DNV-RP-C203 curve --curve in --environment, with the thickness effect of each
+segment's wall; DIR/fatigue.nc holds the damage along the pipe and DIR/damage.png draws it.
 
 Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
 still written; for a sweep: a case failed, the others are written), 2 bad input (the message names the
@@ -132,6 +138,7 @@ def _parser() -> argparse.ArgumentParser:
     where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786")
     where.add_argument("--workers", type=int, help="local worker processes (default: one a core)")
     sweeping.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _fatigue_parser(commands)
     capability = commands.add_parser(
         "capability",
         help="DP capability: the largest wind held at each heading, with the pipe's static pull",
@@ -527,6 +534,100 @@ def _operability(args: argparse.Namespace) -> int:
     return 0
 
 
+def _fatigue_parser(commands: Any) -> None:
+    """The arguments of `pipelay fatigue`."""
+    from pipelay.analysis.fatigue import DNV_CLASSES, ENVIRONMENTS, METHODS
+
+    fatigue = commands.add_parser(
+        "fatigue", help="fatigue damage of a standby over a scatter diagram of sea states (DNV-RP-C203)"
+    )
+    fatigue.add_argument("scenario", type=Path, help="scenario file (TOML) with [sea.waves] and solver.t_end")
+    fatigue.add_argument(
+        "--scatter",
+        type=Path,
+        required=True,
+        help="CSV of sea states: columns hs (m), tp (s), probability and optionally heading (deg)",
+    )
+    fatigue.add_argument("--hours", type=float, required=True, help="the standby's duration (h)")
+    fatigue.add_argument(
+        "-o", "--output", type=Path, required=True, help="folder for cases/, fatigue.nc and damage.png"
+    )
+    fatigue.add_argument(
+        "--curve", default="D", choices=DNV_CLASSES, help="DNV-RP-C203 S-N class (default D)"
+    )
+    fatigue.add_argument(
+        "--environment",
+        default="seawater_cp",
+        choices=ENVIRONMENTS,
+        help="S-N environment (default seawater_cp)",
+    )
+    fatigue.add_argument("--scf", type=float, default=1.0, help="stress concentration factor (default 1)")
+    fatigue.add_argument(
+        "--method", default="rainflow", choices=METHODS, help="cycle counting (default rainflow)"
+    )
+    fatigue.add_argument(
+        "--start", type=float, help="leave out the records before this time (s): the start-up transient"
+    )
+    where = fatigue.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786")
+    where.add_argument("--workers", type=int, help="local worker processes (default: one a core)")
+    fatigue.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def _fatigue(args: argparse.Namespace) -> int:
+    """`pipelay fatigue SCENARIO --scatter TABLE --hours H -o DIR`: the standby's damage over the scatter
+    diagram, each segment's S-N curve with the thickness effect of its wall."""
+    from pipelay.analysis.fatigue import SNCurve, read_scatter, scatter_damage
+
+    scatter = read_scatter(args.scatter)
+    scenario = load_scenario(args.scenario)
+    curves = [
+        SNCurve.dnv(args.curve, environment=args.environment, thickness=section.wall_thickness)
+        for section in scenario.model.rod.sections
+    ]
+    found = scatter_damage(
+        args.scenario,
+        scatter,
+        curves,
+        hours=args.hours,
+        scf=args.scf,
+        method=args.method,
+        start=args.start,
+        output=args.output,
+        client=args.scheduler,
+        workers=args.workers,
+        progress=not args.no_progress,
+    )
+    element, angle = found.worst()
+    print(
+        f"fatigue: {args.hours:g} h standby over {len(scatter)} sea states; DNV-RP-C203 {args.curve} "
+        f"({args.environment}), SCF {args.scf:g}, {args.method.replace('_', ' ')}"
+    )
+    print(
+        f"largest damage {found.max():.4g} at element {element} ({found.arc_length[element]:.1f} m from end A), "
+        f"hot spot {np.degrees(angle):.0f} deg; life at this rate {args.hours / found.max():.4g} h"
+    )
+    heading = scatter.heading
+    print(
+        f"{'sea state':>9} {'Hs m':>6} {'Tp s':>6} {'heading deg':>11} {'probability':>11} {'damage/h':>10} {'share':>6}"
+    )
+    point = int(np.argmax(found.angles == angle))
+    hourly = found.hourly[:, element, point]
+    for k in range(len(scatter)):
+        direction = "scenario" if heading is None else f"{np.degrees(heading[k]):.1f}"
+        share = scatter.probability[k] * hourly[k] * args.hours / found.max()
+        print(
+            f"{k:9d} {scatter.hs[k]:6.2f} {scatter.tp[k]:6.2f} {direction:>11} {scatter.probability[k]:11.4g} "
+            f"{hourly[k]:10.3g} {share:6.1%}"
+        )
+    for k, message in found.failures.items():
+        print(f"pipelay: sea state {k} failed: {message}", file=sys.stderr)
+    found.to_xarray().to_netcdf(args.output / "fatigue.nc", engine="h5netcdf")
+    found.plot(path=args.output / "damage.png")
+    print(f"damage: {args.output / 'fatigue.nc'}; figure: {args.output / 'damage.png'}")
+    return 1 if found.failures else 0
+
+
 def _capability(args: argparse.Namespace) -> int:
     """`pipelay capability SCENARIO`: the DP capability envelope with the pipe's static load, as a table of
     heading (deg, environment from) and wind speed (m/s); --plot saves the polar plot."""
@@ -582,6 +683,7 @@ def main(argv: list[str] | None = None) -> int:
         "sweep": _sweep,
         "schema": _schema,
         "capability": _capability,
+        "fatigue": _fatigue,
     }[args.command]
     try:
         return command(args)

@@ -8,6 +8,8 @@
   ``pl.find_lay_position``);
 * `pipelay.analysis.sweep`: operability sweeps of a scenario on Dask (``pl.sweep``);
 * `pipelay.analysis.stages`: what each stage of a staged lay did (``Results.stage_summary``);
+* `pipelay.analysis.fatigue`: S-N curves, rainflow and spectral damage, the fatigue of a run and of a standby
+  over a scatter diagram (``pl.fatigue``);
 * `pipelay.analysis.capability`: the DP capability envelope of a vessel holding a pipe (``dp_capability``,
   ``Capability``, exported here).
 

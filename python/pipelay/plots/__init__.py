@@ -1,7 +1,7 @@
 """Figures of a pipelay run: pipe shapes, vessel motion, top tension, tension and bending along the pipe, the
 energy balance, and for a lay with pay-out the touchdown's track, the laid pipe's deviation from the route and
 the top tension of several runs, for a staged lay the tensions over the stages and the line at the end of
-each, and a vessel's DP capability envelope.
+each, a vessel's DP capability envelope and the fatigue damage along the pipe.
 
 Every function returns a :class:`matplotlib.figure.Figure` drawn on its own Agg canvas (pyplot is not used, so
 neither the user's backend nor pyplot's list of open figures is touched) and, when ``path`` is given, also
@@ -19,7 +19,7 @@ Usage::
 
 The figures come in families, one module each: `pipelay.plots.run` (any run, and `all_figures`),
 `pipelay.plots.lay` (a lay), `pipelay.plots.stages` (a staged lay), `pipelay.plots.operability` (a sweep),
-`pipelay.plots.capability` (a DP capability analysis), all drawn on `pipelay.plots.canvas`; this package has
+`pipelay.plots.capability` (a DP capability analysis), `pipelay.plots.fatigue` (fatigue damage), all drawn on `pipelay.plots.canvas`; this package has
 the names of them all, those the module ``pipelay.plots`` had, and those added since.
 
 Imports of pipelay: the engine and these modules (the lay configuration's checks through ``pl.checks``).
@@ -27,6 +27,7 @@ Imports of pipelay: the engine and these modules (the lay configuration's checks
 
 from pipelay.plots.canvas import DPI as DPI
 from pipelay.plots.capability import capability
+from pipelay.plots.fatigue import damage_along
 from pipelay.plots.lay import (
     lay_accuracy,
     lay_configuration,
@@ -43,6 +44,7 @@ from pipelay.plots.stages import stage_configurations, stage_tensions
 __all__ = [
     "all_figures",
     "capability",
+    "damage_along",
     "energy",
     "lay_accuracy",
     "lay_configuration",
