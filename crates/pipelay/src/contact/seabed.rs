@@ -58,12 +58,19 @@ fn contact_integral(d1: f64, d2: f64) -> (f64, Vector2<f64>, Matrix2<f64>) {
         let h12 = r2 - 2.0 * r2 * r / 3.0;
         let h22 = 2.0 * r2 * r / 3.0;
         (value, gradient, Matrix2::new(h11, h12, h12, h22))
-    } else {
+    } else if d2 > 0.0 {
         let (value, g, h) = contact_integral(d2, d1);
         (
             value,
             Vector2::new(g.y, g.x),
             Matrix2::new(h[(1, 1)], h[(1, 0)], h[(0, 1)], h[(0, 0)]),
+        )
+    } else {
+        // A NaN penetration (a state gone non-finite): NaN out, for the solver's finiteness checks to report.
+        (
+            f64::NAN,
+            Vector2::repeat(f64::NAN),
+            Matrix2::repeat(f64::NAN),
         )
     }
 }
@@ -531,6 +538,23 @@ impl SeabedContact {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn contact_integral_of_a_nan_penetration_is_nan() {
+        for (d1, d2) in [
+            (f64::NAN, 0.1),
+            (0.1, f64::NAN),
+            (f64::NAN, -0.1),
+            (f64::NAN, f64::NAN),
+        ] {
+            // Returns (once: it used to recurse without end), and NaN for the solver to report.
+            let (value, _, hessian) = contact_integral(d1, d2);
+            assert!(
+                value.is_nan() && hessian.iter().all(|v| v.is_nan()),
+                "{d1}, {d2}"
+            );
+        }
+    }
 
     #[test]
     fn contact_integral_is_the_integral_and_its_derivatives_match() {
