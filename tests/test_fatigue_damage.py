@@ -189,11 +189,9 @@ def folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return path
 
 
-def test_the_scatter_diagram_weights_each_sea_state_by_its_probability(folder: Path) -> None:
-    """D = hours · (p1 d1 + p2 d2) at every hot spot, d_i the damage per hour of sea state i run on its own
-    (here, in memory); each sea state's run is the scenario with its Hs, Tp and direction."""
-    curve = fatigue.SNCurve.dnv("E", environment="seawater_cp", thickness=0.03)
-    found = fatigue.scatter_damage(
+def standby(folder: Path, curve: fatigue.SNCurve) -> fatigue.ScatterDamage:
+    """The 72 h standby over SCATTER, its sea states run on one local worker (finished ones reused)."""
+    return fatigue.scatter_damage(
         folder / "scenario.toml",
         folder / "scatter.csv",
         curve,
@@ -203,6 +201,13 @@ def test_the_scatter_diagram_weights_each_sea_state_by_its_probability(folder: P
         workers=1,
         progress=False,
     )
+
+
+def test_the_scatter_diagram_weights_each_sea_state_by_its_probability(folder: Path) -> None:
+    """D = hours · (p1 d1 + p2 d2) at every hot spot, d_i the damage per hour of sea state i run on its own
+    (here, in memory); each sea state's run is the scenario with its Hs, Tp and direction."""
+    curve = fatigue.SNCurve.dnv("E", environment="seawater_cp", thickness=0.03)
+    found = standby(folder, curve)
     by_hand = np.zeros((12, 8))
     for hs, tp, heading, probability in ((1.5, 7.0, 0.0, 0.3), (3.0, 9.0, 45.0, 0.7)):
         case = {"sea.waves.hs": hs, "sea.waves.tp": tp, "sea.waves.direction": math.radians(heading)}
@@ -243,16 +248,7 @@ def test_pipelay_fatigue_prints_and_writes_the_damage(
         values = written["damage"].values
         assert written["probability"].values.tolist() == [0.3, 0.7]
     curve = fatigue.SNCurve.dnv("E", environment="seawater_cp", thickness=0.03)
-    again = fatigue.scatter_damage(
-        folder / "scenario.toml",
-        folder / "scatter.csv",
-        curve,
-        hours=72.0,
-        start=START,
-        output=folder / "out",
-        workers=1,
-        progress=False,
-    )
+    again = standby(folder, curve)
     np.testing.assert_allclose(values, again.values, rtol=1e-12)
     assert f"largest damage {again.max():.4g}" in printed
     assert (folder / "out" / "damage.png").stat().st_size > 10_000

@@ -134,10 +134,7 @@ def _parser() -> argparse.ArgumentParser:
         required=True,
         help="folder for cases/ and summary.nc (finished cases reused)",
     )
-    where = sweeping.add_mutually_exclusive_group()
-    where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786")
-    where.add_argument("--workers", type=int, help="local worker processes (default: one a core)")
-    sweeping.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _cluster_arguments(sweeping)
     _fatigue_parser(commands)
     capability = commands.add_parser(
         "capability",
@@ -534,6 +531,15 @@ def _operability(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cluster_arguments(command: argparse.ArgumentParser) -> None:
+    """The Dask cluster's arguments of a command that runs cases (--scheduler or --workers) and
+    --no-progress."""
+    where = command.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786")
+    where.add_argument("--workers", type=int, help="local worker processes (default: one a core)")
+    command.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
 def _fatigue_parser(commands: Any) -> None:
     """The arguments of `pipelay fatigue`."""
     from pipelay.analysis.fatigue import DNV_CLASSES, ENVIRONMENTS, METHODS
@@ -568,10 +574,7 @@ def _fatigue_parser(commands: Any) -> None:
     fatigue.add_argument(
         "--start", type=float, help="leave out the records before this time (s): the start-up transient"
     )
-    where = fatigue.add_mutually_exclusive_group()
-    where.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://10.0.0.1:8786")
-    where.add_argument("--workers", type=int, help="local worker processes (default: one a core)")
-    fatigue.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _cluster_arguments(fatigue)
 
 
 def _fatigue(args: argparse.Namespace) -> int:

@@ -160,30 +160,33 @@ def miner(cycles: ArrayLike, curve: SNCurve) -> float:
 
 def _series(argument: str, series: ArrayLike) -> FloatArray:
     """`series` as a finite 1-D float array of at least 2 samples, else an input error."""
-    allowed = "a 1-D series of at least 2 finite real numbers"
-    if np.iscomplexobj(series):
-        raise _input_error(argument, _Described("a complex series"), allowed, "is not real")
+    return _finite_vector(argument, series, "a 1-D series of at least 2 finite real numbers", minimum=2)
+
+
+def _finite_vector(argument: str, values: ArrayLike, allowed: str, *, minimum: int = 0) -> FloatArray:
+    """`values` as a finite real 1-D float array of at least `minimum` entries, else an input error saying
+    what is wrong and `allowed`."""
+    if np.iscomplexobj(values):
+        raise _input_error(argument, _Described("a complex array"), allowed, "is not real")
     try:
-        values = np.asarray(series, dtype=np.float64)
+        array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError):
         raise _input_error(
-            argument, _Described(f"a {type(series).__name__}"), allowed, "is not numeric"
+            argument, _Described(f"a {type(values).__name__}"), allowed, "is not numeric"
         ) from None
-    if values.ndim != 1:
-        raise _input_error(argument, _Described(f"an array of shape {values.shape}"), allowed, "is not 1-D")
-    if values.size < 2:
-        raise _input_error(
-            argument, _Described(f"a series of {values.size} samples"), allowed, "is too short"
-        )
-    bad = np.count_nonzero(~np.isfinite(values))
+    if array.ndim != 1:
+        raise _input_error(argument, _Described(f"an array of shape {array.shape}"), allowed, "is not 1-D")
+    if array.size < minimum:
+        raise _input_error(argument, _Described(f"a series of {array.size} samples"), allowed, "is too short")
+    bad = np.count_nonzero(~np.isfinite(array))
     if bad:
         raise _input_error(
             argument,
-            _Described(f"a series of {values.size} samples"),
+            _Described(f"an array of {array.size} values"),
             allowed,
             f"has {bad} NaN or infinite ones",
         )
-    return values
+    return array
 
 
 def _reversals(values: FloatArray) -> FloatArray:

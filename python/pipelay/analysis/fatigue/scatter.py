@@ -213,20 +213,16 @@ class ScatterDamage:
 
     @property
     def per_element(self) -> FloatArray:
-        """The largest damage around each element's section (n,)."""
-        with np.errstate(invalid="ignore"):
-            result: FloatArray = np.max(self.values, axis=1)
-        return result
+        """The largest damage around each element's section over the standby (n,)."""
+        return self.damage().per_element
 
     def max(self) -> float:
         """The largest damage along the line over the standby."""
-        return float(np.nanmax(self.values))
+        return self.damage().max()
 
     def worst(self) -> tuple[int, float]:
         """The element (index from end A) and hot-spot angle (rad) of the largest damage."""
-        flat = np.where(np.isnan(self.values), -np.inf, self.values)
-        element, point = np.unravel_index(int(np.argmax(flat)), flat.shape)
-        return int(element), float(self.angles[point])
+        return self.damage().worst()
 
     def damage(self) -> Damage:
         """The standby's damage as a `Damage` (duration hours × 3600 s), to plot or rank like a run's."""

@@ -44,7 +44,7 @@ References
 FLife is imported in the functions that need it (its import takes about a second).
 
 Imports of pipelay: `pipelay.analysis.checks` (its input errors), `pipelay.analysis.statistics` (the
-spectrum of a series) and `pipelay.analysis.fatigue.curves`.
+spectrum of a series) and `pipelay.analysis.fatigue.curves` and `.counting`.
 """
 
 from __future__ import annotations
@@ -57,6 +57,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pipelay.analysis.checks import _Described, _input_error, _number
+from pipelay.analysis.fatigue.counting import _finite_vector
 from pipelay.analysis.fatigue.curves import SNCurve
 from pipelay.analysis.statistics import _series, response_spectrum
 
@@ -246,8 +247,8 @@ def _moment(density: Callable[[float], float], m: float, lower: float, upper: fl
 
 def _spectrum(frequency: ArrayLike, psd: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """`frequency` and `psd` as checked float arrays."""
-    f = _vector("frequency", frequency, "frequencies (Hz) >= 0, strictly increasing, at least 2")
-    s = _vector("psd", psd, "one-sided PSD values (MPa²/Hz) >= 0, one per frequency")
+    f = _finite_vector("frequency", frequency, "frequencies (Hz) >= 0, strictly increasing, at least 2")
+    s = _finite_vector("psd", psd, "one-sided PSD values (MPa²/Hz) >= 0, one per frequency")
     if f.size < 2:
         raise _input_error(
             "frequency", _Described(f"{f.size} frequenc{'y' if f.size == 1 else 'ies'}"), "at least 2", "is"
@@ -283,27 +284,6 @@ def _spectrum(frequency: ArrayLike, psd: ArrayLike) -> tuple[FloatArray, FloatAr
             "has a negative value",
         )
     return f, s
-
-
-def _vector(argument: str, values: ArrayLike, allowed: str) -> FloatArray:
-    """`values` as a finite 1-D float array, else an input error."""
-    try:
-        array = np.asarray(values, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise _input_error(
-            argument, _Described(f"a {type(values).__name__}"), allowed, "is not numeric"
-        ) from None
-    if array.ndim != 1:
-        raise _input_error(argument, _Described(f"an array of shape {array.shape}"), allowed, "is not 1-D")
-    bad = np.count_nonzero(~np.isfinite(array))
-    if bad:
-        raise _input_error(
-            argument,
-            _Described(f"an array of {array.size} values"),
-            allowed,
-            f"has {bad} NaN or infinite ones",
-        )
-    return array
 
 
 def _check_curve(curve: object) -> None:
