@@ -206,3 +206,34 @@ def test_the_part_file_of_a_killed_run_loads(run: pl.Results, tmp_path: Path) ->
     assert np.array_equal(back.time, run.time[:31])
     assert np.array_equal(back.positions, run.positions[:31])
     assert np.array_equal(back.section_forces, run.section_forces[:31])
+
+
+def test_a_file_of_pipelay_run_keeps_its_scenario_and_its_line(tmp_path: Path) -> None:
+    """`pipelay run` writes the scenario into its results file: `scenario_of_results` builds the same model
+    again (the same static state, to the bit) and keeps the table paths working from another folder; the file
+    also records the pipe's wall and the sea. A file written from the API holds no scenario (None)."""
+    from pipelay import cli
+    from pipelay.scenario import load_scenario, scenario_of_results
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "j_lay_waves.toml"
+    text = example.read_text().replace("t_end = 1290.0", "t_end = 1.0").replace("645.0, 1290.0", "0.5, 1.0")
+    (tmp_path / "short.toml").write_text(text)
+    assert (
+        cli.main(["run", str(tmp_path / "short.toml"), "-o", str(tmp_path / "run.nc"), "--no-progress"]) == 0
+    )
+    stored = scenario_of_results(tmp_path / "run.nc")
+    assert stored is not None and stored.origin == str(tmp_path / "short.toml")
+    assert stored.source == load_scenario(tmp_path / "short.toml").source
+    again = stored.model.static(steps=stored.static_steps, start=stored.static_start)
+    first = load_scenario(tmp_path / "short.toml").model.static()
+    assert np.array_equal(again.positions, first.positions)
+    results = pl.load(tmp_path / "run.nc")
+    assert results.pipe_walls == [(0.6, 0.025)] and results.water == (800.0, 1025.0)
+    assert (
+        scenario_of_results(
+            _hanging().simulation(dt=0.05).run(0.1, progress=False).to_netcdf(tmp_path / "api.nc")
+        )
+        is None
+    )
+    with pytest.raises(pl.InputError, match="no results file"):
+        scenario_of_results(tmp_path / "missing.nc")

@@ -78,6 +78,7 @@ from pipelay.scenario import (
     Scenario,
     apply_overrides,
     load_scenario,
+    mark_results,
     parse_scenario,
     validate_overrides,
 )
@@ -165,17 +166,21 @@ def run(
     """Runs `simulation` to ``scenario.t_end`` (s), recording every ``scenario.record_every``-th step,
     streamed to the netCDF file `output` as it goes (complete there also if the run fails or is stopped).
 
-    Returns whether Ctrl-C stopped the run early (the results so far are in the file). Raises ConvergenceError
-    if a step fails.
+    The file keeps the scenario (`pipelay.scenario.scenario_of_results` reads it back). Returns whether Ctrl-C
+    stopped the run early (the results so far are in the file). Raises ConvergenceError if a step fails.
     """
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        simulation.run(
-            scenario.t_end,  # type: ignore[arg-type]
-            progress=progress,
-            record_every=scenario.record_every,
-            output=output,
-        )
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            simulation.run(
+                scenario.t_end,  # type: ignore[arg-type]
+                progress=progress,
+                record_every=scenario.record_every,
+                output=output,
+            )
+    finally:
+        if Path(output).is_file():  # also after a failed step: the records before it are in the file
+            mark_results(output, scenario)
     return any("interrupted" in str(warning.message) for warning in caught)
 
 

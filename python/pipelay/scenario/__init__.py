@@ -32,7 +32,11 @@ to complete and check scenario files (taplo / Even Better TOML: `#:schema scenar
 line). For a parameter sweep, `validate_overrides(data, {"sea.waves.hs": [1.0, 2.0]})` checks each dotted key
 and value before any case runs, and `apply_overrides(data, {"sea.waves.hs": 2.0})` makes one case's document.
 
-The package's modules, each importing only those after it: `pipelay.scenario.reading` (`load_scenario`,
+A results file written by `pipelay run` or a sweep keeps its scenario: `scenario_of_results(path)` gives it
+back (`pipelay.scenario.provenance`; `mark_results` writes it).
+
+The package's modules, each importing only those after it: `pipelay.scenario.provenance` (the scenario of a
+results file), `pipelay.scenario.reading` (`load_scenario`,
 `parse_scenario`, `Scenario`), `.overrides` (`validate_overrides`, `apply_overrides`), `.checking` (a document
 checked against the models, pydantic's errors in the words above), `.schema` (`KEYS`, `reference_tables`,
 `json_schema`: the format's shape and reference, read from the models), `.models` and `.models_vessel` (the
@@ -42,6 +46,7 @@ It reaches the engine through `pipelay` and imports nothing of `pipelay.results`
 
 from pipelay.scenario.models import MAX_ELEMENTS
 from pipelay.scenario.overrides import apply_overrides, validate_overrides
+from pipelay.scenario.provenance import mark_results, scenario_of_results
 from pipelay.scenario.reading import Scenario, SmoothStart, load_scenario, parse_scenario
 from pipelay.scenario.schema import KEYS, json_schema
 
@@ -53,6 +58,8 @@ __all__ = [
     "apply_overrides",
     "json_schema",
     "load_scenario",
+    "mark_results",
     "parse_scenario",
+    "scenario_of_results",
     "validate_overrides",
 ]

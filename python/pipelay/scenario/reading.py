@@ -47,6 +47,8 @@ class Scenario:
         source: the parsed TOML as given (a copy), for provenance.
         stages: the `[[stages]]` as a `pl.Stages`, for `model.simulation(..., stages=)` and `pl.resume(...,
             stages=)`; None without stages.
+        origin: where the scenario came from (a file's path, or the name given to `parse_scenario`).
+        folder: the folder its relative file paths are relative to (absolute).
     """
 
     model: pl.Model
@@ -58,6 +60,8 @@ class Scenario:
     output: dict[str, Any]
     source: dict[str, Any]
     stages: pl.Stages | None = None
+    origin: str = "<dict>"
+    folder: str | None = None
 
 
 @dataclass(frozen=True)
@@ -462,13 +466,21 @@ def parse_scenario(
     of `origin` if it is a file, else the current one). Raises pl.InputError whose message starts with the key
     path and ends with `(in origin)`.
     """
+    relative_to = _folder(origin, folder)
     try:
-        file = _check(data, _folder(origin, folder))
+        file = _check(data, relative_to)
         model = _build(file)
         stages = _stages(file)
     except pl.InputError as error:
         raise pl.InputError(f"{error} (in {origin})") from None
-    return Scenario(model=model, source=copy.deepcopy(data), stages=stages, **_settings(file))
+    return Scenario(
+        model=model,
+        source=copy.deepcopy(data),
+        stages=stages,
+        origin=origin,
+        folder=str(Path(relative_to).absolute()),
+        **_settings(file),
+    )
 
 
 def _syntax_error(error: tomllib.TOMLDecodeError, text: str, origin: str) -> pl.InputError:
