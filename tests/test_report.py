@@ -1,0 +1,460 @@
+"""The HTML reports of a run and of a sweep (pipelay.report): the numbers they print are those of the analysis
+functions (extremes, most probable maxima, the lay summary, the passivity margin, a sweep's ranking), the
+figures and replays they promise are there, the scenario's TOML data reads back as the scenario, the page is
+valid HTML, and it opens in a real browser without an error, its replay drawn.
+
+The pages are parsed with `html.parser`; every number of a table is in a cell whose id names it and whose
+``data-value`` holds it exactly.
+"""
+
+from __future__ import annotations
+
+import base64
+import functools
+import io
+import shutil
+import tomllib
+from collections.abc import Iterator
+from contextlib import contextmanager
+from html.parser import HTMLParser
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pipelay as pl
+import pytest
+from pipelay.analysis.extremes import extremes
+from pipelay.analysis.statistics import METHODS, most_probable_maximum
+from pipelay.analysis.sweep import STATISTICS
+from pipelay.report import run_report, sweep_report
+from pipelay.report.html import number
+from pipelay.scenario import apply_overrides, mark_results, parse_scenario
+
+# The scenario of tests/test_fatigue_damage.py (a DP vessel holding a 12-element pipe on the seabed, in a
+# JONSWAP sea), run for 300 s instead of 60: 676 records after the start-up, enough for all three most probable
+# maximum methods (10 Tz for Rayleigh, 30 peaks for Weibull). A fraction of a second.
+SCENARIO = """
+title = "report test: DP vessel in waves, pipe on the seabed"
+
+[pipe]
+outer_diameter = 0.6
+wall_thickness = 0.03
+contents_density = 0.0
+drag = [0.0, 1.0]
+added_mass = [0.0, 1.0]
+
+[rod]
+start = [0.0, 0.0, 0.0]
+end = [1200.0, 0.0, 0.0]
+elements = 12
+
+[sea]
+depth = 800.0
+
+[sea.seabed]
+stiffness = 1e5
+friction = 0.3
+
+[sea.waves]
+kind = "jonswap"
+hs = 2.0
+tp = 8.0
+direction = 0.5
+seed = 3
+components = 40
+ramp = 10.0
+
+[supports.A]
+kind = "pin"
+
+[vessel]
+end = "B"
+model = "osv"
+eta = [730.0, 0.0, -800.0, 0.0, 0.0, 0.0]
+angle = [0.0, -1.33, 0.0]
+
+[controller]
+kp = [0.5e6, 0.5e6, 0, 0, 0, 0]
+kd = [0.4e7, 0.4e7, 0, 0, 0, 0]
+reference = [730.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+
+[solver]
+dt = 0.2
+t_end = 300.0
+record_every = 2
+"""
+
+TITLE = "report test: DP vessel in waves, pipe on the seabed"
+VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
+
+
+def replay_available() -> bool:
+    try:
+        import pipelay.plots.replay  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+class Page(HTMLParser):
+    """A parsed page: its tags' balance and counts, its <title>, <h1> and <meta charset>, the text and
+    attributes of each element with an id, the figures, images, links and scripts."""
+
+    def __init__(self, text: str) -> None:
+        super().__init__(convert_charrefs=True)
+        self.stack: list[str] = []
+        self.mismatches: list[str] = []
+        self.counts: dict[str, int] = {}
+        self.attributes: dict[str, dict[str, str]] = {}
+        self.texts: dict[str, str] = {}
+        self.open: list[tuple[str, int]] = []  # (id, depth)
+        self.figures: list[str] = []
+        self.images: list[str] = []
+        self.links: list[str] = []
+        self.scripts: list[str] = []
+        self.title = self.heading = self.charset = ""
+        self.feed(text)
+        self.close()
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        values = {key: value or "" for key, value in attrs}
+        self.counts[tag] = self.counts.get(tag, 0) + 1
+        if tag == "meta" and "charset" in values:
+            self.charset = values["charset"]
+        if tag == "figure" and "data-name" in values:
+            self.figures.append(values["data-name"])
+        if tag == "img":
+            self.images.append(values.get("src", ""))
+        if tag == "a":
+            self.links.append(values.get("href", ""))
+        if tag == "script":
+            self.scripts.append("")
+        if "id" in values:
+            assert values["id"] not in self.attributes, f"id {values['id']} twice"
+            self.attributes[values["id"]] = values
+        if tag in VOID:
+            return
+        self.stack.append(tag)
+        if "id" in values:
+            self.texts[values["id"]] = ""
+            self.open.append((values["id"], len(self.stack)))
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in VOID:
+            return
+        if not self.stack or self.stack[-1] != tag:
+            self.mismatches.append(f"</{tag}> closes <{self.stack[-1] if self.stack else None}>")
+            return
+        if self.open and self.open[-1][1] == len(self.stack):
+            self.open.pop()
+        self.stack.pop()
+
+    def handle_data(self, data: str) -> None:
+        for name, _ in self.open:
+            self.texts[name] += data
+        inside = self.stack[-1] if self.stack else None
+        if inside == "script":
+            self.scripts[-1] += data
+        elif inside == "title":
+            self.title += data
+        elif inside == "h1":
+            self.heading += data
+
+    def text(self, id: str) -> str:
+        """The text of the element `id`, stripped."""
+        return self.texts[id].strip()
+
+    def value(self, id: str, attribute: str = "data-value") -> float:
+        """The number in the attribute of the element `id` (by default its exact value)."""
+        return float(self.attributes[id][attribute])
+
+
+def parse(path: Path, title: str) -> Page:
+    """The page at `path`, checked: UTF-8, one html, head, body, title and h1 (both `title`), tags balanced."""
+    page = Page(path.read_text(encoding="utf-8"))
+    assert page.charset == "utf-8"
+    assert not page.mismatches and not page.stack, (page.mismatches, page.stack)
+    for tag in ("html", "head", "body", "title", "h1"):
+        assert page.counts.get(tag) == 1, tag
+    assert page.title == title and page.heading == title
+    return page
+
+
+# --- a run -----------------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def scenario() -> Any:
+    return parse_scenario(tomllib.loads(SCENARIO))
+
+
+@pytest.fixture(scope="module")
+def results(scenario: Any) -> pl.Results:
+    model = scenario.model
+    simulation = model.simulation(state=model.static(), dt=scenario.dt)
+    return simulation.run(scenario.t_end, record_every=scenario.record_every, progress=False)
+
+
+@pytest.fixture(scope="module")
+def report(results: pl.Results, scenario: Any, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return run_report(results, tmp_path_factory.mktemp("run") / "run.html", scenario=scenario)
+
+
+def test_run_report_prints_the_numbers_of_the_analysis(
+    report: Path, results: pl.Results, scenario: Any
+) -> None:
+    """The extremes, lay summary, passivity margin and MPMs in the page are those of the functions, as printed
+    and exactly; the figures are those that apply; the scenario's data reads back; the page is valid."""
+    page = parse(report, TITLE)
+    model = scenario.model
+
+    found = extremes(results, model=model, checks={})  # the section has a wall thickness: DNV checks
+    assert "utilisation_max" in found
+    for key in ("top_tension_max", "top_tension_min", "strain_max", "utilisation_max"):
+        assert page.text(f"extreme-{key}") == number(found[key])
+        assert page.value(f"extreme-{key}") == found[key]
+        assert page.value(f"extreme-{key}-time") == found[f"{key}_time"]
+    assert page.text("extreme-strain_max-element") == str(found["strain_max_element"])
+    assert page.text("extreme-top_tension_max-element") == "—"  # a value at end B: no element
+
+    lay = results.lay_summary()
+    assert lay is not None
+    assert page.value("lay-top_tension-max") == float(np.nanmax(lay["top_tension"]))
+    assert page.value("lay-layback-mean") == float(np.nanmean(lay["layback"]))
+    assert page.value("passivity-margin") == results.passivity_margin()
+
+    # The start-up left out: 10 % of 300 s (after the waves' 10 s ramp).
+    assert page.value("window", "data-start") == pytest.approx(30.0, rel=1e-12)
+    time = results.time
+    inside = time >= 30.0 - 1e-6
+    assert int(page.attributes["window"]["data-records"]) == inside.sum() == 676
+    top = np.linalg.norm(results.reaction("B")[:, :3], axis=1)[inside]
+    for method in METHODS:
+        expected = most_probable_maximum(top, 0.4, 10800.0, method).value
+        assert page.value(f"mpm-{method}") == pytest.approx(expected, rel=1e-12), method
+        assert page.text(f"mpm-{method}") == number(expected)
+    assert page.value("mpm-rayleigh") > top.max()  # 3 h against 270 s
+
+    names = ["shape", "top_tension", "vessel_motion", "touchdown", "tension_and_bending", "energy", "spectra"]
+    assert page.figures == names
+    assert len(page.images) == len(names)
+    for source in page.images:
+        prefix = "data:image/png;base64,"
+        assert source.startswith(prefix)
+        assert base64.b64decode(source[len(prefix) :])[:8] == b"\x89PNG\r\n\x1a\n"
+
+    assert tomllib.loads(page.text("scenario-data")) == scenario.source
+    assert "report test: DP vessel in waves" in page.text("provenance")
+    model_facts = page.text("model")
+    assert "elements12" in model_facts.replace("\n", "") and "waves Tp (s)8" in model_facts.replace("\n", "")
+
+
+def test_the_replay_is_embedded_with_plotly_once(report: Path) -> None:
+    pytest.importorskip("pipelay.plots.replay", reason="pipelay.plots.replay is not there yet")
+    text = report.read_text(encoding="utf-8")
+    page = parse(report, TITLE)
+    assert 'id="replay"' in text and "replay not available" not in text
+    assert text.count("plotly.js v") == 1  # the library's banner: included once, in the head
+    head, _, body = text.partition("</head>")
+    assert "plotly.js v" in head and "Plotly.newPlot" in body
+    assert "plotly-graph-div" in text[text.index('id="replay"') :]
+    assert not page.mismatches
+
+
+def test_a_results_file_brings_its_scenario_and_bad_files_are_refused(
+    results: pl.Results, scenario: Any, tmp_path: Path
+) -> None:
+    """A results file marked with its scenario reports its title and model; replay=False leaves the replay
+    (and plotly.js) out; a file that is not a results file raises pl.load's InputError."""
+    file = tmp_path / "run.nc"
+    results.to_netcdf(file)
+    mark_results(file, scenario)
+    written = run_report(file, tmp_path / "sub" / "run.html", replay=False)
+    assert written == tmp_path / "sub" / "run.html"
+    page = parse(written, TITLE)
+    assert "replay" not in page.attributes and not any("plotly" in script for script in page.scripts)
+    assert str(file) in page.text("provenance")
+    assert "utilisation_max" in page.text("extremes")  # the stored model's section: DNV checks
+    assert not list((tmp_path / "sub").glob(".*"))  # no temporary left behind
+
+    bare = tmp_path / "bare.nc"
+    results.to_netcdf(bare)  # no scenario: no model, no strain, "not recorded"
+    page = parse(run_report(bare, tmp_path / "bare.html", replay=False, title="bare"), "bare")
+    assert "not recorded" in page.text("provenance") and "strain_max" not in page.text("extremes")
+
+    text_file = tmp_path / "notes.nc"
+    text_file.write_text("not a results file")
+    with pytest.raises(pl.InputError) as raised:
+        run_report(text_file, tmp_path / "never.html")
+    with pytest.raises(pl.InputError) as direct:
+        pl.load(text_file)
+    assert str(raised.value) == str(direct.value)
+    assert not (tmp_path / "never.html").exists()
+
+
+# --- a sweep ---------------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def swept(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Any]:
+    """Two sea states of the scenario in 40 s runs, and two cases with a negative wall thickness that fail on
+    their worker (InputError from the factory)."""
+    pytest.importorskip("distributed")
+    data = tomllib.loads(SCENARIO)
+    data["solver"]["t_end"] = 40.0
+    factory = functools.partial(apply_overrides, data)
+    folder = tmp_path_factory.mktemp("sweep") / "out"
+    over = {"sea.waves.hs": [1.5, 2.5], "pipe.wall_thickness": [0.03, -0.01]}
+    done = pl.sweep(factory, over, output=folder, workers=1, progress=False)
+    return folder, done
+
+
+@pytest.fixture(scope="module")
+def swept_report(swept: tuple[Path, Any]) -> Path:
+    """The sweep's report, with the replay of its worst case by each statistic."""
+    return sweep_report(swept[0], replays=1)
+
+
+def test_sweep_report_ranks_links_replays_and_lists_failures(
+    swept: tuple[Path, Any], swept_report: Path
+) -> None:
+    folder, done = swept
+    written = swept_report
+    assert written == folder / "report.html"
+    page = parse(written, "pipelay sweep report: partial")
+    summary = done.summary
+    assert [page.text(f"count-{k}") for k in ("cases", "finished", "failed")] == ["4", "2", "2"]
+
+    # The failures, with their messages.
+    assert len(done.failures) == 2
+    messages = [page.text(f"failure-{k}-error") for k in range(2)]
+    assert sorted(messages) == sorted(done.failures.values())
+    assert all(message.startswith("InputError: pipe.wall_thickness") for message in messages)
+
+    # The ranking follows the summary; the worst case of each statistic has its replay, linked relatively.
+    has_replay = replay_available()
+    worst = set()
+    for name in ("utilisation_max", "top_tension_max", "strain_max"):
+        values = summary[name].values.ravel()
+        order = np.argsort(-np.where(np.isfinite(values), values, -np.inf))[:2]
+        assert [page.value(f"worst-{name}-{rank}-{name}") for rank in range(2)] == values[order].tolist()
+        names = summary["case"].values.ravel()[order].tolist()
+        assert [page.attributes[f"worst-{name}-{rank}"]["data-case"] for rank in range(2)] == names
+        assert f"worst-{name}-2" not in page.attributes  # two cases finished
+        worst.add(names[0])
+        if has_replay:
+            assert page.text(f"worst-{name}-0-replay") == "replay"
+    replays = {path.stem for path in (folder / "cases").glob("*.html")}
+    if has_replay:
+        assert replays == worst
+        links = [link for link in page.links if link.endswith(".html")]
+        assert {(written.parent / link).resolve() for link in links} == {
+            (folder / "cases" / f"{name}.html").resolve() for name in worst
+        }
+        assert all((written.parent / link).is_file() for link in links)
+    else:
+        assert not replays
+
+    # A map per statistic with values, and every case in the summary table.
+    statistics = [n for n in STATISTICS if n in summary and np.isfinite(summary[n].values).any()]
+    assert page.figures == [f"operability-{name}" for name in statistics]
+    assert all(source.startswith("data:image/png;base64,") for source in page.images)
+    assert [page.attributes[f"case-{k}"]["data-case"] for k in range(4)] == summary[
+        "case"
+    ].values.ravel().tolist()
+    assert page.value("case-0-top_tension_max") == summary["top_tension_max"].values[0, 0]
+
+
+def test_a_one_key_sweep_has_lines_and_a_folder_without_summary_is_refused(
+    swept: tuple[Path, Any], tmp_path: Path
+) -> None:
+    folder, done = swept
+    one = done.summary.isel({"pipe.wall_thickness": 0}, drop=True)
+    one.attrs["swept_keys"] = '["sea.waves.hs"]'
+    (tmp_path / "one").mkdir()
+    one.to_netcdf(tmp_path / "one" / "summary.nc", engine="h5netcdf")
+    (tmp_path / "one" / "cases").symlink_to(folder / "cases")
+    page = parse(
+        sweep_report(tmp_path / "one", tmp_path / "one.html", replays=0), "pipelay sweep report: partial"
+    )
+    assert len(page.figures) == len([n for n in STATISTICS if n in one and np.isfinite(one[n].values).any()])
+    assert not [link for link in page.links if link.endswith(".html")]
+    assert page.text("count-cases") == "2" and page.text("count-failed") == "0"
+
+    with pytest.raises(pl.InputError, match="^folder: no summary.nc in"):
+        sweep_report(tmp_path / "nothing")
+    with pytest.raises(pl.InputError, match="^replays"):
+        sweep_report(folder, replays=-1)
+
+
+# --- in a browser ----------------------------------------------------------------------------------------
+
+try:
+    from browser import open_page, screenshot, wait_for_plotly
+except ImportError:  # tests/browser.py, the browser tests' helpers, not there: the few lines needed here
+
+    @contextmanager
+    def open_page(path: Path) -> Iterator[tuple[Any, list[str]]]:
+        """The page at `path` in headless Chromium (WebGL on SwiftShader) and the console and page errors it
+        reports; skips without Chromium or playwright."""
+        executable = shutil.which("chromium") or shutil.which("chromium-browser")
+        if executable is None:
+            pytest.skip("browser test: no Chromium on PATH (Debian's chromium)")
+        sync_api = pytest.importorskip(
+            "playwright.sync_api", reason="browser test: playwright is not installed"
+        )
+        arguments = [
+            "--no-sandbox",
+            "--use-gl=angle",
+            "--use-angle=swiftshader",
+            "--enable-unsafe-swiftshader",
+        ]
+        errors: list[str] = []
+        with sync_api.sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=executable, args=arguments)
+            try:
+                page = browser.new_page(viewport={"width": 1280, "height": 800})
+                page.on(
+                    "console", lambda m: errors.append(f"console: {m.text}") if m.type == "error" else None
+                )
+                page.on("pageerror", lambda error: errors.append(f"page error: {error}"))
+                page.goto(path.resolve().as_uri(), wait_until="load")
+                yield page, errors
+            finally:
+                browser.close()
+
+    def screenshot(page: Any, selector: str | None = None) -> np.ndarray:
+        """A screenshot (height, width, 3) RGB of the page's viewport, or of the element `selector`."""
+        from PIL import Image
+
+        png = page.locator(selector).first.screenshot() if selector else page.screenshot()
+        return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
+
+    def wait_for_plotly(page: Any, selector: str = ".js-plotly-plot") -> None:
+        """Waits for the plot `selector` and its WebGL canvas, then a second for it to draw."""
+        page.locator(f"{selector} canvas").first.wait_for(state="attached", timeout=30000)
+        page.wait_for_timeout(1000)
+
+
+def test_the_reports_open_in_a_browser_without_errors_and_the_replay_draws(
+    report: Path, swept_report: Path
+) -> None:
+    """No console or page error; the replay's WebGL canvas draws: hiding it changes much of the plot."""
+    with open_page(report) as (page, errors):
+        assert page.title() == TITLE
+        assert page.locator("figure.plot img").count() == 7
+        if replay_available():
+            plot = "#replay .js-plotly-plot"
+            wait_for_plotly(page, plot)
+            drawn = screenshot(page, plot).astype(np.int64)
+            page.evaluate(
+                "document.querySelectorAll('#replay canvas').forEach(c => c.style.visibility = 'hidden')"
+            )
+            page.wait_for_timeout(300)
+            bare = screenshot(page, plot).astype(np.int64)
+            # The scene (its light background, grid, seabed and pipe) covers a good part of the plot (13 %).
+            assert np.mean(np.abs(drawn - bare).max(axis=2) > 8) > 0.05
+        assert not errors, errors
+    with open_page(swept_report) as (page, errors):
+        assert page.locator("#worst table").count() == 3
+        assert not errors, errors
