@@ -68,7 +68,8 @@ def header() -> None:
     except (OSError, subprocess.CalledProcessError):
         commit = "unknown"
     print(f"command: {' '.join([Path(sys.executable).name, *sys.argv])}")
-    print(f"machine: {os.cpu_count()} cores (nproc), {cpu}, {platform.system()} {platform.release()}")
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    print(f"machine: {cores} cores (nproc), {cpu}, {platform.system()} {platform.release()}")
     print(f"git commit: {commit}")
 
 
