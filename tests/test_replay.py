@@ -431,3 +431,33 @@ def test_the_video_has_the_frames_asked(s_lay, tmp_path: Path) -> None:
     assert len(images) == 12
     below_title = slice(int(0.08 * height), height)  # the title's time changes anyway: compare the drawing
     assert changed_fraction(images[0][below_title], images[-1][below_title], tolerance=40) > 1e-4
+
+
+def test_pipelay_view_and_report_read_the_scenario_the_file_keeps(tmp_path: Path) -> None:
+    """`pipelay run` then `pipelay view` (replay and video) and `pipelay report`: the replay built from the file
+    alone draws the rollers of the scenario it keeps, exactly as the API's replay with the scenario's model; a
+    file that keeps no scenario still gives a replay (without rollers) and says so."""
+    from pipelay import cli
+    from pipelay.results import load
+    from pipelay.scenario import load_scenario
+
+    data = tomllib.loads((EXAMPLES / "s_lay.toml").read_text())
+    text = (EXAMPLES / "s_lay.toml").read_text()
+    text = text.replace(f"elements = {data['rod']['elements']}", "elements = 40")
+    text = text.replace(f"t_end = {data['solver']['t_end']}", "t_end = 2.0")
+    text = "\n".join(line for line in text.splitlines() if not line.startswith("plot_times"))
+    (tmp_path / "s_lay.toml").write_text(text)
+    run = tmp_path / "run.nc"
+    assert cli.main(["run", str(tmp_path / "s_lay.toml"), "-o", str(run), "--no-progress"]) == 0
+    assert cli.main(["view", str(run), "--video", str(tmp_path / "run.mp4"), "--frames", "6"]) == 0
+    page = (tmp_path / "run.html").read_text().replace(" ", "")
+    assert '"name":"rollers"' in page  # the rollers of the scenario kept in the file
+    assert (tmp_path / "run.mp4").stat().st_size > 1000
+    model = load_scenario(tmp_path / "s_lay.toml").model
+    assert any(t.name == "rollers" for t in replay(load(run), model, max_frames=6).data)
+    assert cli.main(["report", str(run)]) == 0
+    report = (tmp_path / "run-report.html").read_text()
+    assert "S-lay" in report and "plotly" in report
+    bare = load(run).to_netcdf(tmp_path / "bare.nc")
+    assert cli.main(["view", str(bare), "-o", str(tmp_path / "bare.html")]) == 0
+    assert '"name":"rollers"' not in (tmp_path / "bare.html").read_text().replace(" ", "")

@@ -11,11 +11,7 @@ from __future__ import annotations
 
 import base64
 import functools
-import io
-import shutil
 import tomllib
-from collections.abc import Iterator
-from contextlib import contextmanager
 from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any
@@ -23,6 +19,7 @@ from typing import Any
 import numpy as np
 import pipelay as pl
 import pytest
+from browser import open_page, screenshot, wait_for_plotly
 from pipelay.analysis.extremes import extremes
 from pipelay.analysis.statistics import METHODS, most_probable_maximum
 from pipelay.analysis.sweep import STATISTICS
@@ -86,14 +83,6 @@ record_every = 2
 
 TITLE = "report test: DP vessel in waves, pipe on the seabed"
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
-
-
-def replay_available() -> bool:
-    try:
-        import pipelay.plots.replay  # noqa: F401
-    except ImportError:
-        return False
-    return True
 
 
 class Page(HTMLParser):
@@ -250,7 +239,6 @@ def test_run_report_prints_the_numbers_of_the_analysis(
 
 
 def test_the_replay_is_embedded_with_plotly_once(report: Path) -> None:
-    pytest.importorskip("pipelay.plots.replay", reason="pipelay.plots.replay is not there yet")
     text = report.read_text(encoding="utf-8")
     page = parse(report, TITLE)
     assert 'id="replay"' in text and "replay not available" not in text
@@ -332,7 +320,6 @@ def test_sweep_report_ranks_links_replays_and_lists_failures(
     assert all(message.startswith("InputError: pipe.wall_thickness") for message in messages)
 
     # The ranking follows the summary; the worst case of each statistic has its replay, linked relatively.
-    has_replay = replay_available()
     worst = set()
     for name in ("utilisation_max", "top_tension_max", "strain_max"):
         values = summary[name].values.ravel()
@@ -342,18 +329,14 @@ def test_sweep_report_ranks_links_replays_and_lists_failures(
         assert [page.attributes[f"worst-{name}-{rank}"]["data-case"] for rank in range(2)] == names
         assert f"worst-{name}-2" not in page.attributes  # two cases finished
         worst.add(names[0])
-        if has_replay:
-            assert page.text(f"worst-{name}-0-replay") == "replay"
+        assert page.text(f"worst-{name}-0-replay") == "replay"
     replays = {path.stem for path in (folder / "cases").glob("*.html")}
-    if has_replay:
-        assert replays == worst
-        links = [link for link in page.links if link.endswith(".html")]
-        assert {(written.parent / link).resolve() for link in links} == {
-            (folder / "cases" / f"{name}.html").resolve() for name in worst
-        }
-        assert all((written.parent / link).is_file() for link in links)
-    else:
-        assert not replays
+    assert replays == worst
+    links = [link for link in page.links if link.endswith(".html")]
+    assert {(written.parent / link).resolve() for link in links} == {
+        (folder / "cases" / f"{name}.html").resolve() for name in worst
+    }
+    assert all((written.parent / link).is_file() for link in links)
 
     # A map per statistic with values, and every case in the summary table.
     statistics = [n for n in STATISTICS if n in summary and np.isfinite(summary[n].values).any()]
@@ -389,52 +372,6 @@ def test_a_one_key_sweep_has_lines_and_a_folder_without_summary_is_refused(
 
 # --- in a browser ----------------------------------------------------------------------------------------
 
-try:
-    from browser import open_page, screenshot, wait_for_plotly
-except ImportError:  # tests/browser.py, the browser tests' helpers, not there: the few lines needed here
-
-    @contextmanager
-    def open_page(path: Path) -> Iterator[tuple[Any, list[str]]]:
-        """The page at `path` in headless Chromium (WebGL on SwiftShader) and the console and page errors it
-        reports; skips without Chromium or playwright."""
-        executable = shutil.which("chromium") or shutil.which("chromium-browser")
-        if executable is None:
-            pytest.skip("browser test: no Chromium on PATH (Debian's chromium)")
-        sync_api = pytest.importorskip(
-            "playwright.sync_api", reason="browser test: playwright is not installed"
-        )
-        arguments = [
-            "--no-sandbox",
-            "--use-gl=angle",
-            "--use-angle=swiftshader",
-            "--enable-unsafe-swiftshader",
-        ]
-        errors: list[str] = []
-        with sync_api.sync_playwright() as playwright:
-            browser = playwright.chromium.launch(executable_path=executable, args=arguments)
-            try:
-                page = browser.new_page(viewport={"width": 1280, "height": 800})
-                page.on(
-                    "console", lambda m: errors.append(f"console: {m.text}") if m.type == "error" else None
-                )
-                page.on("pageerror", lambda error: errors.append(f"page error: {error}"))
-                page.goto(path.resolve().as_uri(), wait_until="load")
-                yield page, errors
-            finally:
-                browser.close()
-
-    def screenshot(page: Any, selector: str | None = None) -> np.ndarray:
-        """A screenshot (height, width, 3) RGB of the page's viewport, or of the element `selector`."""
-        from PIL import Image
-
-        png = page.locator(selector).first.screenshot() if selector else page.screenshot()
-        return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
-
-    def wait_for_plotly(page: Any, selector: str = ".js-plotly-plot") -> None:
-        """Waits for the plot `selector` and its WebGL canvas, then a second for it to draw."""
-        page.locator(f"{selector} canvas").first.wait_for(state="attached", timeout=30000)
-        page.wait_for_timeout(1000)
-
 
 def test_the_reports_open_in_a_browser_without_errors_and_the_replay_draws(
     report: Path, swept_report: Path
@@ -443,17 +380,16 @@ def test_the_reports_open_in_a_browser_without_errors_and_the_replay_draws(
     with open_page(report) as (page, errors):
         assert page.title() == TITLE
         assert page.locator("figure.plot img").count() == 7
-        if replay_available():
-            plot = "#replay .js-plotly-plot"
-            wait_for_plotly(page, plot)
-            drawn = screenshot(page, plot).astype(np.int64)
-            page.evaluate(
-                "document.querySelectorAll('#replay canvas').forEach(c => c.style.visibility = 'hidden')"
-            )
-            page.wait_for_timeout(300)
-            bare = screenshot(page, plot).astype(np.int64)
-            # The scene (its light background, grid, seabed and pipe) covers a good part of the plot (13 %).
-            assert np.mean(np.abs(drawn - bare).max(axis=2) > 8) > 0.05
+        plot = "#replay .js-plotly-plot"
+        wait_for_plotly(page, plot)
+        drawn = screenshot(page, plot).astype(np.int64)
+        page.evaluate(
+            "document.querySelectorAll('#replay canvas').forEach(c => c.style.visibility = 'hidden')"
+        )
+        page.wait_for_timeout(300)
+        bare = screenshot(page, plot).astype(np.int64)
+        # The scene (its light background, grid, seabed and pipe) covers a good part of the plot (13 %).
+        assert np.mean(np.abs(drawn - bare).max(axis=2) > 8) > 0.05
         assert not errors, errors
     with open_page(swept_report) as (page, errors):
         assert page.locator("#worst table").count() == 3

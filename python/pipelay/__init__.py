@@ -100,6 +100,16 @@ def _checking_run(run: Callable[..., Results]) -> Callable[..., Results]:
     return checked
 
 
+def _view(self: Results, model: Model | None = None, **options: Any) -> Any:
+    """The 3-D replay of the run: a plotly Figure (shown in Jupyter; ``.write_html(path)``), the pipe coloured
+    by ``colour`` ("tension", "moment", "strain", "utilisation"); `model` adds the rollers or tower, the seabed
+    and the waves. The options are those of `pipelay.plots.replay.replay`."""
+    from pipelay.plots.replay import replay
+
+    return replay(self, model, **options)
+
+
+Results.view = _view  # type: ignore[attr-defined]
 Model.static = _checking_static(Model.static)  # type: ignore[method-assign]
 Simulation.run = _checking_run(Simulation.run)  # type: ignore[method-assign]
 

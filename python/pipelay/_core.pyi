@@ -1044,6 +1044,8 @@ class Results:
     ) -> Results: ...
     def stage_summary(self, model: Model | None = None, checks: Mapping[str, Any] | None = None) -> Any:
         """Per stage, the extremes users check (a pandas.DataFrame): see pipelay.analysis.stages."""
+    def view(self, model: Model | None = None, **options: Any) -> Any:
+        """The 3-D replay of the run (a plotly Figure, shown in Jupyter): see pipelay.plots.replay."""
 
 @final
 class Model:

@@ -10,6 +10,9 @@
     pipelay capability SCENARIO [--headings-step DEG] [--current M/S] [--max-wind M/S] [--plot FILE]
     pipelay fatigue SCENARIO --scatter TABLE.csv --hours H -o DIR [--curve D] [--environment ENV] [--scf F]
         [--method rainflow|dirlik|narrow_band] [--start S] [--scheduler ADDRESS | --workers N]
+    pipelay view RESULTS.nc [-o RUN.html] [--video RUN.mp4] [--colour tension|moment|strain|utilisation]
+        [--frames N] [--scenario SCENARIO]
+    pipelay report RESULTS.nc|SWEEP_DIR [-o REPORT.html] [--scenario SCENARIO]
 
 `pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
 flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
@@ -25,6 +28,10 @@ thrusters hold at each heading the environment comes from, with a co-linear curr
 probability and optionally heading in degrees) as a sweep, and prints the fatigue damage of a standby of H hours
 (pipelay.analysis.fatigue): DNV-RP-C203 curve --curve in --environment, with the thickness effect of each
 segment's wall; DIR/fatigue.nc holds the damage along the pipe and DIR/damage.png draws it.
+`pipelay view` writes the 3-D replay of a run as one HTML file that opens offline in a browser
+(pipelay.plots.replay), and with --video an mp4 (pipelay.plots.video); `pipelay report` writes the HTML report
+of a run or of a sweep's folder (pipelay.report). Both rebuild the model (rollers, seabed, waves, section) from
+the scenario the results file keeps (written by `pipelay run` and sweeps), or from --scenario.
 
 Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
 still written; for a sweep: a case failed, the others are written), 2 bad input (the message names the
@@ -136,6 +143,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     _cluster_arguments(sweeping)
     _fatigue_parser(commands)
+    _view_parsers(commands)
     capability = commands.add_parser(
         "capability",
         help="DP capability: the largest wind held at each heading, with the pipe's static pull",
@@ -540,6 +548,81 @@ def _cluster_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+def _view_parsers(commands: Any) -> None:
+    """The arguments of `pipelay view` and `pipelay report` (the replay's module, which imports plotly, is
+    imported when they run)."""
+    view = commands.add_parser("view", help="the 3-D replay of a run as one HTML file (and a video)")
+    view.add_argument("results", type=Path, help="results file (netCDF) of a run")
+    view.add_argument("-o", "--output", type=Path, help="the HTML file (default: RESULTS with .html)")
+    view.add_argument("--video", type=Path, help="also write a video of the run (mp4)")
+    view.add_argument(
+        "--colour", default="tension", help="what colours the pipe: tension, moment, strain or utilisation"
+    )
+    view.add_argument("--frames", type=int, default=300, help="at most this many frames (records decimated)")
+    view.add_argument(
+        "--scenario", type=Path, help="scenario file of the run, where the results file does not keep it"
+    )
+    report = commands.add_parser("report", help="the HTML report of a run, or of a sweep's folder")
+    report.add_argument(
+        "results", type=Path, help="results file (netCDF) of a run, or a sweep's output folder"
+    )
+    report.add_argument(
+        "-o",
+        "--output",
+        type=Path,
+        help="the report (default: RESULTS-report.html beside RESULTS, or DIR/report.html)",
+    )
+    report.add_argument(
+        "--scenario", type=Path, help="scenario file of the run, where the results file does not keep it"
+    )
+
+
+def _scenario_of(results: Path, given: Path | None) -> Scenario | None:
+    """The scenario of a results file: --scenario's, else the one the file keeps, else None (said)."""
+    from pipelay.scenario import scenario_of_results
+
+    if given is not None:
+        return load_scenario(given)
+    scenario = scenario_of_results(results)
+    if scenario is None:
+        print(
+            f"note: {results} keeps no scenario (give --scenario): no rollers, bathymetry or waves drawn",
+            file=sys.stderr,
+        )
+    return scenario
+
+
+def _view(args: argparse.Namespace) -> int:
+    """`pipelay view RESULTS.nc`: the replay (HTML) and, with --video, the video."""
+    from pipelay.plots.replay import replay
+    from pipelay.plots.video import video
+
+    results = load(args.results)
+    scenario = _scenario_of(args.results, args.scenario)
+    model = None if scenario is None else scenario.model
+    output = args.output or args.results.with_suffix(".html")
+    replay(results, model, colour=args.colour, max_frames=args.frames, path=output)
+    print(f"replay: {output}")
+    if args.video is not None:
+        video(results, args.video, model, colour=args.colour)
+        print(f"video: {args.video}")
+    return 0
+
+
+def _report(args: argparse.Namespace) -> int:
+    """`pipelay report RESULTS.nc|DIR`: the report of a run or a sweep's folder."""
+    from pipelay.report import run_report, sweep_report
+
+    if args.results.is_dir():
+        written = sweep_report(args.results, args.output)
+    else:
+        scenario = _scenario_of(args.results, args.scenario)
+        output = args.output or args.results.with_name(f"{args.results.stem}-report.html")
+        written = run_report(args.results, output, scenario=scenario)
+    print(f"report: {written}")
+    return 0
+
+
 def _fatigue_parser(commands: Any) -> None:
     """The arguments of `pipelay fatigue`."""
     from pipelay.analysis.fatigue import DNV_CLASSES, ENVIRONMENTS, METHODS
@@ -687,6 +770,8 @@ def main(argv: list[str] | None = None) -> int:
         "schema": _schema,
         "capability": _capability,
         "fatigue": _fatigue,
+        "view": _view,
+        "report": _report,
     }[args.command]
     try:
         return command(args)

@@ -20,8 +20,8 @@ whose ``data-value`` holds it exactly (``repr``), for a reader or a test to find
 
 Imports of pipelay: the engine (`pipelay._core`), `pipelay.results` (`load`), `pipelay.analysis.extremes`,
 `pipelay.analysis.statistics`, `pipelay.analysis.stages`, `pipelay.analysis.sweep` (`STATISTICS`, the units),
-`pipelay.plots`, `pipelay.report.html`; `pipelay.scenario.scenario_of_results` and `pipelay.plots.replay` when
-they are there.
+`pipelay.plots`, `pipelay.report.html`, `pipelay.scenario` (`scenario_of_results`) and, when a replay is asked
+for, `pipelay.plots.replay` (which imports plotly).
 """
 
 from __future__ import annotations
@@ -46,6 +46,7 @@ from pipelay.analysis.sweep import STATISTICS
 from pipelay.report import html
 from pipelay.report.html import Cell, Markup, value_cell
 from pipelay.results import load
+from pipelay.scenario import scenario_of_results
 
 __all__ = ["LAY_SUMMARY_UNITS", "START_FRACTION", "run_report", "steady_window", "toml_text"]
 
@@ -154,10 +155,6 @@ def run_report(
 
 def _stored_scenario(file: Path) -> tuple[Any, str]:
     """The scenario stored in the results file (None without one) and a note on why there is none."""
-    try:
-        from pipelay.scenario import scenario_of_results
-    except ImportError:
-        return None, "this pipelay cannot read a scenario stored in a results file"
     try:
         found = scenario_of_results(file)
     except InputError as error:
@@ -609,12 +606,8 @@ def _maxima(top: FloatArray, dt: float, storm: float) -> Markup:
 
 def _replay(results: Results, model: Model | None, title: str) -> tuple[Markup, str]:
     """The replay's section and what the page's head needs for it (plotly.js), or a note and nothing."""
-    try:
-        from pipelay.plots.replay import replay_html
-    except ImportError as error:
-        return html.section(
-            "replay", "Replay", html.note(f"replay not available: {error}", kind="skipped")
-        ), ""
+    from pipelay.plots.replay import replay_html  # imports plotly: only when a replay is asked for
+
     try:
         division = replay_html(results, model, full_html=False, title=title)
     except Exception as error:  # noqa: BLE001 - the report is written without its replay

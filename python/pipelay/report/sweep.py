@@ -17,8 +17,8 @@ against the key for a sweep over one key), ``worst`` (for each of ``utilisation_
 relatively, so the folder can be moved whole.
 
 Imports of pipelay: the engine (`pipelay._core`, its InputError), `pipelay.results` (`load`),
-`pipelay.analysis.sweep` (`STATISTICS`), `pipelay.plots` (`operability`), `pipelay.report.html`;
-`pipelay.plots.replay` and `pipelay.scenario.scenario_of_results` when they are there.
+`pipelay.analysis.sweep` (`STATISTICS`), `pipelay.plots` (`operability`), `pipelay.report.html`,
+`pipelay.scenario` (`scenario_of_results`) and, when replays are written, `pipelay.plots.replay`.
 """
 
 from __future__ import annotations
@@ -39,6 +39,7 @@ from pipelay.analysis.sweep import STATISTICS
 from pipelay.report import html
 from pipelay.report.html import Cell, Markup, value_cell
 from pipelay.results import load
+from pipelay.scenario import scenario_of_results
 
 __all__ = ["WORST", "sweep_report"]
 
@@ -183,10 +184,8 @@ def _write_replays(directory: Path, home: Path, names: Sequence[str]) -> tuple[d
     report's folder `home`} of those written, and a sentence on any not written."""
     if not names:
         return {}, ""
-    try:
-        from pipelay.plots.replay import replay_html
-    except ImportError as error:
-        return {}, f"replays not available: {error}"
+    from pipelay.plots.replay import replay_html  # imports plotly: only when replays are written
+
     links: dict[str, str] = {}
     missing = []
     for name in names:
@@ -210,10 +209,6 @@ def _write_replays(directory: Path, home: Path, names: Sequence[str]) -> tuple[d
 
 def _stored_model(file: Path) -> Any:
     """The model of the scenario stored in a case's results file, or None."""
-    try:
-        from pipelay.scenario import scenario_of_results
-    except ImportError:
-        return None
     try:
         scenario = scenario_of_results(file)
     except InputError:
