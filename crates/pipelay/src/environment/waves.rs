@@ -357,6 +357,12 @@ pub fn wave_number(frequency: f64, depth: f64, gravity: f64) -> f64 {
     k
 }
 
+thread_local! {
+    /// Each component's (sin θ, cos θ) at the point whose kinematics are being summed: one buffer a thread,
+    /// grown once.
+    static PHASES: std::cell::RefCell<Vec<(f64, f64)>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
 /// Fluid velocity and acceleration at a point and its velocity's gradient ∂u/∂x (all in e).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Kinematics {
@@ -376,6 +382,9 @@ pub struct Resolved {
     pub number: f64,
     /// 1/(1 − e^{−2kh}) in the field's depth h.
     profile_scale: f64,
+    /// The depth below the (stretched) surface beyond which the component's velocity, acceleration and
+    /// velocity gradient are below [`NEGLIGIBLE`] of the sea's (m; 0: negligible everywhere).
+    negligible_below: f64,
     /// Direction of travel β (rad) and its cosine and sine.
     pub direction: f64,
     pub cos: f64,
@@ -407,6 +416,8 @@ pub struct WaveField {
     components: Vec<Resolved>,
     depth: f64,
     ramp: f64,
+    /// Σ a: no surface elevation exceeds it.
+    surface_bound: f64,
 }
 
 /// cosh(k s)/sinh(k h) and sinh(k s)/sinh(k h) without overflow (s ≤ h, k h possibly large), with
@@ -417,9 +428,34 @@ fn profiles_scaled(k: f64, s: f64, h: f64, scale: f64) -> (f64, f64) {
     (ratio * (1.0 + e_s), ratio * (1.0 - e_s))
 }
 
-/// Beyond k·(depth below the surface) = 40 a component's kinematics are below e^{−40} ≈ 4e-18 of its
-/// surface values: the sum stops there.
-const DECAYED: f64 = 40.0;
+/// A component is left out of the kinematics at a point where each of its velocity, acceleration and velocity
+/// gradient, a ω^j k^l e^{−k d} at the depth d below the surface, is below this fraction of the sea's own
+/// scale (Σ a ω, Σ a ω², Σ a ω k over the components): all those left out at a point add up to less than
+/// 2e-5 of the scale (measured: 6.6e-6 for a 300-component JONSWAP sea; the tests).
+pub const NEGLIGIBLE: f64 = 1e-6;
+
+/// The depth below which each component is negligible ([`NEGLIGIBLE`]), for components of the given
+/// amplitudes, frequencies and wave numbers.
+fn negligible_depths(components: &mut [Resolved]) {
+    let scale = |weight: &dyn Fn(&Resolved) -> f64| components.iter().map(weight).sum::<f64>();
+    let velocity = |c: &Resolved| c.amplitude * c.frequency;
+    let acceleration = |c: &Resolved| c.amplitude * c.frequency * c.frequency;
+    let gradient = |c: &Resolved| c.amplitude * c.frequency * c.number;
+    let scales = [scale(&velocity), scale(&acceleration), scale(&gradient)];
+    for c in components.iter_mut() {
+        let share = [velocity(c), acceleration(c), gradient(c)]
+            .iter()
+            .zip(&scales)
+            .map(|(own, total)| if *total > 0.0 { own / total } else { 0.0 })
+            .fold(0.0, f64::max);
+        // a e^{−k d} < NEGLIGIBLE · scale beyond d = ln(share / NEGLIGIBLE) / k.
+        c.negligible_below = if share > NEGLIGIBLE && c.number > 0.0 {
+            (share / NEGLIGIBLE).ln() / c.number
+        } else {
+            0.0
+        };
+    }
+}
 
 impl WaveField {
     /// The waves resolved in water of `depth` (m) under gravity `gravity` (m/s²).
@@ -443,6 +479,7 @@ impl WaveField {
                     frequency: c.frequency,
                     number,
                     profile_scale: 1.0 / (1.0 - (-2.0 * number * depth).exp()),
+                    negligible_below: f64::INFINITY,
                     direction: c.direction,
                     cos: c.direction.cos(),
                     sin: c.direction.sin(),
@@ -451,12 +488,15 @@ impl WaveField {
             })
             .collect();
         check_breaking(waves, &components, depth)?;
-        // Sorted by wave number, so that a deep point's sum stops at the first component decayed there.
-        components.sort_by(|a, b| a.number.total_cmp(&b.number));
+        negligible_depths(&mut components);
+        // Deepest-reaching first, so that a point's sum stops at the first component negligible there.
+        components.sort_by(|a, b| b.negligible_below.total_cmp(&a.negligible_below));
+        let surface_bound = components.iter().map(|c| c.amplitude).sum();
         Ok(WaveField {
             components,
             depth,
             ramp: waves.ramp,
+            surface_bound,
         })
     }
 
@@ -491,29 +531,53 @@ impl WaveField {
         let (x, y) = (position.x, position.y);
         let h = self.depth;
         let height = -position.z;
-        // η and its horizontal gradient.
-        let mut surface = 0.0;
-        let mut surface_gradient = Vector3::zeros();
-        for c in &self.components {
-            let (sin, cos) = c.angle(x, y, time).sin_cos();
-            let a = ramp * c.amplitude;
-            surface += a * cos;
-            surface_gradient -= Vector3::new(c.cos, c.sin, 0.0) * (a * c.number * sin);
-        }
-        if height > h + surface || h + surface <= 0.0 {
+        // The stretched depth below the surface is at least h − height·h/(h − Σa): deeper than every
+        // component reaches, the water is still.
+        let reach = self.components.first().map_or(0.0, |c| c.negligible_below);
+        if self.surface_bound < h && h - height.max(0.0) * h / (h - self.surface_bound) > reach {
             return Kinematics::default();
         }
+        // η and its horizontal gradient, and each component's phase, kept for the sum below.
+        let mut surface = 0.0;
+        let mut surface_gradient = Vector3::zeros();
+        PHASES.with_borrow_mut(|phases| {
+            phases.clear();
+            for c in &self.components {
+                let (sin, cos) = c.angle(x, y, time).sin_cos();
+                phases.push((sin, cos));
+                let a = ramp * c.amplitude;
+                surface += a * cos;
+                surface_gradient -= Vector3::new(c.cos, c.sin, 0.0) * (a * c.number * sin);
+            }
+            if height > h + surface || h + surface <= 0.0 {
+                return Kinematics::default();
+            }
+            self.sum(phases, ramp, ramp_rate, height, surface, &surface_gradient)
+        })
+    }
+
+    /// The kinematics at the stretched height of a point `height` above the seabed under the surface
+    /// `surface` (of gradient `surface_gradient`), from each component's phase (sin θ, cos θ) there.
+    fn sum(
+        &self,
+        phases: &[(f64, f64)],
+        ramp: f64,
+        ramp_rate: f64,
+        height: f64,
+        surface: f64,
+        surface_gradient: &Vector3<f64>,
+    ) -> Kinematics {
+        let h = self.depth;
         // s′ = h s/(h + η): ∂s′/∂z = −h/(h + η) (s = −z), ∂s′/∂x_j = −h s/(h + η)² ∂η/∂x_j.
         let stretch = h / (h + surface);
         let s = height * stretch;
         let d_s = -surface_gradient * (s / (h + surface)) - Vector3::z() * stretch;
         let mut k = Kinematics::default();
         let below = h - s.max(0.0);
-        for c in &self.components {
-            if c.number * below > DECAYED {
+        for (c, &(sin, cos)) in self.components.iter().zip(phases) {
+            if below > c.negligible_below {
                 break;
             }
-            let (sin, cos) = c.angle(x, y, time).sin_cos();
             let (ch, sh) = profiles_scaled(c.number, s, h, c.profile_scale);
             let aw = ramp * c.amplitude * c.frequency;
             let horizontal = aw * ch * cos;
@@ -598,30 +662,45 @@ mod tests {
         }
     }
 
-    /// Deep down the sum stops at the first component decayed below e^{−40}: the velocity there equals the
-    /// full sum over every component (long-crested, so the stretching is the same) to round-off.
+    /// The sum leaves out components where they are negligible ([`NEGLIGIBLE`]): against the full sum over
+    /// every component, from the surface to the seabed in 800 m and in 60 m of water, the velocity,
+    /// acceleration and velocity gradient differ by less than 2e-5 of the sea's scale (Σ a ω, Σ a ω², Σ a ω k;
+    /// measured: 6.6e-6 at most); below the deepest reach (307 m here) the water is still.
     #[test]
-    fn deep_sums_stop_where_components_have_decayed() {
+    fn negligible_components_are_left_out_within_the_tolerance() {
         let waves = Waves::jonswap(4.0, 9.0, 3.3, 0.3, None, 5, 300).unwrap();
-        let h = 800.0;
-        let field = WaveField::new(&waves, h, G).unwrap();
-        for below in [50.0, 200.0, 600.0] {
-            let point = Vector3::new(20.0, 3.0, -(h - below));
-            let t = 31.0;
-            let surface = field.elevation(point.x, point.y, t);
-            let s = (h - below) * h / (h + surface);
-            let mut full = 0.0;
-            for c in field.components() {
-                let (ch, _) = profiles(c.number, s, h);
-                full += c.amplitude * c.frequency * ch * c.angle(point.x, point.y, t).cos();
+        let mut worst: f64 = 0.0;
+        for h in [800.0, 60.0] {
+            let field = WaveField::new(&waves, h, G).unwrap();
+            let mut full = field.clone();
+            full.components
+                .iter_mut()
+                .for_each(|c| c.negligible_below = f64::INFINITY);
+            let scale =
+                |f: &dyn Fn(&Resolved) -> f64| field.components().iter().map(f).sum::<f64>();
+            let velocity = scale(&|c| c.amplitude * c.frequency);
+            let acceleration = scale(&|c| c.amplitude * c.frequency * c.frequency);
+            let gradient = scale(&|c| c.amplitude * c.frequency * c.number);
+            for k in 0..=40 {
+                let below = h * f64::from(k) / 40.0;
+                for t in [31.0, 47.5] {
+                    let point = Vector3::new(20.0, 3.0, -(h - below));
+                    let (cut, all) = (field.kinematics(&point, t), full.kinematics(&point, t));
+                    let errors = [
+                        (cut.velocity - all.velocity).norm() / velocity,
+                        (cut.acceleration - all.acceleration).norm() / acceleration,
+                        (cut.velocity_gradient - all.velocity_gradient).norm() / gradient,
+                    ];
+                    worst = errors.iter().fold(worst, |w, e| w.max(*e));
+                }
             }
-            let cut = field.kinematics(&point, t).velocity;
-            let along = cut.x * 0.3f64.cos() + cut.y * 0.3f64.sin();
-            assert!(
-                (along - full).abs() < 1e-15 * (1.0 + full.abs()),
-                "{below}: {along} vs {full}"
-            );
         }
+        assert!(worst < 2e-5, "worst relative error {worst:e}");
+        let field = WaveField::new(&waves, 800.0, G).unwrap();
+        let reach = field.components()[0].negligible_below;
+        assert!(reach > 50.0 && reach < 700.0, "{reach}");
+        let deep = field.kinematics(&Vector3::new(0.0, 0.0, -(800.0 - reach - 20.0)), 31.0);
+        assert_eq!(deep, Kinematics::default());
     }
 
     /// The velocity gradient matches central differences (stretching included); the acceleration is ∂u/∂t
