@@ -16,62 +16,13 @@ import numpy as np
 import pipelay as pl
 import pytest
 import xarray as xr
+from dp_in_waves import scenario_text
 from pipelay import cli, fatigue
 from pipelay.results.netcdf import _arrays
 from pipelay.scenario import apply_overrides, parse_scenario
 
-# A DP vessel holding a 12-element pipe that rests on the seabed, in a JONSWAP sea (its RAOs move the top):
-# 150 records of 0.4 s, about a second a run.
-SCENARIO = """
-title = "fatigue test: DP vessel in waves, pipe on the seabed"
-
-[pipe]
-outer_diameter = 0.6
-wall_thickness = 0.03
-contents_density = 0.0
-drag = [0.0, 1.0]
-added_mass = [0.0, 1.0]
-
-[rod]
-start = [0.0, 0.0, 0.0]
-end = [1200.0, 0.0, 0.0]
-elements = 12
-
-[sea]
-depth = 800.0
-
-[sea.seabed]
-stiffness = 1e5
-friction = 0.3
-
-[sea.waves]
-kind = "jonswap"
-hs = 2.0
-tp = 8.0
-direction = 0.5
-seed = 3
-components = 40
-ramp = 10.0
-
-[supports.A]
-kind = "pin"
-
-[vessel]
-end = "B"
-model = "osv"
-eta = [730.0, 0.0, -800.0, 0.0, 0.0, 0.0]
-angle = [0.0, -1.33, 0.0]
-
-[controller]
-kp = [0.5e6, 0.5e6, 0, 0, 0, 0]
-kd = [0.4e7, 0.4e7, 0, 0, 0, 0]
-reference = [730.0, 0.0, 0.0, 0.0, 0.0, 0.0]
-
-[solver]
-dt = 0.2
-t_end = 60.0
-record_every = 2
-"""
+# The tests' DP vessel in waves (tests/dp_in_waves.py): 150 records of 0.4 s, about a second a run.
+SCENARIO = scenario_text("fatigue test: DP vessel in waves, pipe on the seabed")
 SCATTER = "# two sea states\nhs,tp,heading,probability\n1.5,7.0,0.0,0.3\n3.0,9.0,45.0,0.7\n"
 START = 20.0  # s: the waves' ramp and the transient left out
 

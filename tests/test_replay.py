@@ -21,6 +21,7 @@ import numpy as np
 import pipelay as pl
 import pytest
 from browser import changed_fraction, distinct_colours, open_page, settled_screenshot, wait_for_plotly
+from dp_in_waves import scenario_text
 from pipelay.analysis import extremes
 from pipelay.plots.replay import COLOURS, replay, replay_html
 from pipelay.plots.video import video
@@ -28,57 +29,8 @@ from pipelay.scenario import apply_overrides, parse_scenario
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
-# test_fatigue_damage.py's DP vessel in waves: 12 elements, 800 m of water, 150 records of 0.4 s.
-DP_SCENARIO = """
-title = "replay test: DP vessel in waves, pipe on the seabed"
-
-[pipe]
-outer_diameter = 0.6
-wall_thickness = 0.03
-contents_density = 0.0
-drag = [0.0, 1.0]
-added_mass = [0.0, 1.0]
-
-[rod]
-start = [0.0, 0.0, 0.0]
-end = [1200.0, 0.0, 0.0]
-elements = 12
-
-[sea]
-depth = 800.0
-
-[sea.seabed]
-stiffness = 1e5
-friction = 0.3
-
-[sea.waves]
-kind = "jonswap"
-hs = 2.0
-tp = 8.0
-direction = 0.5
-seed = 3
-components = 40
-ramp = 10.0
-
-[supports.A]
-kind = "pin"
-
-[vessel]
-end = "B"
-model = "osv"
-eta = [730.0, 0.0, -800.0, 0.0, 0.0, 0.0]
-angle = [0.0, -1.33, 0.0]
-
-[controller]
-kp = [0.5e6, 0.5e6, 0, 0, 0, 0]
-kd = [0.4e7, 0.4e7, 0, 0, 0, 0]
-reference = [730.0, 0.0, 0.0, 0.0, 0.0, 0.0]
-
-[solver]
-dt = 0.2
-t_end = 60.0
-record_every = 2
-"""
+# The tests' DP vessel in waves (tests/dp_in_waves.py): 12 elements, 800 m of water, 150 records of 0.4 s.
+DP_SCENARIO = scenario_text("replay test: DP vessel in waves, pipe on the seabed")
 
 TRACES = ("seabed", "sea surface", "pipe", "vessel", "rollers", "tower", "touchdown")
 

@@ -20,6 +20,7 @@ import numpy as np
 import pipelay as pl
 import pytest
 from browser import open_page, screenshot, wait_for_plotly
+from dp_in_waves import scenario_text
 from pipelay.analysis.extremes import extremes
 from pipelay.analysis.statistics import METHODS, most_probable_maximum
 from pipelay.analysis.sweep import STATISTICS
@@ -27,59 +28,10 @@ from pipelay.report import run_report, sweep_report
 from pipelay.report.html import number
 from pipelay.scenario import apply_overrides, mark_results, parse_scenario
 
-# The scenario of tests/test_fatigue_damage.py (a DP vessel holding a 12-element pipe on the seabed, in a
+# The tests' DP vessel in waves (tests/dp_in_waves.py: a DP vessel holding a 12-element pipe on the seabed, in a
 # JONSWAP sea), run for 300 s instead of 60: 676 records after the start-up, enough for all three most probable
 # maximum methods (10 Tz for Rayleigh, 30 peaks for Weibull). A fraction of a second.
-SCENARIO = """
-title = "report test: DP vessel in waves, pipe on the seabed"
-
-[pipe]
-outer_diameter = 0.6
-wall_thickness = 0.03
-contents_density = 0.0
-drag = [0.0, 1.0]
-added_mass = [0.0, 1.0]
-
-[rod]
-start = [0.0, 0.0, 0.0]
-end = [1200.0, 0.0, 0.0]
-elements = 12
-
-[sea]
-depth = 800.0
-
-[sea.seabed]
-stiffness = 1e5
-friction = 0.3
-
-[sea.waves]
-kind = "jonswap"
-hs = 2.0
-tp = 8.0
-direction = 0.5
-seed = 3
-components = 40
-ramp = 10.0
-
-[supports.A]
-kind = "pin"
-
-[vessel]
-end = "B"
-model = "osv"
-eta = [730.0, 0.0, -800.0, 0.0, 0.0, 0.0]
-angle = [0.0, -1.33, 0.0]
-
-[controller]
-kp = [0.5e6, 0.5e6, 0, 0, 0, 0]
-kd = [0.4e7, 0.4e7, 0, 0, 0, 0]
-reference = [730.0, 0.0, 0.0, 0.0, 0.0, 0.0]
-
-[solver]
-dt = 0.2
-t_end = 300.0
-record_every = 2
-"""
+SCENARIO = scenario_text("report test: DP vessel in waves, pipe on the seabed", t_end=300.0)
 
 TITLE = "report test: DP vessel in waves, pipe on the seabed"
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
