@@ -58,6 +58,9 @@ pub struct Previous<'a> {
     pub dt: f64,
 }
 
+/// The solver's iteration limit for a second try when the first (Clarabel's default, 200) ran out.
+const LONGER_ITERATIONS: u32 = 5000;
+
 /// The rows of one inequality A u ≤ b, as triplets.
 #[derive(Default)]
 struct Rows {
@@ -282,19 +285,29 @@ fn solve(
         .collect();
     let p = CscMatrix::new_from_triplets(n, n, (0..n).collect(), (0..n).collect(), diagonal);
     let q = vec![0.0; n];
-    let settings = DefaultSettings {
-        verbose: false,
-        ..DefaultSettings::default()
-    };
     let cones: Vec<SupportedConeT<f64>> = cones;
-    let mut solver = DefaultSolver::new(&p, &q, &a, &bounds, &cones, settings).map_err(|e| {
-        Error::input(
-            "thrusters",
-            format!("{e:?}"),
-            "must give a well-posed allocation problem",
-        )
-    })?;
-    solver.solve();
+    let run = |max_iter: u32| {
+        let settings = DefaultSettings {
+            verbose: false,
+            max_iter,
+            ..DefaultSettings::default()
+        };
+        let mut solver =
+            DefaultSolver::new(&p, &q, &a, &bounds, &cones, settings).map_err(|e| {
+                Error::input(
+                    "thrusters",
+                    format!("{e:?}"),
+                    "must give a well-posed allocation problem",
+                )
+            })?;
+        solver.solve();
+        Ok::<_, Error>(solver)
+    };
+    let mut solver = run(DefaultSettings::<f64>::default().max_iter)?;
+    if matches!(solver.solution.status, SolverStatus::MaxIterations) {
+        // Thrusters of very unequal sizes pushed far beyond them converge slowly: give it longer.
+        solver = run(LONGER_ITERATIONS)?;
+    }
     let status = solver.solution.status;
     if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
         return Err(Error::Convergence {
@@ -366,6 +379,38 @@ mod tests {
             );
         }
         thrusters
+    }
+
+    /// The fuzzing's case: two tunnels 456 times apart in size, pushed at five times their capacity; the
+    /// solver's first run stops at its iteration limit (the slack's weight against a 1 kN thruster).
+    #[test]
+    fn a_command_beyond_very_unequal_thrusters_saturates_them() {
+        let tunnel = |x: f64, y: f64, max: f64| {
+            Thruster::new(
+                ThrusterKind::Tunnel,
+                Vector2::new(x, y),
+                max,
+                None,
+                None,
+                None,
+                1.0,
+            )
+            .unwrap()
+        };
+        let thrusters = [tunnel(8.5, 1.75, 456_631.187_5), tunnel(0.0, 0.0, 1000.0)];
+        let tau = Vector6::new(0.0, 2_333_673.687_5, 0.0, 0.0, 0.0, 0.0);
+        let allocation = allocate(&thrusters, &tau, None).unwrap();
+        assert!(allocation.saturated);
+        assert!(
+            (allocation.thrust[0] - 456_631.187_5).abs() < 1e-3 * 456_631.187_5,
+            "{:?}",
+            allocation.thrust
+        );
+        assert!(
+            allocation.thrust[1].abs() <= 1000.0 * (1.0 + 1e-6),
+            "{:?}",
+            allocation.thrust
+        );
     }
 
     #[test]
