@@ -346,3 +346,22 @@ def test_bad_input_names_the_argument(call: Callable[[], object], argument: str)
         call()
     print(error.value)
     assert str(error.value).startswith(f"{argument}: ")
+
+
+def test_the_utilisation_of_all_records_at_once_is_each_records_check() -> None:
+    """A run whose records all have every element is checked in one evaluation: the same numbers, to the bit,
+    as `dnv_st_f101` of each record (the tests' DP vessel in waves, with its sea's pressure)."""
+    import tomllib
+
+    from dp_in_waves import scenario_text
+    from pipelay.scenario import parse_scenario
+
+    scenario = parse_scenario(tomllib.loads(scenario_text("all records at once", t_end=20.0)))
+    model = scenario.model
+    results = model.simulation(model.static(), dt=scenario.dt).run(20.0, progress=False)
+    together = st.utilisation(results, model=model, checks={"safety_class": "low"})
+    one_by_one = st.utilisation(
+        results, model=model, checks=lambda record: dnv_st_f101(record, safety_class="low")
+    )
+    assert together.shape == (len(results), 12) and np.isfinite(together).all()
+    assert np.array_equal(together, one_by_one)

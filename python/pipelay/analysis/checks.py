@@ -324,16 +324,18 @@ def dnv_st_f101(
     pipelay.InputError
         If an argument or a state attribute is missing, of the wrong type, shape or value.
     """
-    grade_key = None if grade is None else _choice("grade", grade, list(GRADES), "is not a known grade")
-    safety = _choice("safety_class", safety_class, list(GAMMA_SC), "is not a safety class")
-    fab = _choice("fabrication", fabrication, list(ALPHA_FAB), "is not a fabrication")
-    cond = _choice("condition", condition, list(CONDITIONS), "is not a condition")
-    p_i = _number("internal_pressure", internal_pressure, minimum=0.0)
-    t_corr = _number("corrosion_allowance", corrosion_allowance, minimum=0.0)
-    f0 = _number("ovality", ovality, minimum=0.005, maximum=1.0, allowed="a fraction from 0.005 to 1")
-    f_temp = _number("temperature_derating", temperature_derating, minimum=0.0)
-    limit = None if strain_limit is None else _number("strain_limit", strain_limit, positive=True)
-
+    options = _options(
+        grade=grade,
+        wall_thickness=wall_thickness,
+        safety_class=safety_class,
+        internal_pressure=internal_pressure,
+        fabrication=fabrication,
+        corrosion_allowance=corrosion_allowance,
+        ovality=ovality,
+        temperature_derating=temperature_derating,
+        condition=condition,
+        strain_limit=strain_limit,
+    )
     forces = _state_array(state, "section_forces", (None, 6))
     n = forces.shape[0]
     if n == 0:
@@ -344,7 +346,6 @@ def dnv_st_f101(
     positions = _state_array(state, "positions", (n + 1, 3))
     strain = np.abs(_state_array(state, "strain", (n,)))
 
-    options = _Options(grade_key, wall_thickness, safety, fab, cond, p_i, t_corr, f0, f_temp, limit)
     p_e = _external_pressure(state, positions)
     segment_of = _attribute(state, "segment_of", "state", required=False)
     sections = _attribute(state, "sections", "state", required=False)
@@ -352,6 +353,66 @@ def dnv_st_f101(
         section = _attribute(state, "section", "state")
         return _check_section(section, "state.section", forces, tension, strain, p_e, options)
     return _check_segments(list(sections), np.asarray(segment_of), forces, tension, strain, p_e, options)
+
+
+def _options(
+    *,
+    grade: str | None = None,
+    wall_thickness: float | None = None,
+    safety_class: str = "medium",
+    internal_pressure: float = 0.0,
+    fabrication: str = "seamless",
+    corrosion_allowance: float = 0.0,
+    ovality: float = 0.005,
+    temperature_derating: float = 0.0,
+    condition: str = "installation",
+    strain_limit: float | None = None,
+) -> _Options:
+    """The arguments of `dnv_st_f101` checked (the same keywords and defaults)."""
+    return _Options(
+        None if grade is None else _choice("grade", grade, list(GRADES), "is not a known grade"),
+        wall_thickness,
+        _choice("safety_class", safety_class, list(GAMMA_SC), "is not a safety class"),
+        _choice("fabrication", fabrication, list(ALPHA_FAB), "is not a fabrication"),
+        _choice("condition", condition, list(CONDITIONS), "is not a condition"),
+        _number("internal_pressure", internal_pressure, minimum=0.0),
+        _number("corrosion_allowance", corrosion_allowance, minimum=0.0),
+        _number("ovality", ovality, minimum=0.005, maximum=1.0, allowed="a fraction from 0.005 to 1"),
+        _number("temperature_derating", temperature_derating, minimum=0.0),
+        None if strain_limit is None else _number("strain_limit", strain_limit, positive=True),
+    )
+
+
+def _records_utilisation(
+    section: Any,
+    forces: FloatArray,
+    strain: FloatArray,
+    positions: FloatArray,
+    sea: tuple[float, float] | None,
+    parameters: Any,
+) -> tuple[FloatArray, FloatArray]:
+    """The load- and displacement-controlled utilisations (records, n) of the elements of one `section` at
+    every record at once: `forces` (records, n, 6), `strain` (records, n), `positions` (records, n + 1, 3),
+    `sea` (water depth, density) or None, `parameters` the keywords of `dnv_st_f101`. The same numbers as
+    `dnv_st_f101` of each record (the same element-wise formulas), in one evaluation."""
+    count, n = forces.shape[:2]
+    p_e = np.zeros((count, n))
+    if sea is not None:
+        depth = _number("state.water_depth", sea[0], positive=True)
+        density = _number("state.water_density", sea[1], positive=True)
+        z_mid = 0.5 * (positions[:, :-1, 2] + positions[:, 1:, 2])
+        p_e = density * GRAVITY * np.clip(depth + z_mid, 0.0, None)
+    flat = forces.reshape(count * n, 6)
+    checked = _check_section(
+        section,
+        "state.section",
+        flat,
+        flat[:, 0],
+        np.abs(strain.reshape(count * n)),
+        p_e.reshape(count * n),
+        _options(**dict(parameters)),
+    )
+    return checked.load_controlled.reshape(count, n), checked.displacement_controlled.reshape(count, n)
 
 
 @dataclass(frozen=True)

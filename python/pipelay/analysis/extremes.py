@@ -22,7 +22,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 # One way of wording input errors across the package's Python modules.
-from pipelay.analysis.checks import Utilisation, _Described, _input_error, _number, dnv_st_f101
+from pipelay.analysis.checks import (
+    Utilisation,
+    _Described,
+    _input_error,
+    _number,
+    _records_utilisation,
+    dnv_st_f101,
+)
 
 __all__ = ["extremes", "utilisation"]
 
@@ -185,6 +192,12 @@ def _utilisations(
                 "section", None, "a pipe section (Section.pipe) or a model, for the DNV checks", "is missing"
             )
         parameters = dict(checks)
+        positions = np.asarray(results.positions, dtype=np.float64)
+        if strain is not None and np.isfinite(forces).all() and np.isfinite(positions).all():
+            # Every record has every element (no pay-out): all records in one evaluation, the same numbers.
+            water = None if sea is None else (float(sea.depth), float(sea.density))
+            load, displacement = _records_utilisation(section, forces, strain, positions, water, parameters)
+            return np.maximum(load, displacement), np.array(load), np.array(displacement), False
 
         def dnv(record: Any) -> Any:
             return dnv_st_f101(record, **parameters)
