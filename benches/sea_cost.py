@@ -20,14 +20,12 @@ from __future__ import annotations
 
 import argparse
 import copy
-import os
-import platform
-import subprocess
 import time
 import tomllib
 from pathlib import Path
 from typing import Any
 
+from machine import machine
 from pipelay.scenario import parse_scenario
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -68,27 +66,12 @@ def cost(data: dict[str, Any], steps: int, repeat: int) -> float:
     return best
 
 
-def _machine() -> str:
-    cpu = next(
-        (
-            line.split(":", 1)[1].strip()
-            for line in Path("/proc/cpuinfo").read_text().splitlines()
-            if "model name" in line
-        ),
-        platform.processor(),
-    )
-    commit = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=False
-    )
-    return f"{os.cpu_count()} cores, {cpu}; commit {commit.stdout.strip() or 'unknown'}"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--steps", type=int, default=100)
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
-    print(f"`python benches/sea_cost.py --steps {args.steps} --repeat {args.repeat}`; {_machine()}")
+    print(f"`python benches/sea_cost.py --steps {args.steps} --repeat {args.repeat}`; {machine()}")
     print()
     print("| model | calm ms/step | sea ms/step | sea / calm | sea run × real time |")
     print("| --- | --- | --- | --- | --- |")

@@ -15,14 +15,12 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import os
-import platform
-import subprocess
 import time
 import tomllib
 from pathlib import Path
 
 import numpy as np
+from machine import machine
 from pipelay.analysis.statistics import response_spectrum
 from pipelay.scenario import parse_scenario
 
@@ -63,28 +61,13 @@ def describe(values: np.ndarray) -> dict[str, float]:
     }
 
 
-def _machine() -> str:
-    cpu = next(
-        (
-            line.split(":", 1)[1].strip()
-            for line in Path("/proc/cpuinfo").read_text().splitlines()
-            if "model name" in line
-        ),
-        platform.processor(),
-    )
-    commit = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=False
-    )
-    return f"{len(os.sched_getaffinity(0))} cores, {cpu}; commit {commit.stdout.strip() or 'unknown'}"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--dt", type=float, default=0.2, help="the time step (s); also run at half of it")
     parser.add_argument("--hours", type=float, default=3.0, help="the storm's duration (h)")
     args = parser.parse_args()
     seconds = args.hours * 3600.0
-    print(f"`python benches/storm.py --dt {args.dt:g} --hours {args.hours:g}`; {_machine()}")
+    print(f"`python benches/storm.py --dt {args.dt:g} --hours {args.hours:g}`; {machine()}")
     print()
     runs = {dt: storm(dt, seconds) for dt in (args.dt, args.dt / 2)}
     print("| Δt (s) | wall time (s) | × real time |")

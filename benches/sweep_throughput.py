@@ -14,14 +14,14 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import os
-import platform
 import shutil
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
+
+from machine import machine
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 PIPELAY = [sys.executable, "-m", "pipelay"]
@@ -66,27 +66,12 @@ def swept(path: Path, folder: Path) -> float:
     return time.perf_counter() - began
 
 
-def _machine() -> str:
-    cpu = next(
-        (
-            line.split(":", 1)[1].strip()
-            for line in Path("/proc/cpuinfo").read_text().splitlines()
-            if "model name" in line
-        ),
-        platform.processor(),
-    )
-    commit = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=False
-    )
-    return f"{len(os.sched_getaffinity(0))} cores, {cpu}; commit {commit.stdout.strip() or 'unknown'}"
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=2)
     parser.add_argument("--t-end", type=float, default=1290.0)
     args = parser.parse_args()
-    print(f"`python benches/sweep_throughput.py --repeat {args.repeat} --t-end {args.t_end:g}`; {_machine()}")
+    print(f"`python benches/sweep_throughput.py --repeat {args.repeat} --t-end {args.t_end:g}`; {machine()}")
     print()
     with tempfile.TemporaryDirectory() as name:
         folder = Path(name)
