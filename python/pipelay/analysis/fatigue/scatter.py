@@ -149,8 +149,10 @@ def read_scatter(path: str | os.PathLike[str]) -> ScatterDiagram:
     lines = [
         line for line in target.read_text().splitlines() if line.strip() and not line.lstrip().startswith("#")
     ]
-    rows = list(csv.DictReader(lines))
-    header = [name.strip() for name in (csv.DictReader(lines).fieldnames or [])]
+    reader = csv.DictReader(lines)
+    header = [name.strip() for name in (reader.fieldnames or [])]
+    # Each row by its header's names as stripped, so that "hs, tp" names the columns hs and tp.
+    rows = [{(key or "").strip(): value for key, value in row.items()} for row in reader]
     missing = [name for name in ("hs", "tp", "probability") if name not in header]
     if missing:
         raise _input_error(
@@ -162,7 +164,7 @@ def read_scatter(path: str | os.PathLike[str]) -> ScatterDiagram:
     columns: dict[str, list[float]] = {name: [] for name in header}
     for number, row in enumerate(rows, start=2):
         for name in header:
-            text = (row.get(name) or "").strip() if name in row else ""
+            text = (row.get(name) or "").strip()
             try:
                 columns[name].append(float(text))
             except ValueError:
