@@ -242,7 +242,9 @@ def test_bad_damage_arguments_are_input_errors(run: pl.Results) -> None:
 
 def test_a_scatter_table_with_spaces_after_its_commas_reads(tmp_path: Path) -> None:
     """`hs, tp, heading, probability` names the columns hs, tp, heading and probability."""
-    (tmp_path / "scatter.csv").write_text("hs, tp, heading, probability\n1.5, 7.0, 30, 0.4\n2.0, 8.0, 0, 0.6\n")
+    (tmp_path / "scatter.csv").write_text(
+        "hs, tp, heading, probability\n1.5, 7.0, 30, 0.4\n2.0, 8.0, 0, 0.6\n"
+    )
     found = fatigue.read_scatter(tmp_path / "scatter.csv")
     assert found.tp.tolist() == [7.0, 8.0] and found.probability.tolist() == [0.4, 0.6]
     np.testing.assert_allclose(found.heading, [math.radians(30.0), 0.0])
