@@ -21,6 +21,7 @@ import tomllib
 from pathlib import Path
 
 import pipelay as pl
+from machine import machine
 from pipelay.scenario import parse_scenario
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "examples" / "s_lay.toml"
@@ -59,6 +60,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--quick", action="store_true", help="stop at n = 1000")
     args = parser.parse_args(argv)
     sizes = (280, 1000) if args.quick else (280, 1000, 3000)
+    print(f"`python benches/lay_cost.py{' --quick' if args.quick else ''}`; {machine()}")
     print(
         "| n | statics, rollers (s) | step, rollers (ms) | Newton its | statics, no rollers (s) | step, no rollers (ms) | ratio |"
     )

@@ -4,9 +4,9 @@ the roller contact's stiffness and the time step.
 Not a test. The S-lay of ``tests/test_pay_out.py``: a 0.6 m × 30 mm steel pipe (empty), 700 m in 140 elements,
 pinned at A on a frictionless seabed in 150 m of water, held by an OSV's tensioner over a 200 m-radius, 100 m
 stinger of 15 rollers; the DP follows a route at 0.3 m/s and the tensioner pays out at 0.3 m/s, both ramped
-over 60 s; 300 s. The pipe's chord polygon bumps each roller once per element; a stiff contact that the time
-step does not resolve (ω = √(k/(m ℓ)), ωΔt ≫ 1) rings. Prints a Markdown table of the top tension's standard
-deviation over 200–300 s.
+over 60 s; 300 s. A contact that bumped as pipe slides over it (the pipe's chord polygon did, once per element)
+would ring where the time step does not resolve its stiffness (ω = √(k/(m ℓ)), ωΔt ≫ 1). Prints a Markdown
+table of the top tension's standard deviation over 200–300 s.
 
 Usage::
 
@@ -19,6 +19,7 @@ import math
 import time
 
 import pipelay as pl
+from machine import machine
 
 SPEED, RAMP = 0.3, 60.0
 
@@ -56,6 +57,7 @@ def s_lay(stiffness: float, elements: int) -> pl.Model:
 
 
 def main() -> None:
+    print(f"`python benches/pay_out_rollers.py`; {machine()}")
     print(
         "| roller stiffness k | elements | Δt | ωΔt | static top tension | std over 200–300 s | iterations (max) | wall |"
     )

@@ -140,17 +140,20 @@ fn elastica_invariant_error(x: f64, n: usize) -> (f64, f64) {
 /// Frictionless rollers do no work along the pipe: T + w z + M²/(2EI) (effective tension, submerged weight
 /// w, e3 down, bending moment M) is a first integral of the elastica between concentrated normal loads and
 /// stays continuous across them. From the tensioner, over the stinger's rollers, down the free span: within
-/// 0.1 % of the top tension below the stinger and 1 % on it; the error shrinks as the mesh is refined.
+/// 0.1 % of the top tension below the stinger and on it (2.5 m elements); the error on the stinger, where
+/// each roller's load is shared by the spline's four nodes, shrinks at first order as the mesh is refined
+/// (by 2.8 from 2.5 m to 0.625 m elements).
 #[test]
 fn frictionless_rollers_keep_the_elastica_invariant() {
     let (below, worst) = elastica_invariant_error(560.0, 280);
-    assert!(below < 1e-3 && worst < 1e-2, "{below:e} {worst:e}");
-    let (_, coarse) = elastica_invariant_error(600.0, 280);
-    let (below, fine) = elastica_invariant_error(600.0, 560);
-    assert!(below < 1e-3 && fine < 1e-2, "{below:e} {fine:e}");
+    assert!(below < 1e-3 && worst < 1e-3, "{below:e} {worst:e}");
+    let (below, coarse) = elastica_invariant_error(600.0, 280);
+    assert!(below < 1e-3 && coarse < 1e-3, "{below:e} {coarse:e}");
+    let (below, fine) = elastica_invariant_error(600.0, 1120);
+    assert!(below < 1e-3, "{below:e}");
     assert!(
-        coarse > 3.0 * fine,
-        "refining 2.5 m → 1.25 m elements: {coarse:e} → {fine:e}"
+        coarse > 2.2 * fine,
+        "refining 2.5 m → 0.625 m elements: {coarse:e} → {fine:e}"
     );
 }
 
@@ -159,7 +162,7 @@ fn frictionless_rollers_keep_the_elastica_invariant() {
 #[test]
 fn rollers_keep_the_energy_balance_exact() {
     // Let go: the pipe pulls the vessel back over its stinger.
-    let mut sim = common::released_without_dissipation(s_lay(620.0, 140, None), 0.1);
+    let mut sim = common::released_without_dissipation(s_lay(640.0, 140, None), 0.1);
     let start = sim.observe().energy();
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
     let mut worst: f64 = 0.0;
@@ -187,10 +190,10 @@ fn rollers_keep_the_energy_balance_exact() {
     let eta = sim.observe().vessel_values().expect("vessel")[0];
     println!(
         "energy drift {worst:.2e} of {scale:.3e} J; vessel moved {:.2} m; {changes} roller lift-offs or touches; roller energy {:.3e} J",
-        eta[0] - 620.0,
+        eta[0] - 640.0,
         sim.observe().energy().rollers
     );
-    assert!((eta[0] - 620.0).abs() > 1.0, "the vessel moves");
+    assert!((eta[0] - 640.0).abs() > 1.0, "the vessel moves");
     assert!(changes >= 1, "contacts change during the run");
     assert!(worst < 1e-8, "energy drift {worst:e}");
 }

@@ -1,10 +1,10 @@
 //! The tangent's sparsity pattern over the free DOFs: each element couples its two nodes, and a vessel's
-//! rollers couple the nodes within their reach to the vessel's node and to their neighbours up to three
-//! nodes away.
+//! rollers couple the nodes within their reach to the vessel's node and to their neighbours up to
+//! [`COUPLING_REACH`] nodes away.
 // Indexing cannot go out of bounds here: DOF, node and equation indices of the model's own mesh.
 #![allow(clippy::indexing_slicing)]
 use crate::assembly::dofs::{DofMap, NODE_DOFS};
-use crate::contact::rollers::RollerContact;
+use crate::contact::rollers::{RollerContact, COUPLING_REACH};
 use crate::linalg::pattern::Pattern;
 use crate::model::Model;
 
@@ -46,7 +46,7 @@ impl TangentPattern {
             for a in nodes.clone() {
                 couple(a, attachment.node);
                 couple(attachment.node, a);
-                for b in nodes.clone().filter(|b| b.abs_diff(a) <= 3) {
+                for b in nodes.clone().filter(|b| b.abs_diff(a) <= COUPLING_REACH) {
                     couple(a, b);
                 }
             }

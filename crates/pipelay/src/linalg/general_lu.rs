@@ -21,8 +21,10 @@ use faer::{Conj, Mat, MatMut, Par, Spec};
 /// Systems with at most this many unknowns are factorised densely (unless banded).
 const DENSE_LIMIT: usize = 150;
 
-/// Systems whose bandwidths kl + ku are at most this are factorised as band matrices.
-const BAND_LIMIT: usize = 48;
+/// Systems whose bandwidths kl + ku are at most this are factorised as band matrices: node-ordered unknowns
+/// coupled to nodes up to four apart (rollers, [`crate::contact::rollers::COUPLING_REACH`]) have
+/// kl = ku = 5·6 − 1.
+const BAND_LIMIT: usize = 58;
 
 /// The factorisation behind [`GeneralLu`].
 enum Factors {

@@ -2,7 +2,7 @@
 //! and solves, without allocating. The factorisation is chosen by the pattern's shape:
 //! - a rod's tangent, its unknowns in node order, is block tridiagonal (each node couples to its
 //!   neighbours): [`RodLu`];
-//! - a vessel's rollers couple a window of nodes next to the vessel up to three nodes apart: block
+//! - a vessel's rollers couple a window of nodes next to the vessel up to four nodes apart: block
 //!   elimination around that window ([`WindowLu`]);
 //! - they also couple the vessel's node to every node within their reach: block elimination around those
 //!   border unknowns ([`BorderLu`]), whose interior is one of the two above;

@@ -1,5 +1,5 @@
 //! LU of a rod's tangent that is block tridiagonal except in a window of nodes at one end, where a vessel's
-//! rollers couple each node to its neighbours up to three nodes away.
+//! rollers couple each node to its neighbours up to four nodes away.
 //!
 //! Ordered as [P; W] (the rest of the rod P, the window W), the system [A B; C D][x; w] = [r; s] couples P
 //! and W only through the block between the window's first node and its neighbour: B has at most six

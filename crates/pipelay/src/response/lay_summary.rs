@@ -8,6 +8,7 @@
 //! steepest.
 // Indexing cannot go out of bounds here: Node and element indices of the state summarised (the vessel's node is a node of its mesh).
 #![allow(clippy::indexing_slicing)]
+use crate::contact::rollers::roller_gap;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
@@ -198,8 +199,8 @@ pub fn lay_summary(
     })
 }
 
-/// The gap between the line and the last roller (m), from the element nearest it as the roller contact reports
-/// (`rollers`: forces and nearest elements); NaN without rollers.
+/// The gap between the line and the last roller (m), as the roller contact measures it, from the element
+/// nearest it that the contact reports (`rollers`: forces and nearest elements); NaN without rollers.
 fn tip_clearance(
     model: &Model,
     positions: &[Vector3<f64>],
@@ -214,18 +215,7 @@ fn tip_clearance(
     };
     let node = attachment.node;
     let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
-    let centre = positions[node] + body * (roller.centre - attachment.hang_off());
-    let axis = body * roller.axis;
-    // The chord's nearest point to the axis, in the plane across the axis.
-    let across = |v: Vector3<f64>| v - axis * axis.dot(&v);
-    let start = across(positions[element] - centre);
-    let chord = across(positions[element + 1] - positions[element]);
-    let length2 = chord.norm_squared();
-    let s = if length2 > 0.0 {
-        (-start.dot(&chord) / length2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let distance = (start + s * chord).norm();
-    distance - roller.radius - 0.5 * model.rod.section(element).hydrodynamic_diameter
+    // The body frame's origin as the rollers place it: the hold point at the end node.
+    let origin = positions[node] - body * attachment.hang_off();
+    roller_gap(&model.rod, positions, roller, &body, &origin, element)
 }
