@@ -69,8 +69,8 @@ pub struct RollerContact {
     rollers: Vec<LocalRoller>,
     stiffness: f64,
     end_node: usize,
-    /// Half the hydrodynamic diameter of each element of the rod (m).
-    half_diameters: Vec<f64>,
+    /// The line's surface along each element of the rod.
+    surfaces: Surfaces,
     /// The elements that may touch a roller (those within reach of the held end).
     elements: std::ops::Range<usize>,
     /// The rod's last node.
@@ -279,15 +279,38 @@ fn spline_distance(
     }
 }
 
-/// Whether element e's spline ends at its first or last node (mirrored there): at an end of the rod, and
-/// at a joint of two elements of different diameters (`half_diameters`, per element: a pipe's end and the
-/// wire fitted to it, say), so that the one's direction does not bend the other's surface.
-fn spline_ends(half_diameters: &[f64], e: usize) -> [bool; 2] {
-    let diameter = half_diameters[e];
-    [
-        e == 0 || half_diameters[e - 1] != diameter,
-        e + 1 == half_diameters.len() || half_diameters[e + 1] != diameter,
-    ]
+/// The line's surface along each element: half its hydrodynamic diameter (m), and whether it is a cable's
+/// bar (whose centreline is its chord, kinked at the nodes).
+#[derive(Debug, Clone)]
+struct Surfaces {
+    half_diameters: Vec<f64>,
+    cables: Vec<bool>,
+}
+
+impl Surfaces {
+    fn new(rod: &Rod) -> Self {
+        let sections = (0..rod.element_count()).map(|e| rod.section(e));
+        Surfaces {
+            half_diameters: sections
+                .clone()
+                .map(|s| 0.5 * s.hydrodynamic_diameter)
+                .collect(),
+            cables: sections.map(|s| s.cable).collect(),
+        }
+    }
+
+    /// Whether element e's spline ends at its first or last node (mirrored there): at an end of the rod, at
+    /// a joint of two elements of different diameters (a pipe's end and the wire fitted to it, say), so
+    /// that the one's direction does not bend the other's surface, and at both ends of a cable's bar, which
+    /// makes the spline its chord.
+    fn spline_ends(&self, e: usize) -> [bool; 2] {
+        let (diameters, cables) = (&self.half_diameters, &self.cables);
+        let joint = |other: usize| diameters[other] != diameters[e] || cables[other] || cables[e];
+        [
+            e == 0 || joint(e - 1),
+            e + 1 == diameters.len() || joint(e + 1),
+        ]
+    }
 }
 
 /// Of the spline's elements next to the nearest chord `chord` (itself and its neighbours within
@@ -295,7 +318,7 @@ fn spline_ends(half_diameters: &[f64], e: usize) -> [bool; 2] {
 /// coordinates in the roller's frame given by `local`.
 fn nearest_spline_element(
     roller: &LocalRoller,
-    half_diameters: &[f64],
+    surfaces: &Surfaces,
     elements: std::ops::Range<usize>,
     chord: usize,
     local: &dyn Fn(usize) -> Vector3<f64>,
@@ -305,7 +328,7 @@ fn nearest_spline_element(
         if !elements.contains(&e) {
             continue;
         }
-        let mirrored = spline_ends(half_diameters, e);
+        let mirrored = surfaces.spline_ends(e);
         // A mirrored control node has weight zero: any point stands for it.
         let points = [
             local(if mirrored[0] { e } else { e - 1 }),
@@ -313,7 +336,7 @@ fn nearest_spline_element(
             local(e + 1),
             local(if mirrored[1] { e + 1 } else { e + 2 }),
         ];
-        let half_diameter = half_diameters[e];
+        let half_diameter = surfaces.half_diameters[e];
         let (d, _, _) = spline_distance(roller, roller.radius + half_diameter, &points, mirrored);
         if d - half_diameter < best.0 {
             best = (d - half_diameter, e);
@@ -341,12 +364,10 @@ pub fn roller_gap(
         projector: Matrix3::identity() - axis * axis.transpose(),
         radius: roller.radius,
     };
-    let half_diameters: Vec<f64> = (0..rod.element_count())
-        .map(|e| 0.5 * rod.section(e).hydrodynamic_diameter)
-        .collect();
-    let elements = 0..half_diameters.len();
+    let surfaces = Surfaces::new(rod);
+    let elements = 0..surfaces.half_diameters.len();
     let in_body = |node: usize| body.transpose() * (positions[node] - origin);
-    nearest_spline_element(&local, &half_diameters, elements, chord, &in_body).0
+    nearest_spline_element(&local, &surfaces, elements, chord, &in_body).0
 }
 
 impl RollerContact {
@@ -395,9 +416,7 @@ impl RollerContact {
             stiffness: lay.roller_stiffness,
             end_node,
             locals: std::array::from_fn(|_| Vec::with_capacity(elements.len() + 1)),
-            half_diameters: (0..count)
-                .map(|e| 0.5 * rod.section(e).hydrodynamic_diameter)
-                .collect(),
+            surfaces: Surfaces::new(rod),
             elements,
             last_node: count,
             energy_end: 0.0,
@@ -429,7 +448,7 @@ impl RollerContact {
         // The element whose surface is nearest: the smallest gap d − D/2.
         let mut best: Option<(f64, Segment, [f64; 4], Vector3<f64>)> = None;
         for segment in segments {
-            let half_diameter = self.half_diameters[segment.element];
+            let half_diameter = self.surfaces.half_diameters[segment.element];
             let reach = roller.radius + half_diameter;
             let points = segment.control.map(|i| y[i]);
             let (d, weights, direction) = spline_distance(roller, reach, &points, segment.mirrored);
@@ -453,7 +472,7 @@ impl RollerContact {
 
     /// Whether element e's spline ends at its first or last node ([`spline_ends`]).
     fn spline_ends(&self, e: usize) -> [bool; 2] {
-        spline_ends(&self.half_diameters, e)
+        self.surfaces.spline_ends(e)
     }
 
     /// Of the spline's elements next to the nearest chord `chord`, the one whose surface is nearest roller k
@@ -465,14 +484,7 @@ impl RollerContact {
         local: &dyn Fn(usize) -> Vector3<f64>,
     ) -> usize {
         let elements = self.elements.clone();
-        nearest_spline_element(
-            &self.rollers[k],
-            &self.half_diameters,
-            elements,
-            chord,
-            local,
-        )
-        .1
+        nearest_spline_element(&self.rollers[k], &self.surfaces, elements, chord, local).1
     }
 
     /// The spline's `elements` (repeats allowed) as segments, and the sorted nodes that control them; a
@@ -581,7 +593,7 @@ impl RollerContact {
         for k in 0..self.rollers.len() {
             // The nodes R: elements nearest at the end (and, in a step, at the start and midpoint).
             let roller = &self.rollers[k];
-            let diameters = &self.half_diameters;
+            let diameters = &self.surfaces.half_diameters;
             let mut chords = [nearest(roller, diameters, first, &self.locals[0]); 3];
             let mut elements = [self.nearest_segment(k, chords[0], &end_local); 3];
             let states = if stepping { 3 } else { 1 };
@@ -862,7 +874,7 @@ mod tests {
         let (mut contact, _, _) = pipe_over_stinger();
         let (bend, length, overlap) = (200.0, 5.0, 0.01);
         let angle = length / bend;
-        let half_diameter = contact.half_diameters[0];
+        let half_diameter = contact.surfaces.half_diameters[0];
         let radius = 0.25;
         let centre = Vector3::new(0.0, 0.0, bend);
         let axis = Vector3::y();
@@ -915,12 +927,12 @@ mod tests {
     /// Where the pipe (elements 0–6) meets a thin wire (elements 7–10), each side's spline ends at the joint
     /// node 7: the pipe's last element is controlled by nodes 5–7 only, so swinging the wire 2 m about the
     /// joint leaves the pipe's distance from a roller unchanged (a spline running on into the wire would
-    /// move it by centimetres).
+    /// move it by centimetres). A cable's bars are their chords (linear weights).
     #[test]
     fn a_wire_fitted_to_the_pipe_does_not_bend_the_pipes_surface() {
         let (mut contact, positions, _) = pipe_over_stinger();
         for e in 7..11 {
-            contact.half_diameters[e] = 0.04;
+            contact.surfaces.half_diameters[e] = 0.04;
         }
         assert_eq!(contact.spline_ends(6), [false, true]);
         assert_eq!(contact.spline_ends(7), [true, false]);
@@ -940,6 +952,15 @@ mod tests {
         let running_on = [false, false];
         let change = (distance(&positions, running_on) - distance(&swung, running_on)).abs();
         assert!(change > 0.01, "{change}");
+        // A cable's bars are their chords: the spline ends at each of their nodes.
+        for e in 7..11 {
+            contact.surfaces.cables[e] = true;
+        }
+        assert_eq!(contact.surfaces.spline_ends(8), [true, true]);
+        let [weights, _, _] = spline_weights(0.3, [true, true]);
+        for (w, linear) in weights.iter().zip([0.0, 0.7, 0.3, 0.0]) {
+            assert!((w - linear).abs() < 1e-15, "{weights:?}");
+        }
     }
 
     /// The energy–momentum residual's tangent (central differences of the kernel) matches central
