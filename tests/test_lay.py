@@ -148,7 +148,7 @@ def _roller_contacts(state: pl.State, stinger: pl.Stinger, radius: float) -> tup
         best = (math.inf, np.zeros(2))
         for e in range(max(nearest - 1, 0), min(nearest + 2, len(chord))):
             found = minimize_scalar(
-                lambda xi, e=e: float(np.linalg.norm(spline(e, xi))),
+                lambda xi, e=e, spline=spline: float(np.linalg.norm(spline(e, xi))),
                 bounds=(0.0, 1.0),
                 method="bounded",
                 options={"xatol": 1e-12},
