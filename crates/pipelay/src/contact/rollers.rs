@@ -73,8 +73,6 @@ pub struct RollerContact {
     surfaces: Surfaces,
     /// The elements that may touch a roller (those within reach of the held end).
     elements: std::ops::Range<usize>,
-    /// The rod's last node.
-    last_node: usize,
     /// Normal force of each roller at the evaluated (end) state (N, ≥ 0).
     pub forces: Vec<f64>,
     /// The element nearest each roller there.
@@ -170,7 +168,7 @@ fn chord_distance(
 }
 
 /// One element of the spline: the indices, in a roller's node list, of its control nodes i − 1, i, i + 1 and
-/// i + 2, and whether the first or the last is missing (an end of the rod) and mirrored.
+/// i + 2 ([`Surfaces::control_nodes`]), and whether the first or the last is mirrored ([`Surfaces::spline_ends`]).
 #[derive(Debug, Clone, Copy)]
 struct Segment {
     element: usize,
@@ -311,6 +309,15 @@ impl Surfaces {
             e + 1 == diameters.len() || joint(e + 1),
         ]
     }
+
+    /// Element e's control nodes e − 1, e, e + 1, e + 2 and its [`Self::spline_ends`]; a mirrored node's slot
+    /// holds its neighbour in the element (its weight is zero: any node stands for it).
+    fn control_nodes(&self, e: usize) -> ([usize; 4], [bool; 2]) {
+        let ends = self.spline_ends(e);
+        let first = if ends[0] { e } else { e - 1 };
+        let last = if ends[1] { e + 1 } else { e + 2 };
+        ([first, e, e + 1, last], ends)
+    }
 }
 
 /// Of the spline's elements next to the nearest chord `chord` (itself and its neighbours within
@@ -328,14 +335,8 @@ fn nearest_spline_element(
         if !elements.contains(&e) {
             continue;
         }
-        let mirrored = surfaces.spline_ends(e);
-        // A mirrored control node has weight zero: any point stands for it.
-        let points = [
-            local(if mirrored[0] { e } else { e - 1 }),
-            local(e),
-            local(e + 1),
-            local(if mirrored[1] { e + 1 } else { e + 2 }),
-        ];
+        let (control, mirrored) = surfaces.control_nodes(e);
+        let points = control.map(local);
         let half_diameter = surfaces.half_diameters[e];
         let (d, _, _) = spline_distance(roller, roller.radius + half_diameter, &points, mirrored);
         if d - half_diameter < best.0 {
@@ -418,7 +419,6 @@ impl RollerContact {
             locals: std::array::from_fn(|_| Vec::with_capacity(elements.len() + 1)),
             surfaces: Surfaces::new(rod),
             elements,
-            last_node: count,
             energy_end: 0.0,
         })
     }
@@ -426,7 +426,8 @@ impl RollerContact {
     /// The nodes coupled to the end node through the rollers: those of `elements` and, as the spline's
     /// control nodes, one more on each side.
     pub fn nodes(&self) -> std::ops::RangeInclusive<usize> {
-        self.elements.start.saturating_sub(1)..=(self.elements.end + 1).min(self.last_node)
+        let last_node = self.surfaces.half_diameters.len();
+        self.elements.start.saturating_sub(1)..=(self.elements.end + 1).min(last_node)
     }
 
     /// Fills `locals[slot]` with `local(node)` for the nodes of `elements`.
@@ -470,11 +471,6 @@ impl RollerContact {
         (0.5 * self.stiffness * overlap * overlap, gradient)
     }
 
-    /// Whether element e's spline ends at its first or last node ([`spline_ends`]).
-    fn spline_ends(&self, e: usize) -> [bool; 2] {
-        self.surfaces.spline_ends(e)
-    }
-
     /// Of the spline's elements next to the nearest chord `chord`, the one whose surface is nearest roller k
     /// ([`nearest_spline_element`]).
     fn nearest_segment(
@@ -505,10 +501,8 @@ impl RollerContact {
         let mut nodes = [0usize; MAX_NODES];
         let mut node_count = 0;
         for &e in &unique[..count] {
-            let ends = self.spline_ends(e);
-            let first = if ends[0] { e } else { e - 1 };
-            let last = if ends[1] { e + 1 } else { e + 2 };
-            for node in first..=last {
+            let (control, _) = self.surfaces.control_nodes(e);
+            for node in control[0]..=control[3] {
                 if !nodes[..node_count].contains(&node) {
                     nodes[node_count] = node;
                     node_count += 1;
@@ -523,16 +517,10 @@ impl RollerContact {
             mirrored: [false; 2],
         }; MAX_SEGMENTS];
         for (segment, &e) in segments.iter_mut().zip(&unique[..count]) {
-            let mirrored = self.spline_ends(e);
-            let (i, j) = (index(e), index(e + 1));
+            let (control, mirrored) = self.surfaces.control_nodes(e);
             *segment = Segment {
                 element: e,
-                control: [
-                    if mirrored[0] { i } else { index(e - 1) },
-                    i,
-                    j,
-                    if mirrored[1] { j } else { index(e + 2) },
-                ],
+                control: control.map(index),
                 mirrored,
             };
         }
@@ -934,8 +922,8 @@ mod tests {
         for e in 7..11 {
             contact.surfaces.half_diameters[e] = 0.04;
         }
-        assert_eq!(contact.spline_ends(6), [false, true]);
-        assert_eq!(contact.spline_ends(7), [true, false]);
+        assert_eq!(contact.surfaces.spline_ends(6), [false, true]);
+        assert_eq!(contact.surfaces.spline_ends(7), [true, false]);
         let (_, count, nodes, node_count) = contact.segments(&[6]);
         assert_eq!((count, &nodes[..node_count]), (1, &[5, 6, 7][..]));
         let roller = &contact.rollers[0];
@@ -947,7 +935,7 @@ mod tests {
         let distance = |y: &[Vector3<f64>], ends: [bool; 2]| {
             spline_distance(&local, 1.0, &[y[5], y[6], y[7], y[8]], ends).0
         };
-        let ends = contact.spline_ends(6);
+        let ends = contact.surfaces.spline_ends(6);
         assert_eq!(distance(&positions, ends), distance(&swung, ends));
         let running_on = [false, false];
         let change = (distance(&positions, running_on) - distance(&swung, running_on)).abs();
