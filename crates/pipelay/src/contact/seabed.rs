@@ -494,7 +494,7 @@ impl SeabedContact {
                 if *jacobian == Matrix2::zeros() && *hessian == Matrix2::zeros() {
                     continue;
                 }
-                k.fill(0.0);
+                k.as_mut_slice().fill(0.0);
                 for i in 0..2 {
                     for j in 0..2 {
                         let q = self.gap_gradient[e + i];

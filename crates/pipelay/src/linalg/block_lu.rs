@@ -1,4 +1,4 @@
-//! LU of a block-tridiagonal matrix of 6×6 blocks: the rod's tangent with its unknowns in node order, where
+//! LU of a block-tridiagonal matrix of B×B blocks: the rod's tangent with its unknowns in node order, where
 //! each node couples only to its two neighbours (Golub & Van Loan, Matrix Computations, §4.5.1, block
 //! tridiagonal LU), eliminated from both ends towards the middle node m (a "twisted" factorisation, whose two
 //! halves run in parallel). With A_i,i−1 = L_i, A_ii = D_i, A_i,i+1 = U_i:
@@ -9,17 +9,18 @@
 //!
 //! each S_i, T_i and M factorised by LU with partial pivoting inside the block. Then A x = b by
 //! y_i = S_i⁻¹(b_i − L_i y_i−1) (i < m), z_i = T_i⁻¹(b_i − U_i z_i+1) (i > m),
-//! x_m = M⁻¹(b_m − L_m y_m−1 − U_m z_m+1), and outwards x_i = y_i − X_i x_i+1, x_i = z_i − Y_i x_i−1. It costs
-//! about 500 multiply–adds per node in fixed-size loops, against 6·kl·(kl + ku) ≈ 1450 for the band LU with
-//! kl = ku = 11.
+//! x_m = M⁻¹(b_m − L_m y_m−1 − U_m z_m+1), and outwards x_i = y_i − X_i x_i+1, x_i = z_i − Y_i x_i−1. With
+//! B = 6 (a rod's node: three positions, three rotations) it costs about 500 multiply–adds per node in
+//! fixed-size loops, against 6·kl·(kl + ku) ≈ 1450 for the band LU with kl = ku = 11; with B = 3 (a line of
+//! cable nodes, positions only) about an eighth of that ([`NodeBlocks`] picks B from the unknowns).
 //!
 //! Pivoting stays within the diagonal blocks. That is stable for the block diagonally dominant or positive
 //! definite tangents of dynamics (mass over Δt²) and of stable statics; a block whose pivot falls below
 //! `PIVOT_FLOOR` of its size is reported, and the caller factorises with full band pivoting instead.
 //!
 //! Prescribed DOFs are not unknowns: their rows and columns are padded with the identity, so that every node
-//! has a full 6×6 block.
-// Indexing cannot go out of bounds here: node indices below the node count, entries below 36 and 6, and
+//! has a full B×B block.
+// Indexing cannot go out of bounds here: node indices below the node count, entries below B² and B, and
 // block positions computed at construction from the pattern they scatter.
 #![allow(clippy::indexing_slicing)]
 use crate::linalg::largest::largest_magnitude;
@@ -33,15 +34,18 @@ const PARALLEL_NODES: usize = 128;
 /// Smallest pivot accepted, relative to the largest entry of its block.
 const PIVOT_FLOOR: f64 = 1e-13;
 
-/// A 6×6 block, column-major: entry (row, column) at 6·column + row.
-type Block = [f64; 36];
+/// Degrees of freedom of a node in the unknowns' node-major numbering (6·node + k).
+const NODE_SLOTS: usize = 6;
+
+/// A B×B block, column-major: entry (row, column) at `[column][row]`.
+type Block<const B: usize> = [[f64; B]; B];
 
 /// A pivot of a diagonal block was zero, non-finite or below `PIVOT_FLOOR` of the block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SmallPivot;
 
 /// Pattern values that land contiguously in one block: `length` values from pattern position `source` to
-/// entry `entry` of block `block`.
+/// entry `entry` (B·column + row) of block `block`.
 #[derive(Debug, Clone, Copy)]
 struct Run {
     source: u32,
@@ -50,10 +54,44 @@ struct Run {
     length: u8,
 }
 
-/// The LU factors of a block-tridiagonal matrix of 6×6 blocks (module docs).
-pub struct BlockTridiagonalLu {
+/// The block-tridiagonal LU in the block size its unknowns need: 6×6 where a node has rotations among its
+/// unknowns, 3×3 where no node has (a line of cable elements).
+pub enum NodeBlocks {
+    Rotations(BlockTridiagonalLu<6>),
+    Positions(BlockTridiagonalLu<3>),
+}
+
+impl NodeBlocks {
+    /// As [`BlockTridiagonalLu::new`], in 3×3 blocks where every unknown is a position (k < 3).
+    pub fn new(slots: &[usize], col_ptr: &[usize], row_idx: &[usize]) -> Option<Self> {
+        if slots.iter().all(|&slot| slot % NODE_SLOTS < 3) {
+            BlockTridiagonalLu::new(slots, col_ptr, row_idx).map(NodeBlocks::Positions)
+        } else {
+            BlockTridiagonalLu::new(slots, col_ptr, row_idx).map(NodeBlocks::Rotations)
+        }
+    }
+
+    /// Factorises the matrix with `values` in pattern order.
+    pub fn factorise(&mut self, values: &[f64]) -> Result<(), SmallPivot> {
+        match self {
+            NodeBlocks::Rotations(lu) => lu.factorise(values),
+            NodeBlocks::Positions(lu) => lu.factorise(values),
+        }
+    }
+
+    /// Solves A x = b in place (b → x, unknowns only) with the factors.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
+        match self {
+            NodeBlocks::Rotations(lu) => lu.solve_in_place(rhs),
+            NodeBlocks::Positions(lu) => lu.solve_in_place(rhs),
+        }
+    }
+}
+
+/// The LU factors of a block-tridiagonal matrix of B×B blocks (module docs).
+pub struct BlockTridiagonalLu<const B: usize> {
     nodes: usize,
-    /// Node-major position (6·node + k) of each unknown.
+    /// Node-major position (6·node + k, k < B) of each unknown.
     slots: Vec<usize>,
     /// Where the pattern's values go, column by column.
     runs: Vec<Run>,
@@ -62,28 +100,32 @@ pub struct BlockTridiagonalLu {
     /// Blocks ordered [D | L | U], each by node: D_i, then the LU factors of S_i, T_i or M in place (unit
     /// lower triangle below the diagonal); L_i = A_i,i−1, then Y_i = T_i⁻¹L_i (row-major) below the middle;
     /// U_i = A_i,i+1, then X_i = S_i⁻¹U_i (row-major) above it.
-    blocks: Vec<Block>,
+    blocks: Vec<Block<B>>,
     /// Row interchanged with row k at step k of block i's LU.
-    pivots: Vec<[u8; 6]>,
+    pivots: Vec<[u8; B]>,
     /// The padded right-hand side of a solve, node by node.
-    work: Vec<[f64; 6]>,
+    work: Vec<[f64; B]>,
 }
 
-impl BlockTridiagonalLu {
-    /// For a matrix whose unknown i sits at node-major position `slots[i]` (6·node + k, increasing), with
-    /// compressed-column pattern (`col_ptr`, `row_idx`) of sorted rows: `None` unless every entry couples a
-    /// node to itself or to a neighbour.
+impl<const B: usize> BlockTridiagonalLu<B> {
+    /// For a matrix whose unknown i sits at node-major position `slots[i]` (6·node + k, increasing, k < B),
+    /// with compressed-column pattern (`col_ptr`, `row_idx`) of sorted rows: `None` unless every entry couples
+    /// a node to itself or to a neighbour.
     pub fn new(slots: &[usize], col_ptr: &[usize], row_idx: &[usize]) -> Option<Self> {
-        let nodes = slots.last().map_or(0, |&last| last / 6 + 1);
-        if nodes == 0 || row_idx.len() > u32::MAX as usize || 3 * nodes > u32::MAX as usize {
+        let nodes = slots.last().map_or(0, |&last| last / NODE_SLOTS + 1);
+        if nodes == 0
+            || row_idx.len() > u32::MAX as usize
+            || 3 * nodes > u32::MAX as usize
+            || slots.iter().any(|&slot| slot % NODE_SLOTS >= B)
+        {
             return None;
         }
         let mut runs: Vec<Run> = Vec::new();
-        let mut covered = vec![[false; 36]; 3 * nodes];
+        let mut covered = vec![[[false; B]; B]; 3 * nodes];
         for (col, window) in col_ptr.windows(2).enumerate() {
-            let (c, column_node) = (slots[col] % 6, slots[col] / 6);
+            let (c, column_node) = (slots[col] % NODE_SLOTS, slots[col] / NODE_SLOTS);
             for (position, &row) in (window[0]..window[1]).zip(&row_idx[window[0]..window[1]]) {
-                let (r, row_node) = (slots[row] % 6, slots[row] / 6);
+                let (r, row_node) = (slots[row] % NODE_SLOTS, slots[row] / NODE_SLOTS);
                 // Block (row_node, column_node) is D, L (one below) or U (one above), kept at row_node.
                 let kind = match row_node as isize - column_node as isize {
                     0 => 0,
@@ -91,8 +133,8 @@ impl BlockTridiagonalLu {
                     -1 => 2,
                     _ => return None,
                 };
-                let (block, entry) = (kind * nodes + row_node, 6 * c + r);
-                covered[block][entry] = true;
+                let (block, entry) = (kind * nodes + row_node, B * c + r);
+                covered[block][c][r] = true;
                 match runs.last_mut() {
                     Some(run)
                         if run.block as usize == block
@@ -110,15 +152,17 @@ impl BlockTridiagonalLu {
                 }
             }
         }
-        let mut unknown = vec![false; 6 * nodes];
+        let mut unknown = vec![false; NODE_SLOTS * nodes];
         slots.iter().for_each(|&s| unknown[s] = true);
         let mut constants = Vec::new();
-        for (block, entries) in covered.iter().enumerate() {
-            for (entry, _) in entries.iter().enumerate().filter(|(_, &c)| !c) {
-                let slot = 6 * block + entry % 6;
-                let padded_diagonal = block < nodes && entry % 7 == 0 && !unknown[slot];
-                let value = if padded_diagonal { 1.0 } else { 0.0 };
-                constants.push((block as u32, entry as u8, value));
+        for (block, columns) in covered.iter().enumerate() {
+            for (c, rows) in columns.iter().enumerate() {
+                for (r, _) in rows.iter().enumerate().filter(|(_, &covered)| !covered) {
+                    let padded_diagonal =
+                        block < nodes && r == c && !unknown[NODE_SLOTS * block + r];
+                    let value = if padded_diagonal { 1.0 } else { 0.0 };
+                    constants.push((block as u32, (B * c + r) as u8, value));
+                }
             }
         }
         Some(BlockTridiagonalLu {
@@ -126,9 +170,9 @@ impl BlockTridiagonalLu {
             slots: slots.to_vec(),
             runs,
             constants,
-            blocks: vec![[0.0; 36]; 3 * nodes],
-            pivots: vec![[0; 6]; nodes],
-            work: vec![[0.0; 6]; nodes],
+            blocks: vec![[[0.0; B]; B]; 3 * nodes],
+            pivots: vec![[0; B]; nodes],
+            work: vec![[0.0; B]; nodes],
         })
     }
 
@@ -138,19 +182,20 @@ impl BlockTridiagonalLu {
         for run in &self.runs {
             let (source, entry) = (run.source as usize, run.entry as usize);
             let length = run.length as usize;
-            let block = &mut self.blocks[run.block as usize];
-            // A block's whole column (the common run) as a fixed-size copy: a call to memcpy per run of six
+            let block = self.blocks[run.block as usize].as_flattened_mut();
+            // A block's whole column (the common run) as a fixed-size copy: a call to memcpy per run of B
             // values cost more than the copy.
             match (
-                <&mut [f64; 6]>::try_from(&mut block[entry..entry + length]),
-                <&[f64; 6]>::try_from(&values[source..source + length]),
+                <&mut [f64; B]>::try_from(&mut block[entry..entry + length]),
+                <&[f64; B]>::try_from(&values[source..source + length]),
             ) {
                 (Ok(column), Ok(column_values)) => *column = *column_values,
                 _ => block[entry..entry + length].copy_from_slice(&values[source..source + length]),
             }
         }
         for &(block, entry, value) in &self.constants {
-            self.blocks[block as usize][entry as usize] = value;
+            let entry = entry as usize;
+            self.blocks[block as usize][entry / B][entry % B] = value;
         }
         let middle = n / 2;
         let (diagonal, rest) = self.blocks.split_at_mut(n);
@@ -192,9 +237,9 @@ impl BlockTridiagonalLu {
     /// Solves A x = b in place (b → x, unknowns only) with the factors.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
         let n = self.nodes;
-        self.work.iter_mut().for_each(|w| *w = [0.0; 6]);
+        self.work.iter_mut().for_each(|w| *w = [0.0; B]);
         for (&slot, &value) in self.slots.iter().zip(rhs.iter()) {
-            self.work[slot / 6][slot % 6] = value;
+            self.work[slot / NODE_SLOTS][slot % NODE_SLOTS] = value;
         }
         let middle = n / 2;
         let (diagonal, rest) = self.blocks.split_at(n);
@@ -237,7 +282,7 @@ impl BlockTridiagonalLu {
             || back_substitute(&lower[bottom.clone()], work_bottom, &x, Sweep::Up),
         );
         for (&slot, value) in self.slots.iter().zip(rhs.iter_mut()) {
-            *value = self.work[slot / 6][slot % 6];
+            *value = self.work[slot / NODE_SLOTS][slot % NODE_SLOTS];
         }
     }
 }
@@ -263,11 +308,11 @@ impl Sweep {
 /// Eliminates one half: for each node i in order, with `behind` its coupling to the node eliminated before
 /// it and `ahead` its coupling towards the middle, S_i = D_i − behind_i Z_prev, then Z_i = S_i⁻¹ ahead_i
 /// (row-major, in place of `ahead`).
-fn eliminate(
-    diagonal: &mut [Block],
-    behind: &mut [Block],
-    ahead: &mut [Block],
-    pivots: &mut [[u8; 6]],
+fn eliminate<const B: usize>(
+    diagonal: &mut [Block<B>],
+    behind: &mut [Block<B>],
+    ahead: &mut [Block<B>],
+    pivots: &mut [[u8; B]],
     sweep: Sweep,
 ) -> Result<(), SmallPivot> {
     for (i, previous) in sweep.order(diagonal.len()) {
@@ -282,11 +327,11 @@ fn eliminate(
 }
 
 /// Forward substitution over one half: w_i ← S_i⁻¹(w_i − behind_i w_prev).
-fn substitute(
-    diagonal: &[Block],
-    behind: &[Block],
-    pivots: &[[u8; 6]],
-    work: &mut [[f64; 6]],
+fn substitute<const B: usize>(
+    diagonal: &[Block<B>],
+    behind: &[Block<B>],
+    pivots: &[[u8; B]],
+    work: &mut [[f64; B]],
     sweep: Sweep,
 ) {
     for (i, previous) in sweep.order(diagonal.len()) {
@@ -299,7 +344,12 @@ fn substitute(
 }
 
 /// Back substitution over one half, outwards from the middle's solution x_m: x_i = w_i − Z_i x_next.
-fn back_substitute(solved: &[Block], work: &mut [[f64; 6]], middle: &[f64; 6], sweep: Sweep) {
+fn back_substitute<const B: usize>(
+    solved: &[Block<B>],
+    work: &mut [[f64; B]],
+    middle: &[f64; B],
+    sweep: Sweep,
+) {
     let count = work.len();
     for k in 0..count {
         let (i, next) = match sweep {
@@ -311,19 +361,24 @@ fn back_substitute(solved: &[Block], work: &mut [[f64; 6]], middle: &[f64; 6], s
     }
 }
 
-/// LU with partial pivoting of a 6×6 block in place: P S = L U with unit L stored below the diagonal and
+/// LU with partial pivoting of a B×B block in place: P S = L U with unit L stored below the diagonal and
 /// the reciprocals of U's diagonal on it (whole rows interchanged, as LAPACK's getrf).
-fn factorise_block(a: &mut Block, pivots: &mut [u8; 6]) -> Result<(), SmallPivot> {
+fn factorise_block<const B: usize>(
+    a: &mut Block<B>,
+    pivots: &mut [u8; B],
+) -> Result<(), SmallPivot> {
     // A NaN is skipped by the largest entry but fails the pivot test (or, off the pivots, reaches the solution).
-    let floor = PIVOT_FLOOR * largest_magnitude(a);
+    let floor = PIVOT_FLOOR * largest_magnitude(a.as_flattened());
     // Column by column in place, one step per column with its bounds known at compile time (unrolled, free
     // of bounds checks), and no copy in or out.
-    pivots[0] = eliminate_column::<0>(a, floor)?;
-    pivots[1] = eliminate_column::<1>(a, floor)?;
-    pivots[2] = eliminate_column::<2>(a, floor)?;
-    pivots[3] = eliminate_column::<3>(a, floor)?;
-    pivots[4] = eliminate_column::<4>(a, floor)?;
-    pivots[5] = eliminate_column::<5>(a, floor)?;
+    pivots[0] = eliminate_column::<0, B>(a, floor)?;
+    pivots[1] = eliminate_column::<1, B>(a, floor)?;
+    pivots[2] = eliminate_column::<2, B>(a, floor)?;
+    if B > 3 {
+        pivots[3] = eliminate_column::<3, B>(a, floor)?;
+        pivots[4] = eliminate_column::<4, B>(a, floor)?;
+        pivots[5] = eliminate_column::<5, B>(a, floor)?;
+    }
     Ok(())
 }
 
@@ -331,12 +386,15 @@ fn factorise_block(a: &mut Block, pivots: &mut [u8; 6]) -> Result<(), SmallPivot
 /// exceed `floor`), interchanges its row with row `K` in every column, stores the multipliers below the
 /// pivot and the pivot's reciprocal on it, and updates the columns to the right. Returns the pivot's row.
 #[inline(always)]
-fn eliminate_column<const K: usize>(a: &mut Block, floor: f64) -> Result<u8, SmallPivot> {
+fn eliminate_column<const K: usize, const B: usize>(
+    a: &mut Block<B>,
+    floor: f64,
+) -> Result<u8, SmallPivot> {
     let mut pivot = K;
-    let mut largest = a[6 * K + K].abs();
-    for row in K + 1..6 {
-        if a[6 * K + row].abs() > largest {
-            largest = a[6 * K + row].abs();
+    let mut largest = a[K][K].abs();
+    for (row, value) in a[K].iter().enumerate().skip(K + 1) {
+        if value.abs() > largest {
+            largest = value.abs();
             pivot = row;
         }
     }
@@ -344,113 +402,109 @@ fn eliminate_column<const K: usize>(a: &mut Block, floor: f64) -> Result<u8, Sma
         return Err(SmallPivot);
     }
     if pivot != K {
-        for column in 0..6 {
-            a.swap(6 * column + K, 6 * column + pivot);
+        for column in a.iter_mut() {
+            column.swap(K, pivot);
         }
     }
-    let inverse = 1.0 / a[6 * K + K];
-    a[6 * K + K] = inverse;
-    for row in K + 1..6 {
-        a[6 * K + row] *= inverse;
-    }
-    for column in K + 1..6 {
-        let top = a[6 * column + K];
-        for row in K + 1..6 {
-            a[6 * column + row] -= a[6 * K + row] * top;
+    let inverse = 1.0 / a[K][K];
+    a[K][K] = inverse;
+    a[K].iter_mut()
+        .skip(K + 1)
+        .for_each(|multiplier| *multiplier *= inverse);
+    let multipliers = a[K];
+    for column in a.iter_mut().skip(K + 1) {
+        let top = column[K];
+        for row in K + 1..B {
+            column[row] -= multipliers[row] * top;
         }
     }
     Ok(pivot as u8)
 }
 
 /// Solves S x = b in place with the factors of [`factorise_block`].
-fn solve_block(factors: &Block, pivots: &[u8; 6], x: &mut [f64; 6]) {
+fn solve_block<const B: usize>(factors: &Block<B>, pivots: &[u8; B], x: &mut [f64; B]) {
     for (k, &pivot) in pivots.iter().enumerate() {
         x.swap(k, pivot as usize);
     }
-    for k in 0..6 {
+    for k in 0..B {
         let value = x[k];
-        for i in k + 1..6 {
-            x[i] -= factors[6 * k + i] * value;
+        for i in k + 1..B {
+            x[i] -= factors[k][i] * value;
         }
     }
-    for k in (0..6).rev() {
-        x[k] *= factors[6 * k + k];
+    for k in (0..B).rev() {
+        x[k] *= factors[k][k];
         let value = x[k];
         for i in 0..k {
-            x[i] -= factors[6 * k + i] * value;
+            x[i] -= factors[k][i] * value;
         }
     }
 }
 
 /// Transposes a block in place (column-major ↔ row-major).
-fn transpose(b: &mut Block) {
-    for j in 0..6 {
-        for i in j + 1..6 {
-            b.swap(6 * j + i, 6 * i + j);
+#[allow(clippy::needless_range_loop)] // entries (i, j) and (j, i) of one array
+fn transpose<const B: usize>(b: &mut Block<B>) {
+    for j in 0..B {
+        for i in j + 1..B {
+            let below = b[j][i];
+            b[j][i] = b[i][j];
+            b[i][j] = below;
         }
     }
 }
 
-/// B ← S⁻¹B for B row-major (row r at 6r), with the factors of [`factorise_block`]: the row operations of
-/// the substitutions act on whole rows of six.
-fn solve_block_rows(factors: &Block, pivots: &[u8; 6], b: &mut Block) {
-    let mut rows = [[0.0; 6]; 6];
-    for (r, row) in rows.iter_mut().enumerate() {
-        row.copy_from_slice(&b[6 * r..6 * r + 6]);
-    }
+/// B ← S⁻¹B for B row-major (row r at `[r]`), with the factors of [`factorise_block`]: the row operations of
+/// the substitutions act on whole rows.
+fn solve_block_rows<const B: usize>(factors: &Block<B>, pivots: &[u8; B], rows: &mut Block<B>) {
     for (k, &pivot) in pivots.iter().enumerate() {
         rows.swap(k, pivot as usize);
     }
-    for k in 0..6 {
+    for k in 0..B {
         let pivot_row = rows[k];
-        for i in k + 1..6 {
-            let multiplier = factors[6 * k + i];
+        for i in k + 1..B {
+            let multiplier = factors[k][i];
             for (entry, top) in rows[i].iter_mut().zip(&pivot_row) {
                 *entry -= multiplier * top;
             }
         }
     }
-    for k in (0..6).rev() {
-        let reciprocal = factors[6 * k + k];
+    for k in (0..B).rev() {
+        let reciprocal = factors[k][k];
         rows[k].iter_mut().for_each(|entry| *entry *= reciprocal);
         let pivot_row = rows[k];
         for i in 0..k {
-            let multiplier = factors[6 * k + i];
+            let multiplier = factors[k][i];
             for (entry, top) in rows[i].iter_mut().zip(&pivot_row) {
                 *entry -= multiplier * top;
             }
         }
-    }
-    for (r, row) in rows.iter().enumerate() {
-        b[6 * r..6 * r + 6].copy_from_slice(row);
     }
 }
 
 /// S ← S − L X with X row-major.
-fn subtract_product(s: &mut Block, l: &Block, x: &Block) {
-    for j in 0..6 {
-        for k in 0..6 {
-            let factor = x[6 * k + j];
-            for i in 0..6 {
-                s[6 * j + i] -= l[6 * k + i] * factor;
+fn subtract_product<const B: usize>(s: &mut Block<B>, l: &Block<B>, x: &Block<B>) {
+    for (j, column) in s.iter_mut().enumerate() {
+        for (k, l_column) in l.iter().enumerate() {
+            let factor = x[k][j];
+            for (entry, l_entry) in column.iter_mut().zip(l_column) {
+                *entry -= l_entry * factor;
             }
         }
     }
 }
 
 /// y ← y − X v with X row-major.
-fn subtract_row_major_product_vector(y: &mut [f64; 6], x: &Block, v: &[f64; 6]) {
-    for (i, entry) in y.iter_mut().enumerate() {
-        let row = &x[6 * i..6 * i + 6];
+fn subtract_row_major_product_vector<const B: usize>(y: &mut [f64; B], x: &Block<B>, v: &[f64; B]) {
+    for (entry, row) in y.iter_mut().zip(x) {
         *entry -= row.iter().zip(v).map(|(a, b)| a * b).sum::<f64>();
     }
 }
 
 /// y ← y − L v.
-fn subtract_product_vector(y: &mut [f64; 6], l: &Block, v: &[f64; 6]) {
-    for k in 0..6 {
-        for i in 0..6 {
-            y[i] -= l[6 * k + i] * v[k];
+fn subtract_product_vector<const B: usize>(y: &mut [f64; B], l: &Block<B>, v: &[f64; B]) {
+    for (column, &factor) in l.iter().zip(v) {
+        for (entry, l_entry) in y.iter_mut().zip(column) {
+            *entry -= l_entry * factor;
         }
     }
 }
@@ -462,16 +516,20 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
-    /// A random block-tridiagonal system over `nodes` nodes with the DOFs in `fixed` removed: its unknowns'
-    /// slots, compressed-column pattern and values, and the dense matrix (row-major over the unknowns).
+    /// A random block-tridiagonal system over `nodes` nodes of `per_node` DOFs each (6·node + k, k <
+    /// `per_node`) with the DOFs in `fixed` removed: its unknowns' slots, compressed-column pattern and values,
+    /// and the dense matrix (row-major over the unknowns).
     #[allow(clippy::type_complexity)]
     fn random_system(
         nodes: usize,
+        per_node: usize,
         fixed: &[usize],
         seed: u64,
     ) -> (Vec<usize>, Vec<usize>, Vec<usize>, Vec<f64>, Vec<f64>) {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let slots: Vec<usize> = (0..6 * nodes).filter(|s| !fixed.contains(s)).collect();
+        let slots: Vec<usize> = (0..6 * nodes)
+            .filter(|s| s % 6 < per_node && !fixed.contains(s))
+            .collect();
         let n = slots.len();
         let mut dense = vec![0.0; n * n];
         let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
@@ -504,9 +562,10 @@ mod tests {
             (25, vec![3, 4, 5, 60], 4),
             (PARALLEL_NODES + 3, vec![0, 1, 2, 5], 7),
         ] {
-            let (slots, col_ptr, row_idx, values, dense) = random_system(nodes, &fixed, seed);
+            let (slots, col_ptr, row_idx, values, dense) = random_system(nodes, 6, &fixed, seed);
             let n = slots.len();
-            let mut lu = BlockTridiagonalLu::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
+            let mut lu = NodeBlocks::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
+            assert!(matches!(lu, NodeBlocks::Rotations(_)));
             // On the pool, so that the halves run in parallel where there are enough nodes.
             let error = pool::run(true, || {
                 lu.factorise(&values).expect("regular");
@@ -517,13 +576,45 @@ mod tests {
     }
 
     #[test]
+    fn solves_systems_of_position_nodes_in_three_by_three_blocks() {
+        for (nodes, fixed, seed) in [
+            (1, vec![], 11),
+            (2, vec![0, 1, 2], 12),
+            (40, vec![0, 1, 2, 236], 13),
+            (PARALLEL_NODES + 3, vec![0, 1, 2, 7], 14),
+        ] {
+            let (slots, col_ptr, row_idx, values, dense) = random_system(nodes, 3, &fixed, seed);
+            let n = slots.len();
+            let mut lu = NodeBlocks::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
+            assert!(matches!(lu, NodeBlocks::Positions(_)));
+            let error = pool::run(true, || {
+                lu.factorise(&values).expect("regular");
+                solve_error(&dense, n, |b| lu.solve_in_place(b))
+            });
+            assert!(error < 1e-10, "{nodes} nodes: error {error:e}");
+            // The same system in 6×6 blocks (the rotations padded with the identity): the same solution.
+            let mut six =
+                BlockTridiagonalLu::<6>::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
+            six.factorise(&values).expect("regular");
+            let error = solve_error(&dense, n, |b| six.solve_in_place(b));
+            assert!(
+                error < 1e-10,
+                "{nodes} nodes in 6×6 blocks: error {error:e}"
+            );
+        }
+        // A rotation among the unknowns does not fit 3×3 blocks.
+        let (slots, col_ptr, row_idx, _, _) = random_system(3, 4, &[], 15);
+        assert!(BlockTridiagonalLu::<3>::new(&slots, &col_ptr, &row_idx).is_none());
+    }
+
+    #[test]
     fn wider_patterns_and_singular_blocks_are_refused() {
-        let (slots, col_ptr, row_idx, mut values, _) = random_system(6, &[], 5);
+        let (slots, col_ptr, row_idx, mut values, _) = random_system(6, 6, &[], 5);
         // A coupling between nodes 0 and 2.
         let mut wide_rows = row_idx.clone();
         wide_rows[0] = 12;
-        assert!(BlockTridiagonalLu::new(&slots, &col_ptr, &wide_rows).is_none());
-        let mut lu = BlockTridiagonalLu::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
+        assert!(NodeBlocks::new(&slots, &col_ptr, &wide_rows).is_none());
+        let mut lu = NodeBlocks::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
         // Column 7 (node 1) all zero: S_1 is singular.
         values[col_ptr[7]..col_ptr[8]]
             .iter_mut()

@@ -1,9 +1,9 @@
 //! LU of a rod's tangent whose nodes couple only to their neighbours: the block-tridiagonal LU of
-//! [`crate::linalg::block_lu`] in fixed-size 6×6 blocks, and where a diagonal block would need pivoting across
-//! blocks, the band LU of [`crate::linalg::band_lu`] (allocated at its first use) instead. A pattern that is
-//! not block tridiagonal goes to the [`GeneralLu`].
+//! [`crate::linalg::block_lu`] in fixed-size blocks (6×6, or 3×3 for a line of cable nodes), and where a
+//! diagonal block would need pivoting across blocks, the band LU of [`crate::linalg::band_lu`] (allocated at
+//! its first use) instead. A pattern that is not block tridiagonal goes to the [`GeneralLu`].
 use crate::linalg::band_lu::BandLu;
-use crate::linalg::block_lu::BlockTridiagonalLu;
+use crate::linalg::block_lu::NodeBlocks;
 use crate::linalg::factorisation::{Factorisation, Singular};
 use crate::linalg::general_lu::GeneralLu;
 use crate::linalg::pattern::Pattern;
@@ -13,7 +13,7 @@ pub enum RodLu {
     /// Block tridiagonal, with the band LU for blocks that need pivoting.
     Block {
         pattern: Pattern,
-        blocks: Box<BlockTridiagonalLu>,
+        blocks: Box<NodeBlocks>,
         band: Option<BandLu>,
         /// Whether the last factorisation is the band LU's.
         banded: bool,
@@ -32,7 +32,7 @@ impl RodLu {
 
     /// The block-tridiagonal LU of that tangent, or its pattern back where it is not block tridiagonal.
     pub fn block(slots: &[usize], pattern: Pattern) -> Result<Self, Pattern> {
-        match BlockTridiagonalLu::new(slots, &pattern.col_ptr, &pattern.row_idx) {
+        match NodeBlocks::new(slots, &pattern.col_ptr, &pattern.row_idx) {
             Some(blocks) => Ok(RodLu::Block {
                 pattern,
                 blocks: Box::new(blocks),

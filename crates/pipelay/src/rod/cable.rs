@@ -94,7 +94,8 @@ pub struct CableResponse {
 
 /// Writes the 12×12 element tangent of a bar whose ∂f2/∂φ2 is `block`: ±block on the translations.
 fn bar_tangent(block: &Matrix3<f64>, tangent: &mut ElementMatrix) {
-    tangent.fill(0.0);
+    // The slice's fill, a few vector stores: nalgebra's `fill` walks the 144 entries one by one.
+    tangent.as_mut_slice().fill(0.0);
     for (row, column, sign) in [(0, 0, 1.0), (0, 1, -1.0), (1, 0, -1.0), (1, 1, 1.0)] {
         tangent
             .fixed_view_mut::<3, 3>(NODE_DOFS * row, NODE_DOFS * column)
