@@ -18,7 +18,8 @@ point driven in surge and heave, 25 s simulated). Three contenders: pipelay's ca
   candidate is not within 1 %, smaller dt until it is.
 
 The table reports, for each contender, the dt found, the number of steps, the wall time of that run (the time
-integration only: statics / initial condition excluded) and per simulated second, its error against its own
+integration only: statics / initial condition excluded; a run shorter than 10 s is timed three times and the
+best kept) and per simulated second, its error against its own
 reference, its largest difference from MoorDyn's reference (the codes' discretisations differ: this falls
 like 1/n²) and the speed-up, MoorDyn's time over the contender's.
 MoorDyn is driven from Python one ``Step`` call per internal step (its coupled point moves linearly within a
@@ -38,7 +39,9 @@ import math
 import platform
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
@@ -64,6 +67,8 @@ PIPELAY_STEP_COUNTS = [100, 125, 160, 200, 250, 320, 400, 500, 625, 800, 1000, 1
 MOORDYN_SHRINK = 1.25
 IC_TIME = 60.0  # s of MoorDyn initial-condition relaxation
 CABLE = replace(CASE, cable=True)  # the same line on pipelay's cable elements
+TIMED_RUNS = 3  # a timed run shorter than REPEAT_BELOW is run this many times, and its best wall time kept
+REPEAT_BELOW = 10.0  # s
 
 
 @dataclass
@@ -83,6 +88,15 @@ def axial_wave_time(n: int) -> float:
     return CASE.length / n / speed
 
 
+def best_of(found: Run, again: Callable[[], Run]) -> Run:
+    """`found` with the best wall time of itself and, if it took less than ``REPEAT_BELOW``, of
+    ``TIMED_RUNS`` − 1 more runs by `again` (a shared machine's timings of a short run vary by tens of %)."""
+    if found.wall >= REPEAT_BELOW:
+        return found
+    walls = [found.wall] + [again().wall for _ in range(TIMED_RUNS - 1)]
+    return replace(found, wall=min(walls))
+
+
 def pipelay_search(n: int, log: list[str], case: Case = CASE) -> Found:
     """pipelay's largest dt = t_end / k within ``TOLERANCE`` of the dt = 0.01 s reference, on cable elements
     if ``case.cable``, else on the rod."""
@@ -98,6 +112,7 @@ def pipelay_search(n: int, log: list[str], case: Case = CASE) -> Found:
         error = max_relative_error(run, reference)
         log.append(f"{name} n={n} dt={dt:.4g}: error {100 * error:.3f} %, {run.wall:.2f} s")
         if error <= TOLERANCE:
+            run = best_of(run, partial(run_pipelay, n, dt, case, tables=True))
             return Found(dt, run, error, reference)
     raise RuntimeError(
         f"{name}: no dt down to {CASE.t_end / PIPELAY_STEP_COUNTS[-1]} s is within 1 % at n={n}"
@@ -121,6 +136,7 @@ def moordyn_search(n: int, log: list[str]) -> tuple[Found, float]:
         error = max_relative_error(run, reference)
         log.append(f"MoorDyn n={n} dt={dt:.4g}: error {100 * error:.4f} % against dt/2, {run.wall:.2f} s")
         if error <= TOLERANCE:
+            run = best_of(run, partial(run_moordyn, n, dt, initial=initial))
             return Found(dt, run, error, reference), static_tension
         dt /= MOORDYN_SHRINK
     raise RuntimeError(f"MoorDyn: no accurate dt found at n={n}")
