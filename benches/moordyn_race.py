@@ -19,9 +19,9 @@ point driven in surge and heave, 25 s simulated). Three contenders: pipelay's ca
 
 The table reports, for each contender, the dt found, the number of steps, the wall time of that run (the time
 integration only: statics / initial condition excluded; a run shorter than 10 s is timed three times and the
-best kept) and per simulated second, its error against its own
-reference, its largest difference from MoorDyn's reference (the codes' discretisations differ: this falls
-like 1/n²) and the speed-up, MoorDyn's time over the contender's.
+best kept) and per simulated second, its error against its own reference, its largest difference from
+MoorDyn's reference (the codes' discretisations differ: this falls like 1/n²) and the speed-up, MoorDyn's time
+over the contender's.
 MoorDyn is driven from Python one ``Step`` call per internal step (its coupled point moves linearly within a
 call, so this is what meets the prescribed motion at every step); the per-call overhead, measured with dt = 0
 calls, is printed: it matters only at the smallest n. A second table gives pipelay's cost per step and per

@@ -64,7 +64,7 @@ pub enum NodeBlocks {
 impl NodeBlocks {
     /// As [`BlockTridiagonalLu::new`], in 3×3 blocks where every unknown is a position (k < 3).
     pub fn new(slots: &[usize], col_ptr: &[usize], row_idx: &[usize]) -> Option<Self> {
-        if slots.iter().all(|&slot| slot % NODE_SLOTS < 3) {
+        if BlockTridiagonalLu::<3>::fits(slots) {
             BlockTridiagonalLu::new(slots, col_ptr, row_idx).map(NodeBlocks::Positions)
         } else {
             BlockTridiagonalLu::new(slots, col_ptr, row_idx).map(NodeBlocks::Rotations)
@@ -108,6 +108,11 @@ pub struct BlockTridiagonalLu<const B: usize> {
 }
 
 impl<const B: usize> BlockTridiagonalLu<B> {
+    /// Whether every unknown's DOF (slot 6·node + k) has k < B, so that its node's unknowns fit a B×B block.
+    pub fn fits(slots: &[usize]) -> bool {
+        slots.iter().all(|&slot| slot % NODE_SLOTS < B)
+    }
+
     /// For a matrix whose unknown i sits at node-major position `slots[i]` (6·node + k, increasing, k < B),
     /// with compressed-column pattern (`col_ptr`, `row_idx`) of sorted rows: `None` unless every entry couples
     /// a node to itself or to a neighbour.
@@ -116,7 +121,7 @@ impl<const B: usize> BlockTridiagonalLu<B> {
         if nodes == 0
             || row_idx.len() > u32::MAX as usize
             || 3 * nodes > u32::MAX as usize
-            || slots.iter().any(|&slot| slot % NODE_SLOTS >= B)
+            || !Self::fits(slots)
         {
             return None;
         }
@@ -367,6 +372,8 @@ fn factorise_block<const B: usize>(
     a: &mut Block<B>,
     pivots: &mut [u8; B],
 ) -> Result<(), SmallPivot> {
+    // The column steps below are written out for the two block sizes there are.
+    const { assert!(B == 3 || B == 6) };
     // A NaN is skipped by the largest entry but fails the pivot test (or, off the pivots, reaches the solution).
     let floor = PIVOT_FLOOR * largest_magnitude(a.as_flattened());
     // Column by column in place, one step per column with its bounds known at compile time (unrolled, free
@@ -552,6 +559,15 @@ mod tests {
         (slots, col_ptr, row_idx, values, dense)
     }
 
+    /// `lu` factorised with `values` and its solution's error against the dense matrix of `n` unknowns, on the
+    /// pool, so that the halves run in parallel where there are enough nodes.
+    fn factorised_solve_error(lu: &mut NodeBlocks, values: &[f64], dense: &[f64], n: usize) -> f64 {
+        pool::run(true, || {
+            lu.factorise(values).expect("regular");
+            solve_error(dense, n, |b| lu.solve_in_place(b))
+        })
+    }
+
     #[test]
     fn solves_block_tridiagonal_systems_with_prescribed_dofs() {
         for (nodes, fixed, seed) in [
@@ -566,11 +582,7 @@ mod tests {
             let n = slots.len();
             let mut lu = NodeBlocks::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
             assert!(matches!(lu, NodeBlocks::Rotations(_)));
-            // On the pool, so that the halves run in parallel where there are enough nodes.
-            let error = pool::run(true, || {
-                lu.factorise(&values).expect("regular");
-                solve_error(&dense, n, |b| lu.solve_in_place(b))
-            });
+            let error = factorised_solve_error(&mut lu, &values, &dense, n);
             assert!(error < 1e-10, "{nodes} nodes: error {error:e}");
         }
     }
@@ -587,10 +599,7 @@ mod tests {
             let n = slots.len();
             let mut lu = NodeBlocks::new(&slots, &col_ptr, &row_idx).expect("tridiagonal");
             assert!(matches!(lu, NodeBlocks::Positions(_)));
-            let error = pool::run(true, || {
-                lu.factorise(&values).expect("regular");
-                solve_error(&dense, n, |b| lu.solve_in_place(b))
-            });
+            let error = factorised_solve_error(&mut lu, &values, &dense, n);
             assert!(error < 1e-10, "{nodes} nodes: error {error:e}");
             // The same system in 6×6 blocks (the rotations padded with the identity): the same solution.
             let mut six =
