@@ -348,13 +348,21 @@ def test_bad_input_names_the_argument(call: Callable[[], object], argument: str)
     assert str(error.value).startswith(f"{argument}: ")
 
 
-def test_the_utilisation_of_all_records_at_once_is_each_records_check() -> None:
-    """A run whose records all have every element is checked in one evaluation: the same numbers, to the bit,
-    as `dnv_st_f101` of each record (the tests' DP vessel in waves, with its sea's pressure)."""
+@pytest.mark.parametrize("block", [None, 7 * 12])
+def test_the_utilisation_of_all_records_at_once_is_each_records_check(
+    block: int | None, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A run whose records all have every element is checked in blocks of records (by default 65 536 element
+    values; here also 7 records of 12 elements, the last block shorter): the same numbers, to the bit, as
+    `dnv_st_f101` of each record (the tests' DP vessel in waves, with its sea's pressure)."""
     import tomllib
 
+    import pipelay.analysis.checks as checks
     from dp_in_waves import scenario_text
     from pipelay.scenario import parse_scenario
+
+    if block is not None:
+        monkeypatch.setattr(checks, "RECORDS_BLOCK_ELEMENTS", block)
 
     scenario = parse_scenario(tomllib.loads(scenario_text("all records at once", t_end=20.0)))
     model = scenario.model

@@ -109,6 +109,9 @@ FloatArray = NDArray[np.float64]
 GRAVITY = 9.81
 """Acceleration of gravity used for hydrostatic pressure (m/s²)."""
 
+RECORDS_BLOCK_ELEMENTS = 1 << 16
+"""Element values (records × elements) checked at once when every record of a run is checked."""
+
 GRADES: dict[str, tuple[float, float]] = {
     "X52": (360e6, 460e6),
     "X56": (390e6, 490e6),
@@ -396,23 +399,30 @@ def _records_utilisation(
     `sea` (water depth, density) or None, `parameters` the keywords of `dnv_st_f101`. The same numbers as
     `dnv_st_f101` of each record (the same element-wise formulas), in one evaluation."""
     count, n = forces.shape[:2]
-    p_e = np.zeros((count, n))
+    options = _options(**dict(parameters))
     if sea is not None:
         depth = _number("state.water_depth", sea[0], positive=True)
         density = _number("state.water_density", sea[1], positive=True)
-        z_mid = 0.5 * (positions[:, :-1, 2] + positions[:, 1:, 2])
-        p_e = density * GRAVITY * np.clip(depth + z_mid, 0.0, None)
-    flat = forces.reshape(count * n, 6)
-    checked = _check_section(
-        section,
-        "state.section",
-        flat,
-        flat[:, 0],
-        np.abs(strain.reshape(count * n)),
-        p_e.reshape(count * n),
-        _options(**dict(parameters)),
-    )
-    return checked.load_controlled.reshape(count, n), checked.displacement_controlled.reshape(count, n)
+    load = np.empty((count, n))
+    displacement = np.empty((count, n))
+    # A block of records at a time: a 3-hour storm's records are millions of element values, and the
+    # formulas' temporaries for all of them at once would be gigabytes of fresh memory (its page faults cost
+    # more than the arithmetic); a block's stay in cache. Element-wise formulas: the same numbers.
+    block = max(1, RECORDS_BLOCK_ELEMENTS // n)
+    for start in range(0, count, block):
+        rows = slice(start, min(start + block, count))
+        size = (rows.stop - rows.start) * n
+        p_e = np.zeros(size)
+        if sea is not None:
+            z_mid = 0.5 * (positions[rows, :-1, 2] + positions[rows, 1:, 2])
+            p_e = (density * GRAVITY * np.clip(depth + z_mid, 0.0, None)).reshape(size)
+        flat = forces[rows].reshape(size, 6)
+        checked = _check_section(
+            section, "state.section", flat, flat[:, 0], np.abs(strain[rows].reshape(size)), p_e, options
+        )
+        load[rows] = checked.load_controlled.reshape(-1, n)
+        displacement[rows] = checked.displacement_controlled.reshape(-1, n)
+    return load, displacement
 
 
 @dataclass(frozen=True)

@@ -197,7 +197,7 @@ def _utilisations(
             # Every record has every element (no pay-out): all records in one evaluation, the same numbers.
             water = None if sea is None else (float(sea.depth), float(sea.density))
             load, displacement = _records_utilisation(section, forces, strain, positions, water, parameters)
-            return np.maximum(load, displacement), np.array(load), np.array(displacement), False
+            return np.maximum(load, displacement), load, displacement, False
 
         def dnv(record: Any) -> Any:
             return dnv_st_f101(record, **parameters)
@@ -262,7 +262,9 @@ def _put(found: dict[str, float], key: str, values: FloatArray, time: FloatArray
     if not np.isfinite(values).any():
         raise _input_error("results", _Described(f"no finite values for {key}"), "records with values", "has")
     flat = values.reshape(values.shape[0], -1)
-    filled = np.where(np.isnan(flat), -np.inf if largest else np.inf, flat)
+    missing = np.isnan(flat)
+    # Without NaN entries (a run without pay-out) the values themselves: a long run's are hundreds of MB.
+    filled = np.where(missing, -np.inf if largest else np.inf, flat) if missing.any() else flat
     index = int(np.argmax(filled) if largest else np.argmin(filled))
     record, element = divmod(index, flat.shape[1])
     found[key] = float(flat[record, element])
