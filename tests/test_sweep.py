@@ -279,6 +279,21 @@ def test_ctrl_c_keeps_the_finished_cases(folder: Path, tmp_path: Path) -> None:
     assert float(again.summary["top_tension_max"].values[0]) == tension[0]
 
 
+def test_the_sweeps_own_workers_keep_glibcs_memory_trimming(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Dask starts workers with MALLOC_TRIM_THRESHOLD_=65536, which slows a case's engine by 5 %; the sweep's
+    own cluster leaves it out (the other variables Dask sets, such as OMP_NUM_THREADS=1, stay)."""
+    import os
+
+    from pipelay.analysis.sweep import _connected
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    with _connected(None, 1, 1) as local:
+        trim = local.run(os.getenv, "MALLOC_TRIM_THRESHOLD_")
+        threads = local.run(os.getenv, "OMP_NUM_THREADS")
+    assert list(trim.values()) == [None]
+    assert list(threads.values()) == ["1"]
+
+
 def test_a_bad_key_or_value_is_rejected_before_anything_runs(
     folder: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
