@@ -357,8 +357,8 @@ def test_the_utilisation_of_all_records_at_once_is_each_records_check(
     `dnv_st_f101` of each record (the tests' DP vessel in waves, with its sea's pressure)."""
     import tomllib
 
-    import pipelay.analysis.checks as checks
     from dp_in_waves import scenario_text
+    from pipelay.analysis import checks
     from pipelay.scenario import parse_scenario
 
     if block is not None:
