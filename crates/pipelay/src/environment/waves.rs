@@ -27,6 +27,7 @@ use crate::error::{finite, non_negative, positive, Error, Result};
 use nalgebra::{Matrix3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use wide::f64x4;
 
 /// One linear wave component.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -357,6 +358,18 @@ pub fn wave_number(frequency: f64, depth: f64, gravity: f64) -> f64 {
     k
 }
 
+/// Components whose phases are computed together ([`WaveField::kinematics`]).
+const LANES: usize = 4;
+
+/// `value` of each of up to [`LANES`] components, zero in the lanes past the last.
+fn lanes(components: &[Resolved], value: impl Fn(&Resolved) -> f64) -> f64x4 {
+    let mut array = [0.0; LANES];
+    for (entry, c) in array.iter_mut().zip(components) {
+        *entry = value(c);
+    }
+    f64x4::new(array)
+}
+
 thread_local! {
     /// Each component's (sin θ, cos θ) at the point whose kinematics are being summed: one buffer a thread,
     /// grown once.
@@ -537,23 +550,43 @@ impl WaveField {
         if self.surface_bound < h && h - height.max(0.0) * h / (h - self.surface_bound) > reach {
             return Kinematics::default();
         }
-        // η and its horizontal gradient, and each component's phase, kept for the sum below.
-        let mut surface = 0.0;
-        let mut surface_gradient = Vector3::zeros();
         PHASES.with_borrow_mut(|phases| {
-            phases.clear();
-            for c in &self.components {
-                let (sin, cos) = c.angle(x, y, time).sin_cos();
-                phases.push((sin, cos));
-                let a = ramp * c.amplitude;
-                surface += a * cos;
-                surface_gradient -= Vector3::new(c.cos, c.sin, 0.0) * (a * c.number * sin);
-            }
+            let (surface, surface_gradient) = self.surface_and_phases(x, y, time, ramp, phases);
             if height > h + surface || h + surface <= 0.0 {
                 return Kinematics::default();
             }
             self.sum(phases, ramp, ramp_rate, height, surface, &surface_gradient)
         })
+    }
+
+    /// The surface elevation η (m) at (x, y) and time t with its horizontal gradient, under the build-up
+    /// factor `ramp`; `phases` becomes each component's (sin θ, cos θ) there. Four components at a time
+    /// (`wide`'s sine and cosine, within an ulp of the standard library's: the tests).
+    fn surface_and_phases(
+        &self,
+        x: f64,
+        y: f64,
+        time: f64,
+        ramp: f64,
+        phases: &mut Vec<(f64, f64)>,
+    ) -> (f64, Vector3<f64>) {
+        phases.clear();
+        let mut surface = f64x4::ZERO;
+        let mut gradient_x = f64x4::ZERO;
+        let mut gradient_y = f64x4::ZERO;
+        for chunk in self.components.chunks(LANES) {
+            // Lanes past the last component have zero amplitude: they add nothing.
+            let (sin, cos) = lanes(chunk, |c| c.angle(x, y, time)).sin_cos();
+            let amplitude = lanes(chunk, |c| ramp * c.amplitude);
+            surface += amplitude * cos;
+            let slope = amplitude * lanes(chunk, |c| c.number) * sin;
+            gradient_x -= lanes(chunk, |c| c.cos) * slope;
+            gradient_y -= lanes(chunk, |c| c.sin) * slope;
+            let (sin, cos) = (sin.to_array(), cos.to_array());
+            phases.extend(sin.into_iter().zip(cos).take(chunk.len()));
+        }
+        let gradient = Vector3::new(gradient_x.reduce_add(), gradient_y.reduce_add(), 0.0);
+        (surface.reduce_add(), gradient)
     }
 
     /// The kinematics at the stretched height of a point `height` above the seabed under the surface
@@ -701,6 +734,46 @@ mod tests {
         assert!(reach > 50.0 && reach < 700.0, "{reach}");
         let deep = field.kinematics(&Vector3::new(0.0, 0.0, -(800.0 - reach - 20.0)), 31.0);
         assert_eq!(deep, Kinematics::default());
+    }
+
+    /// The phases computed four components at a time are the standard library's sine and cosine of each
+    /// component's angle to within an ulp (measured: half of one), and the surface elevation and its gradient their plain sums, over a
+    /// 3-hour storm's times and a 3 km stretch of sea (angles up to 3e4 rad); 203 components, so that the
+    /// last lanes are empty.
+    #[test]
+    fn phases_four_at_a_time_match_the_scalar_sums() {
+        let waves = Waves::jonswap(4.0, 9.0, 3.3, 0.3, Some(6.0), 11, 203).unwrap();
+        let field = WaveField::new(&waves, 300.0, G).unwrap();
+        let mut phases = Vec::new();
+        let (mut worst_phase, mut worst_surface, mut worst_gradient): (f64, f64, f64) =
+            (0.0, 0.0, 0.0);
+        for (x, y, t) in [
+            (0.0, 0.0, 0.0),
+            (-1200.0, 35.0, 10890.0),
+            (3000.0, -800.0, 5471.3),
+            (17.0, 4.0, 0.7),
+        ] {
+            let (surface, gradient) = field.surface_and_phases(x, y, t, 0.8, &mut phases);
+            assert_eq!(phases.len(), 203);
+            let (mut plain, mut plain_gradient) = (0.0, Vector3::zeros());
+            for (c, &(sin, cos)) in field.components().iter().zip(&phases) {
+                let (sin_std, cos_std) = c.angle(x, y, t).sin_cos();
+                worst_phase = worst_phase
+                    .max((sin - sin_std).abs())
+                    .max((cos - cos_std).abs());
+                let a = 0.8 * c.amplitude;
+                plain += a * cos_std;
+                plain_gradient -= Vector3::new(c.cos, c.sin, 0.0) * (a * c.number * sin_std);
+            }
+            worst_surface = worst_surface.max((surface - plain).abs());
+            worst_gradient = worst_gradient.max((gradient - plain_gradient).norm());
+        }
+        assert!(worst_phase <= f64::EPSILON, "phase {worst_phase:e}");
+        // The sums' round-off (measured 7.8e-16 m and 5.9e-17).
+        assert!(
+            worst_surface < 4e-15 && worst_gradient < 1e-15,
+            "{worst_surface:e} {worst_gradient:e}"
+        );
     }
 
     /// The velocity gradient matches central differences (stretching included); the acceleration is ∂u/∂t
