@@ -231,7 +231,8 @@ def run_case(
 class _Recorded:
     """What `case_statistics` reads of a run, read from its results file alone: a long case's file holds
     gigabytes of rotations and velocities (a 3-hour storm: 54 000 records) that a `Results` would load and
-    the statistics never look at. The same arrays as `pl.load`'s, so the same statistics to the bit."""
+    the statistics never look at. The same arrays as `pl.load`'s, so the same statistics to the bit, but for the
+    nodes' positions, of which only the depth is read (the statistics look at no other coordinate)."""
 
     def __init__(self, variables: dict[str, np.ndarray]) -> None:
         self.time = variables["time"]
@@ -261,7 +262,12 @@ class _Recorded:
             for name in names:
                 if name not in file:
                     continue
-                values = np.asarray(file[name][()], dtype=np.float64)
+                if name == "positions":
+                    # Only the nodes' depth (for the checks' hydrostatic pressure): x and y are left zero.
+                    values = np.zeros(file[name].shape)
+                    values[:, :, 2] = file[name][:, :, 2]
+                else:
+                    values = np.asarray(file[name][()], dtype=np.float64)
                 fill = file[name].attrs.get("_FillValue")
                 if fill is not None and np.isfinite(fill).all():
                     values = np.where(values == np.asarray(fill).item(), np.nan, values)
