@@ -395,9 +395,9 @@ def _records_utilisation(
     parameters: Any,
 ) -> tuple[FloatArray, FloatArray]:
     """The load- and displacement-controlled utilisations (records, n) of the elements of one `section` at
-    every record at once: `forces` (records, n, 6), `strain` (records, n), `positions` (records, n + 1, 3),
+    every record: `forces` (records, n, 6), `strain` (records, n), `positions` (records, n + 1, 3),
     `sea` (water depth, density) or None, `parameters` the keywords of `dnv_st_f101`. The same numbers as
-    `dnv_st_f101` of each record (the same element-wise formulas), in one evaluation."""
+    `dnv_st_f101` of each record (the same element-wise formulas), evaluated a block of records at a time."""
     count, n = forces.shape[:2]
     options = _options(**dict(parameters))
     if sea is not None:
@@ -412,8 +412,9 @@ def _records_utilisation(
     for start in range(0, count, block):
         rows = slice(start, min(start + block, count))
         size = (rows.stop - rows.start) * n
-        p_e = np.zeros(size)
-        if sea is not None:
+        if sea is None:
+            p_e = np.zeros(size)
+        else:
             z_mid = 0.5 * (positions[rows, :-1, 2] + positions[rows, 1:, 2])
             p_e = (density * GRAVITY * np.clip(depth + z_mid, 0.0, None)).reshape(size)
         flat = forces[rows].reshape(size, 6)

@@ -194,7 +194,7 @@ def _utilisations(
         parameters = dict(checks)
         positions = np.asarray(results.positions, dtype=np.float64)
         if strain is not None and np.isfinite(forces).all() and np.isfinite(positions).all():
-            # Every record has every element (no pay-out): all records in one evaluation, the same numbers.
+            # Every record has every element (no pay-out): all records together, in blocks, the same numbers.
             water = None if sea is None else (float(sea.depth), float(sea.density))
             load, displacement = _records_utilisation(section, forces, strain, positions, water, parameters)
             return np.maximum(load, displacement), load, displacement, False
