@@ -242,3 +242,22 @@ def test_seas_beyond_the_theory_are_refused_naming_the_limit() -> None:
     pl.Waves.jonswap(6.6, 8.0)
     with pytest.raises(pl.InputError, match=r"^waves: must not break: .*0\.78 h"):
         pl.Model(rod, pl.Sea(10.0, waves=pl.Waves.regular(9.0, 20.0)))
+
+
+def test_a_run_in_waves_resumes_bit_for_bit(tmp_path) -> None:
+    """examples/j_lay_waves.toml to 40 s, checkpointed, then on to 45 s: the resumed run (its vessel's
+    low-frequency acceleration, from which the predictor moves the tower exit, in the checkpoint) repeats
+    the uninterrupted one to the bit."""
+    from pathlib import Path
+
+    from pipelay.scenario import load_scenario
+
+    model = load_scenario(Path(__file__).resolve().parents[1] / "examples" / "j_lay_waves.toml").model
+    simulation = model.simulation(model.static(), dt=0.1)
+    simulation.run(40.0, progress=False)
+    path = simulation.checkpoint(tmp_path / "state.npz")
+    straight_on = simulation.run(45.0, progress=False)
+    resumed = pl.resume(model, path).run(45.0, progress=False)
+    for name in ("positions", "rotations", "velocities", "tension", "eta", "nu"):
+        assert np.array_equal(getattr(straight_on, name), getattr(resumed, name)), name
+    assert np.array_equal(straight_on.iterations, resumed.iterations)

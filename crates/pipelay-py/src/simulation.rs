@@ -402,8 +402,8 @@ impl Simulation {
     }
 
     /// The integrator's complete state as arrays (time, Δt, positions, quaternions, velocities, body angular
-    /// velocities, the predictor's accelerations, Gauss-point rotations and strains, vessel motion): what
-    /// `checkpoint` writes.
+    /// velocities, the predictor's accelerations, Gauss-point rotations and strains, vessel motion and
+    /// acceleration): what `checkpoint` writes.
     fn _checkpoint<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let state = self.integrator.state();
         let dict = PyDict::new(py);
@@ -566,6 +566,11 @@ impl Simulation {
                 vec![v.setpoint_offset, v.filtered_tension],
                 2,
             )?;
+            rows(
+                "vessel_acceleration",
+                v.acceleration.iter().copied().collect(),
+                6,
+            )?;
         }
         Ok(dict)
     }
@@ -694,8 +699,25 @@ impl Simulation {
                     }
                     None => [0.0, 0.0],
                 };
+                // The vessel's acceleration over the last step (checkpoints written before it existed have
+                // none).
+                let acceleration = match arrays.get_item("vessel_acceleration")? {
+                    Some(value) => {
+                        let data = flat(&value, "vessel_acceleration")?;
+                        if data.len() != 6 {
+                            return Err(input(
+                                "vessel_acceleration",
+                                format!("{} values", data.len()),
+                                "must hold 6 values",
+                            ));
+                        }
+                        Vector6::from_column_slice(&data)
+                    }
+                    None => Vector6::zeros(),
+                };
                 Some(VesselMotion {
                     velocity: part(0),
+                    acceleration,
                     integral: part(1),
                     hold_thrust: part(2),
                     thrust: part(3),

@@ -83,8 +83,12 @@ impl Default for DynamicOptions {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepReport {
     pub iterations: usize,
+    /// Tangents factorised.
+    pub factorisations: usize,
     /// Final residual norm over the free DOFs.
     pub residual: f64,
+    /// The residual at the predictor relative to the force scale (the largest of the step's halves).
+    pub predictor_residual: f64,
 }
 
 /// Advances a model in time.
@@ -505,7 +509,9 @@ impl Integrator {
                 let second = self.substep(0.5 * dt, depth + 1)?;
                 Ok(StepReport {
                     iterations: first.iterations + second.iterations,
+                    factorisations: first.factorisations + second.factorisations,
                     residual: second.residual,
+                    predictor_residual: first.predictor_residual.max(second.predictor_residual),
                 })
             }
             other => other,
@@ -710,6 +716,7 @@ impl Integrator {
             &self.vessel_step,
         ) {
             let time_mid = self.state.time + 0.5 * dt;
+            motion.acceleration = (step.velocity_next - motion.velocity) / dt;
             motion.velocity = step.velocity_next;
             motion.thrust = step.thrust;
             motion.setpoint_offset = self.offset_next;

@@ -52,11 +52,16 @@ impl Integrator {
         let mut polished = false;
         // The relative residual at the iterate whose tangent is factorised.
         let mut factorised_at = f64::INFINITY;
+        let mut factorisations = 0;
+        let mut predictor_residual = f64::INFINITY;
         for iteration in 0..=self.options.max_iterations {
             iterations = iteration;
             self.assemble(scales, time_mid, dt, fresh)?;
             let (norm, scale) = self.residual_norms();
             residual = norm;
+            if iteration == 0 {
+                predictor_residual = norm / scale;
+            }
             if !residual.is_finite() {
                 break;
             }
@@ -88,6 +93,7 @@ impl Integrator {
                 if self.assembler.lu.factorise(&self.assembler.values).is_err() {
                     break;
                 }
+                factorisations += 1;
                 factorised_at = residual / scale;
             }
             last = residual;
@@ -138,7 +144,9 @@ impl Integrator {
         }
         Ok(StepReport {
             iterations,
+            factorisations,
             residual,
+            predictor_residual,
         })
     }
 }

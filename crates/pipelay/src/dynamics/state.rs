@@ -36,6 +36,9 @@ pub struct DynamicState {
 pub struct VesselMotion {
     /// ν = [u, v, w, p, q, r] (body frame).
     pub velocity: Vector6<f64>,
+    /// ν̇ over the last step, (ν_n − ν_n−1)/Δt (zero at a start), from which the next step's predictor
+    /// extrapolates the vessel's node.
+    pub acceleration: Vector6<f64>,
     /// ∫η̃ dt of the PID.
     pub integral: Vector6<f64>,
     /// Thrust that holds the vessel until the controller starts (body frame): the static holding thrust of
@@ -86,6 +89,7 @@ impl DynamicState {
                 });
             VesselMotion {
                 velocity: Vector6::zeros(),
+                acceleration: Vector6::zeros(),
                 integral: Vector6::zeros(),
                 hold_thrust,
                 thrust: hold_thrust,

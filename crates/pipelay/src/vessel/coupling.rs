@@ -23,7 +23,7 @@ use super::euler;
 use super::rigid_body::{vessel_step, VesselState};
 use super::wave_motion::WaveOffset;
 use super::VesselAttachment;
-use crate::so3::{cayley, cayley_parameter, exp, log, quat_from_matrix};
+use crate::so3::{cayley, cayley_parameter, exp, log, quat_from_matrix, skew};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// Stiffness of the holding springs relative to the vessel's heave restoring G33 (translation) and pitch
@@ -73,6 +73,51 @@ pub fn low_frequency_pose(
         ),
         None => (position, body),
     }
+}
+
+/// The predictor's increment (Δx, θ) of the end node over a step of Δt: the vessel's low-frequency motion
+/// with its body velocity ν_n (m/s, rad/s) changing at its last step's rate ν̇ (the midpoint rule's
+/// ν_{n+½} = ν_n + ½ν̇Δt, so θ_B = Λ_B ω_{n+½} Δt and Δx_C = (I − ½θ̂_B)⁻¹ Λ_B u_{n+½} Δt, the inverse of
+/// [`vessel_step`]'s velocity update), moved by the waves' offsets `now` → `next`: cay(θ) = Q_{n+1} cay(θ_B)
+/// Q_nᵀ and Δx_N = Δx_C + (a_{n+1} − a_n) + Δu. A vessel that pitches and rolls at wave frequency so has its
+/// node predicted from the motion its RAOs prescribe, where the rod's nodes' predictor would hold the node's
+/// angular velocity.
+pub fn predicted_node_increment(
+    attachment: &VesselAttachment,
+    node_position: &Vector3<f64>,
+    node_rotation: &UnitQuaternion<f64>,
+    velocity: &Vector6<f64>,
+    acceleration: &Vector6<f64>,
+    waves: Option<(&WaveOffset, &WaveOffset)>,
+    dt: f64,
+) -> Vector6<f64> {
+    let (_, body) = low_frequency_pose(
+        attachment,
+        node_position,
+        node_rotation,
+        waves.map(|(now, _)| now),
+    );
+    let velocity_mid = velocity + 0.5 * dt * acceleration;
+    let theta_body = body * velocity_mid.fixed_rows::<3>(3) * dt;
+    let co_shift = body * velocity_mid.fixed_rows::<3>(0) * dt;
+    let dx_co = (Matrix3::identity() - 0.5 * skew(&theta_body))
+        .lu()
+        .solve(&co_shift)
+        .unwrap_or(co_shift);
+    let (turn, wave_shift) = match waves {
+        Some((now, next)) => (
+            next.rotation * cayley(&theta_body) * now.rotation.transpose(),
+            next.translation - now.translation,
+        ),
+        None => (cayley(&theta_body), Vector3::zeros()),
+    };
+    let theta = cayley_parameter(&quat_from_matrix(&turn));
+    let arm = body_rotation(attachment, node_rotation) * attachment.hang_off();
+    let dx = dx_co + (cayley(&theta) * arm - arm) + wave_shift;
+    let mut increment = Vector6::zeros();
+    increment.fixed_rows_mut::<3>(0).copy_from(&dx);
+    increment.fixed_rows_mut::<3>(3).copy_from(&theta);
+    increment
 }
 
 /// The end node's position for a vessel pose (CO position, body frame).
@@ -423,6 +468,80 @@ impl DynamicVessel<'_> {
             error_mid,
             supplied: dt * v.dot(&(thrust + environment)) - wave_work,
             dissipated: dt * v.dot(&attachment.vessel.damping_force(&v)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::so3::exp_quat;
+    use crate::vessel::lay::LayEquipment;
+    use crate::vessel::rigid_body::Vessel;
+
+    /// The built-in OSV holding the pipe at a J-lay tower's exit 10 m above CO, leaning 0.2 rad.
+    fn tower() -> VesselAttachment {
+        let lay = LayEquipment::j_lay(Vector3::new(0.0, 0.0, -10.0), 0.2).unwrap();
+        VesselAttachment {
+            node: 0,
+            vessel: Vessel::osv(),
+            angle: lay.end_frame.transpose(),
+            eta: Vector6::zeros(),
+            controller: None,
+            environment: Vec::new(),
+            surface: 0.0,
+            lay: Some(lay),
+            winch: None,
+            hull_loads: false,
+        }
+    }
+
+    #[test]
+    fn the_predicted_node_moves_the_vessel_at_its_extrapolated_velocity() {
+        // The vessel's own step at the predicted node increment gives ν_{n+1} = ν_n + ν̇Δt, in calm water and
+        // with the waves turning and shifting it between the step's start and end.
+        let attachment = tower();
+        let node_position = Vector3::new(880.0, 3.0, -815.0);
+        let node_rotation = exp_quat(&Vector3::new(0.3, -1.1, 0.4));
+        let velocity = Vector6::new(0.4, -0.2, 0.05, 0.01, -0.02, 0.003);
+        let acceleration = Vector6::new(0.03, 0.01, -0.2, 0.05, 0.04, -0.001);
+        let dt = 0.1;
+        let now = WaveOffset {
+            translation: Vector3::new(0.2, -0.1, 0.5),
+            rotation: exp(&Vector3::new(0.02, -0.03, 0.01)),
+        };
+        let next = WaveOffset {
+            translation: Vector3::new(0.25, -0.05, 0.3),
+            rotation: exp(&Vector3::new(0.03, -0.01, 0.015)),
+        };
+        for waves in [None, Some((now, next))] {
+            let increment = predicted_node_increment(
+                &attachment,
+                &node_position,
+                &node_rotation,
+                &velocity,
+                &acceleration,
+                waves.as_ref().map(|(now, next)| (now, next)),
+                dt,
+            );
+            let vessel = DynamicVessel {
+                attachment: &attachment,
+                velocity,
+                integral: Vector6::zeros(),
+                hold_thrust: Vector6::zeros(),
+                reference: (Vector6::zeros(), Vector6::zeros()),
+                waves,
+                applied_thrust: None,
+                hull: None,
+            };
+            let step =
+                vessel.contribution(&node_position, &node_rotation, &increment, dt, 0.0, false);
+            let error = (step.velocity_next - (velocity + dt * acceleration)).amax();
+            assert!(
+                error < 1e-13,
+                "waves {}: ν_n+1 off by {error:e}",
+                waves.is_some()
+            );
         }
     }
 }
