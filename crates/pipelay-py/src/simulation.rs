@@ -51,6 +51,23 @@ impl Simulation {
     }
 }
 
+/// The checkpoint's array `name` of `count` values, if it has one (`allowed`: what it must hold).
+fn optional_values(
+    arrays: &Bound<'_, PyDict>,
+    name: &str,
+    count: usize,
+    allowed: &str,
+) -> PyResult<Option<Vec<f64>>> {
+    let Some(value) = arrays.get_item(name)? else {
+        return Ok(None);
+    };
+    let data = flat(&value, name)?;
+    if data.len() != count {
+        return Err(input(name, format!("{} values", data.len()), allowed));
+    }
+    Ok(Some(data))
+}
+
 /// Checks that a checkpoint's model fingerprint (if it has one: older checkpoints do not) matches `now`, the
 /// model's it resumes into, but in the parts named in `allow`; names the parts that differ.
 fn check_fingerprint(
@@ -673,48 +690,21 @@ impl Simulation {
                 curvature: *curvature,
             })
             .collect();
-        let vessel = match arrays.get_item("vessel")? {
-            Some(value) => {
-                let data = flat(&value, "vessel")?;
-                if data.len() != 30 {
-                    return Err(input(
-                        "vessel",
-                        format!("{} values", data.len()),
-                        "must hold 5 × 6 values",
-                    ));
-                }
+        let vessel = match optional_values(arrays, "vessel", 30, "must hold 5 × 6 values")? {
+            Some(data) => {
                 let part = |k: usize| Vector6::from_column_slice(&data[6 * k..6 * k + 6]);
-                // The lay-tension loop's state (checkpoints written before it existed have none).
-                let tension_loop = match arrays.get_item("tension_loop")? {
-                    Some(value) => {
-                        let loop_state = flat(&value, "tension_loop")?;
-                        if loop_state.len() != 2 {
-                            return Err(input(
-                                "tension_loop",
-                                format!("{} values", loop_state.len()),
-                                "must hold the set-point offset and the filtered tension",
-                            ));
-                        }
-                        [loop_state[0], loop_state[1]]
-                    }
-                    None => [0.0, 0.0],
-                };
-                // The vessel's acceleration over the last step (checkpoints written before it existed have
-                // none).
-                let acceleration = match arrays.get_item("vessel_acceleration")? {
-                    Some(value) => {
-                        let data = flat(&value, "vessel_acceleration")?;
-                        if data.len() != 6 {
-                            return Err(input(
-                                "vessel_acceleration",
-                                format!("{} values", data.len()),
-                                "must hold 6 values",
-                            ));
-                        }
-                        Vector6::from_column_slice(&data)
-                    }
-                    None => Vector6::zeros(),
-                };
+                // The lay-tension loop's state and the vessel's acceleration over the last step (checkpoints
+                // written before they existed have none).
+                let tension_loop = optional_values(
+                    arrays,
+                    "tension_loop",
+                    2,
+                    "must hold the set-point offset and the filtered tension",
+                )?
+                .unwrap_or_else(|| vec![0.0, 0.0]);
+                let acceleration =
+                    optional_values(arrays, "vessel_acceleration", 6, "must hold 6 values")?
+                        .map_or_else(Vector6::zeros, |data| Vector6::from_column_slice(&data));
                 Some(VesselMotion {
                     velocity: part(0),
                     acceleration,
@@ -728,22 +718,20 @@ impl Simulation {
             }
             None => None,
         };
-        let slips = match arrays.get_item("friction_slips")? {
-            Some(value) => {
-                let data = flat(&value, "friction_slips")?;
-                if data.len() != 2 * nodes {
-                    return Err(input(
-                        "friction_slips",
-                        format!("{} values", data.len()),
-                        "must hold (n + 1) × 2 values",
-                    ));
-                }
+        let slips = optional_values(
+            arrays,
+            "friction_slips",
+            2 * nodes,
+            "must hold (n + 1) × 2 values",
+        )?
+        .map_or_else(
+            || vec![nalgebra::Vector2::zeros(); nodes],
+            |data| {
                 data.chunks_exact(2)
                     .map(nalgebra::Vector2::from_column_slice)
                     .collect()
-            }
-            None => vec![nalgebra::Vector2::zeros(); nodes],
-        };
+            },
+        );
         let time = get("time")?.first().copied().unwrap_or(0.0);
         let state = DynamicState {
             time,

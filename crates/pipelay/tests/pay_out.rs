@@ -1,12 +1,11 @@
 //! Pay-out and pay-in: the energy ledger closes through growth and mesh changes, the energy pay-out brings in
 //! is the tensioner's work on the pipe it lets out, the length is exact, and pay-in undoes pay-out.
+mod common;
 use nalgebra::Vector3;
-use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
-use pipelay::dynamics::state::DynamicState;
+use pipelay::dynamics::integrator::Integrator;
 use pipelay::model::{Model, PayOutSpeed};
 use pipelay::rod::section::Section;
 use pipelay::rod::Rod;
-use pipelay::statics::solve::{solve, StaticOptions};
 use std::sync::Arc;
 
 /// Smoothstep 3s² − 2s³ of s = t / ramp clipped to [0, 1].
@@ -32,13 +31,7 @@ fn hanging(sway: f64, speed: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Int
     model
         .pay_out("B", PayOutSpeed::Function(Arc::new(move |t| Ok(speed(t)))))
         .expect("pay-out");
-    let solution = solve(&model, &StaticOptions::default()).expect("statics");
-    let state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
-    let options = DynamicOptions {
-        time_step: 0.02,
-        ..DynamicOptions::default()
-    };
-    Integrator::new(model, state, options).expect("integrator")
+    common::from_statics(model, 0.02)
 }
 
 /// Without dissipation, E − E0 = work of the drive + energy pay-out brought in, to 1e-9 of E, through growth

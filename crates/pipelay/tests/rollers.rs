@@ -4,8 +4,6 @@ mod common;
 use nalgebra::{Vector3, Vector6};
 use pipelay::assembly::assembler::Assembler;
 use pipelay::assembly::dofs::NODE_DOFS;
-use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
-use pipelay::dynamics::state::DynamicState;
 use pipelay::environment::sea::Sea;
 use pipelay::environment::seabed::Seabed;
 use pipelay::model::Model;
@@ -224,13 +222,7 @@ fn s_lay_on_a_seabed_converges() {
 #[test]
 fn a_held_s_lay_steps_in_few_iterations() {
     let model = s_lay(660.0, 280, None);
-    let solution = solve(&model, &StaticOptions::default()).expect("statics");
-    let state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
-    let options = DynamicOptions {
-        time_step: 0.2,
-        ..DynamicOptions::default()
-    };
-    let mut sim = Integrator::new(model, state, options).expect("integrator");
+    let mut sim = common::from_statics(model, 0.2);
     let mut most = 0;
     for _ in 0..20 {
         most = most.max(sim.step().expect("step").iterations);

@@ -39,6 +39,17 @@ fn pipe_with_lay(n: usize, lay: Option<LayEquipment>) -> Model {
     model
 }
 
+/// The pipe at the tower in 800 m of water, in a regular sea of 3 m and 9 s built up over 9 s, travelling
+/// `heading` (rad) from e1.
+fn pipe_at_tower_in_waves(n: usize, heading: f64) -> Model {
+    let mut model = pipe_with_lay(n, tower());
+    let waves = Waves::regular(3.0, 9.0, heading)
+        .and_then(|w| w.with_ramp(9.0))
+        .expect("waves");
+    model.waves = Some(WaveField::new(&waves, 800.0, 9.81).expect("field"));
+    model
+}
+
 /// Heave, roll and pitch settle against the restoring; the holding thrust balances the pipe's horizontal pull;
 /// the vessel's vertical equilibrium G33 Δz + G35 θ equals the pipe's vertical pull.
 /// Held at a tower away from CO: CO still sits at η's x and y, the pipe's end at the tower exit along the
@@ -293,11 +304,7 @@ fn vessel_in_long_waves_heaves_with_the_surface() {
 /// to Newton's tolerance.
 #[test]
 fn vessel_in_waves_keeps_the_energy_ledger() {
-    let mut model = pipe_with_lay(20, tower());
-    let waves = Waves::regular(3.0, 9.0, 0.5)
-        .and_then(|w| w.with_ramp(9.0))
-        .expect("waves");
-    model.waves = Some(WaveField::new(&waves, 800.0, 9.81).expect("field"));
+    let model = pipe_at_tower_in_waves(20, 0.5);
     let mut sim = common::released_without_dissipation(model, 0.1);
     let start = sim.observe().energy();
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
@@ -325,11 +332,7 @@ fn sampled_dp_loop_keeps_the_energy_ledger() {
     use pipelay::environment::wind::Wind;
     use pipelay::vessel::control::{Pid, Reference};
     use pipelay::vessel::observer::ObserverSettings;
-    let mut model = pipe_with_lay(20, tower());
-    let waves = Waves::regular(3.0, 9.0, 2.5)
-        .and_then(|w| w.with_ramp(9.0))
-        .expect("waves");
-    model.waves = Some(WaveField::new(&waves, 800.0, 9.81).expect("field"));
+    let mut model = pipe_at_tower_in_waves(20, 2.5);
     let sea = model.sea.take().expect("sea");
     let current =
         Current::new(CurrentProfile::Uniform(Vector3::new(0.0, 0.6, 0.0)), 0.0).expect("current");
@@ -390,18 +393,8 @@ fn sampled_dp_loop_keeps_the_energy_ledger() {
 /// in fewer than one step in three after the predictor's (156 factorisations in 100 steps; 200 so).
 #[test]
 fn the_predictor_moves_the_vessels_node_with_the_waves() {
-    let mut model = pipe_with_lay(50, tower());
-    let waves = Waves::regular(3.0, 9.0, 0.5)
-        .and_then(|w| w.with_ramp(9.0))
-        .expect("waves");
-    model.waves = Some(WaveField::new(&waves, 800.0, 9.81).expect("field"));
-    let solution = solve(&model, &StaticOptions::default()).expect("statics");
-    let state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
-    let options = DynamicOptions {
-        time_step: 0.1,
-        ..DynamicOptions::default()
-    };
-    let mut sim = Integrator::new(model, state, options).expect("integrator");
+    let model = pipe_at_tower_in_waves(50, 0.5);
+    let mut sim = common::from_statics(model, 0.1);
     for _ in 0..100 {
         sim.step().expect("step");
     }

@@ -1,6 +1,6 @@
 //! What several integration tests share: the 1200 m flooded steel pipe of the validation tests (0.6 m × 15 mm,
 //! 800 m of water, straight along e1), the check of an assembled tangent against finite differences, and a
-//! vessel-held model let go without dissipation.
+//! vessel-held model let go without dissipation, and one started from its statics.
 #![allow(dead_code)]
 use nalgebra::Vector3;
 use pipelay::assembly::assembler::Assembler;
@@ -56,6 +56,17 @@ pub fn released_without_dissipation(mut model: Model, dt: f64) -> Integrator {
     if let Some(v) = state.vessel.as_mut() {
         v.hold_thrust = nalgebra::Vector6::zeros();
     }
+    let options = DynamicOptions {
+        time_step: dt,
+        ..DynamicOptions::default()
+    };
+    Integrator::new(model, state, options).expect("integrator")
+}
+
+/// A model's integrator from its static state at rest, stepping by `dt`.
+pub fn from_statics(model: Model, dt: f64) -> Integrator {
+    let solution = solve(&model, &StaticOptions::default()).expect("statics");
+    let state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
     let options = DynamicOptions {
         time_step: dt,
         ..DynamicOptions::default()
