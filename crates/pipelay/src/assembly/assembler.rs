@@ -47,8 +47,12 @@ pub struct Assembler {
     pub vessel_force: Vector6<f64>,
     /// Size of the vessel's static force in the last assembly (N).
     pub external_vessel_norm: f64,
-    /// Factor on the rotational stiffness C_R (statics' continuation from a cable to the pipe; 1 otherwise).
+    /// Factor on the bending stiffnesses of C_R, not on the torsional one (statics' continuation from a cable to
+    /// the pipe; 1 otherwise).
     pub bending_scale: f64,
+    /// Factor on the current's drag on the rod and its attachments (statics' continuation from still water to
+    /// the current; 1 otherwise).
+    pub current_scale: f64,
     /// Seabed contact, if the model has a seabed.
     pub contact: Option<SeabedContact>,
     /// Where statics' contact starts from: the positions and elastic friction slips of the last converged
@@ -133,6 +137,7 @@ impl Assembler {
         Assembler {
             rollers,
             bending_scale: 1.0,
+            current_scale: 1.0,
             contact,
             contact_start: model.rod.nodes.clone(),
             contact_slips: vec![Vector2::zeros(); model.rod.node_count()],

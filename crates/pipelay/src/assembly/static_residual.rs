@@ -14,7 +14,7 @@ use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::vessel::coupling::{static_forces, StaticTarget};
 use crate::vessel::VesselAttachment;
-use nalgebra::{Matrix6, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3};
 
 /// Results of one assembly besides the residual and tangent.
 #[derive(Debug, Clone, Copy, Default)]
@@ -46,6 +46,10 @@ impl Assembler {
         let mut strain_energy = 0.0;
         let mut max_element_rotation: f64 = 0.0;
         let mut k = ElementMatrix::zeros();
+        // The continuation from a cable scales bending only: a free twist would leave the frames undetermined
+        // about the tangent once a load leaves the pipe's plane.
+        let rotational_scale = Vector3::new(1.0, self.bending_scale, self.bending_scale);
+        let drag_factor = load_factor * self.current_scale;
         for (e, reference) in model.rod.elements.iter().enumerate() {
             let section = model.rod.section(e);
             let weight = model.submerged_weight(e);
@@ -70,7 +74,11 @@ impl Assembler {
                     &config.rotations[e + 1],
                     reference,
                     &section.c_t(),
-                    &(section.c_r() * self.bending_scale),
+                    &Matrix3::from_diagonal(
+                        &section
+                            .rotational_stiffness
+                            .component_mul(&rotational_scale),
+                    ),
                     with_tangent.then_some(&mut k),
                 );
                 strain_energy += response.energy;
@@ -90,7 +98,8 @@ impl Assembler {
                     let (force, d1, d2) = element_current_drag(x1, x2, sea, 0.0, k_axial, k_normal);
                     for a in 0..2 {
                         for i in 0..3 {
-                            self.external[base + NODE_DOFS * a + i] += force[i];
+                            self.external[base + NODE_DOFS * a + i] +=
+                                self.current_scale * force[i];
                         }
                     }
                     if with_tangent {
@@ -100,7 +109,7 @@ impl Assembler {
                                 for i in 0..3 {
                                     for j in 0..3 {
                                         k[(NODE_DOFS * a + i, NODE_DOFS * b + j)] -=
-                                            load_factor * d[(i, j)];
+                                            drag_factor * d[(i, j)];
                                     }
                                 }
                             }
@@ -174,7 +183,7 @@ impl Assembler {
             let mut stiffness = None;
             if let Some(sea) = &model.sea {
                 let (current, shear) = sea.current_at(point.z, 0.0);
-                force += attachment.drag(density, &current);
+                force += self.current_scale * attachment.drag(density, &current);
                 if with_tangent && shear != Vector3::zeros() && attachment.drag_area > 0.0 {
                     let jacobian =
                         quadratic_jacobian(&current) * (0.5 * density * attachment.drag_area);
@@ -193,7 +202,7 @@ impl Assembler {
                     for (b, &weight_b) in place.weights.iter().enumerate() {
                         for i in 0..3 {
                             k[(NODE_DOFS * a + i, NODE_DOFS * b + 2)] -=
-                                load_factor * weight_a * weight_b * d_force[i];
+                                load_factor * self.current_scale * weight_a * weight_b * d_force[i];
                         }
                     }
                 }

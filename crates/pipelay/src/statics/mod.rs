@@ -5,7 +5,11 @@
 //!
 //! May use: the model and its parts, [`crate::assembly`], [`crate::linalg`] and [`crate::response`].
 pub mod catenary;
+pub mod continuation;
 pub mod laid_catenary;
+pub mod newton;
+pub mod physical;
+pub mod relaxation;
 pub mod solve;
 pub mod start;
 pub mod supports;

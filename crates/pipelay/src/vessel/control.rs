@@ -411,22 +411,11 @@ impl Pid {
     }
 }
 
-/// Wraps an angle to (−π, π].
-fn wrap(angle: f64) -> f64 {
-    let two_pi = std::f64::consts::TAU;
-    let a = angle.rem_euclid(two_pi);
-    if a > std::f64::consts::PI {
-        a - two_pi
-    } else {
-        a
-    }
-}
-
 /// η − η_ref with angles wrapped.
 pub fn eta_error(eta: &Vector6<f64>, reference: &Vector6<f64>) -> Vector6<f64> {
     let mut e = eta - reference;
     for k in 3..6 {
-        e[k] = wrap(e[k]);
+        e[k] = super::thrusters::wrap(e[k]);
     }
     e
 }

@@ -222,7 +222,7 @@ pub fn static_forces(
     // Surge, sway, yaw.
     let (hold_force, hold_moment) = match attachment.controller.as_ref().filter(|c| c.start <= 0.0)
     {
-        Some(controller) => controller_static(controller, position, &body),
+        Some(controller) => controller_static(controller, attachment, position, &body, target),
         None => {
             // Thrusters push along the body's surge and sway axes and turn it about its heave axis.
             let k = HOLD_STIFFNESS * vessel.restoring[(2, 2)].max(1.0);
@@ -254,18 +254,25 @@ pub fn static_forces(
     (out, thrust_only(thrust, None))
 }
 
-/// The controller's static force: −Jᵀ(η)K_p η̃ in surge, sway and yaw, as spatial force and moment.
+/// The controller's static force: −Jᵀ(η)K_p η̃ in surge, sway and yaw, as spatial force and moment. Statics hold
+/// the reference's pose at t = 0, at rest, moved with the static target along statics' path: by the target's
+/// offset from η's x, y and heading (none at the path's end).
 fn controller_static(
     controller: &Pid,
+    attachment: &VesselAttachment,
     position: &Vector3<f64>,
     body: &Matrix3<f64>,
+    target: &StaticTarget,
 ) -> (Vector3<f64>, Vector3<f64>) {
     let eta = eta_of(position, body);
-    // Statics hold the reference's pose at t = 0, at rest.
-    let pose = controller
+    let mut pose = controller
         .reference
         .at(0.0)
         .map_or_else(|_| Vector6::zeros(), |r| r.0);
+    let heading = euler::angles_from_rotation(&target.rotation).z;
+    pose[0] += target.position.x - attachment.eta[0];
+    pose[1] += target.position.y - attachment.eta[1];
+    pose[5] += super::thrusters::wrap(heading - attachment.eta[5]);
     let tau = pid_thrust(
         controller,
         &eta,

@@ -1,0 +1,172 @@
+//! Statics by continuation: from a state where Newton converges, one factor of the model at a time grows to its
+//! value in steps that grow on easy convergence and halve on failure ([`Leg`]); where the steps stall, the
+//! point is reached by relaxation instead ([`crate::statics::relaxation`]).
+use crate::assembly::assembler::Assembler;
+use crate::assembly::configuration::Configuration;
+use crate::model::Model;
+use crate::response::configuration::Response;
+use crate::statics::newton::{newton, Newton};
+use crate::statics::relaxation::relax;
+use crate::statics::solve::{StaticOptions, StaticSolution};
+
+/// Smallest factor on the bending stiffness that the continuation from a cable starts at.
+const CABLE_BENDING_SCALE: f64 = 1e-8;
+
+/// A leg of statics' continuation: one factor grows from its start to 1 while the others hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Leg {
+    /// The bending stiffness, geometrically from a cable's ([`CABLE_BENDING_SCALE`]) to the pipe's.
+    Bending,
+    /// The seabed's friction, from a frictionless seabed.
+    Friction,
+    /// The current's drag, from still water: the loads out of the pipe's plane come last.
+    Current,
+}
+
+/// Where statics' continuation stands: factors on the bending stiffness, seabed friction and the current's drag.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Homotopy {
+    bending: f64,
+    friction: f64,
+    current: f64,
+}
+
+impl Homotopy {
+    /// The point at parameter t ∈ [0, legs.len()]: leg k's factor grows over t ∈ [k, k + 1]; a factor whose leg
+    /// is not in `legs` is 1 throughout.
+    fn at(t: f64, legs: &[Leg]) -> Self {
+        let mut point = Homotopy {
+            bending: 1.0,
+            friction: 1.0,
+            current: 1.0,
+        };
+        for (k, leg) in legs.iter().enumerate() {
+            let progress = (t - k as f64).clamp(0.0, 1.0);
+            match leg {
+                Leg::Bending => {
+                    point.bending = 10f64.powf(CABLE_BENDING_SCALE.log10() * (1.0 - progress))
+                }
+                Leg::Friction => point.friction = progress,
+                Leg::Current => point.current = progress,
+            }
+        }
+        point
+    }
+
+    fn apply(&self, assembler: &mut Assembler) {
+        assembler.bending_scale = self.bending;
+        assembler.current_scale = self.current;
+        if let Some(contact) = &mut assembler.contact {
+            contact.friction_scale = self.friction;
+        }
+    }
+}
+
+/// The legs `model` needs from a cable, in order: to the pipe, then to the seabed's friction (if it has any), then
+/// to the current (if there is one).
+pub fn legs_from_cable(model: &Model, assembler: &Assembler) -> Vec<Leg> {
+    let mut legs = vec![Leg::Bending];
+    if assembler.contact.as_ref().is_some_and(|c| c.has_friction()) {
+        legs.push(Leg::Friction);
+    }
+    legs.extend(legs_from_still_water(model));
+    legs
+}
+
+/// The leg from still water to the current, if `model` has one.
+pub fn legs_from_still_water(model: &Model) -> Vec<Leg> {
+    if model.sea.as_ref().is_some_and(|sea| sea.current.is_some()) {
+        vec![Leg::Current]
+    } else {
+        Vec::new()
+    }
+}
+
+/// Continuation steps below which a point Newton cannot reach is relaxed to instead.
+const RELAX_BELOW: f64 = 1.0 / 32.0;
+
+/// Points of one continuation that may be reached by relaxation.
+const MAX_RELAXATIONS: usize = 4;
+
+/// Smallest continuation step before giving up.
+const MIN_STEP: f64 = 1e-4;
+
+/// Statics at full load by continuation from `config` along `legs` (Newton at full load when there are none):
+/// first Newton at the legs' start, then each leg's factor in steps that grow on easy convergence and halve on
+/// failure. From a cable (bending stiffness scaled down, which the catenary fits) to the pipe; from a
+/// frictionless seabed to the seabed's friction (friction stays relative to statics' start, so the path does not
+/// change the answer); from still water to the current. A point that Newton misses at the start, or with steps
+/// below [`RELAX_BELOW`], is relaxed to from the last one reached (at most [`MAX_RELAXATIONS`] times). The
+/// iterations spent if it stalls.
+pub fn continuation(
+    model: &Model,
+    assembler: &mut Assembler,
+    mut config: Configuration,
+    legs: &[Leg],
+    options: &StaticOptions,
+) -> std::result::Result<StaticSolution, usize> {
+    let end = legs.len() as f64;
+    let mut t = 0.0;
+    let mut step: f64 = 0.25;
+    let mut iterations = 0;
+    let mut steps = 0;
+    let mut relaxations = 0;
+    let mut first = true;
+    let outcome = loop {
+        let target = if first { 0.0 } else { (t + step).min(end) };
+        Homotopy::at(target, legs).apply(assembler);
+        let mut trial = config.clone();
+        let mut outcome = newton(model, assembler, &mut trial, 1.0, None, options);
+        if let Newton::Failed {
+            iterations: its, ..
+        } = outcome
+        {
+            if (first || step < RELAX_BELOW) && relaxations < MAX_RELAXATIONS {
+                iterations += its;
+                relaxations += 1;
+                trial.clone_from(&config);
+                outcome = relax(model, assembler, &mut trial, 1.0, options);
+            }
+        }
+        match outcome {
+            Newton::Converged {
+                iterations: its,
+                residual,
+            } => {
+                iterations += its;
+                steps += 1;
+                config = trial;
+                t = target;
+                first = false;
+                if t >= end {
+                    break Some(residual);
+                }
+                if its <= 6 {
+                    step = (2.0 * step).min(0.5);
+                }
+            }
+            Newton::Failed {
+                iterations: its, ..
+            } => {
+                iterations += its;
+                step *= 0.5;
+                if first || step < MIN_STEP {
+                    break None;
+                }
+            }
+        }
+    };
+    Homotopy::at(end, legs).apply(assembler);
+    let Some(residual) = outcome else {
+        return Err(iterations);
+    };
+    Ok(StaticSolution {
+        response: Response::with_assembler(model, &config, assembler),
+        configuration: config,
+        iterations,
+        steps,
+        residual,
+        from_catenary: true,
+        relaxations,
+    })
+}
