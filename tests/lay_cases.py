@@ -17,8 +17,11 @@ pipe's properties and on closed-form catenary and stinger geometry, never on a s
   specific gravity (empty or flooded, coatings included) is at least 1.1, so that the laid pipe stays down (an
   empty pipe too light gets a concrete coat in S-lay depths, else the draw is thrown away);
 * the catenary of submerged weight w and horizontal tension H = a·w from the seabed to the lift-off point (S-lay)
-  or the tower exit (J-lay): sagbend strain (D/2)/a ≤ 0.20 %; top tension w·(a + height of the hold point above
-  the seabed) ≤ 6000 kN;
+  or the tower exit (J-lay), of height h and arc length s: sagbend strain (D/2)/a ≤ 0.20 %; top tension
+  w·(a + height of the hold point above the seabed) ≤ 6000 kN; and the catenary a valid design: the pipe's bending
+  length sqrt(EI/H) at most h/2 (a stiff pipe in shallow water at a low tension is not a catenary), the current's
+  drag on the span, ½ρ·C_d·D_h·v²·s at the surface speed, at most H (the tension, not the current, shapes the
+  line);
 * S-lay: a stinger of radius R (50–400 m) chosen for an overbend bending strain D/2R of 55–85 % of DNV's 0.85·SMYS/E,
   and D/2R + T_top/EA ≤ 0.85·SMYS/E; the pipe leaves it at 72–92 % of its length (some tip clearance), at a
   departure angle ≤ 60°; the stinger 30–150 m long, its tip at least max(5 m, 10 % of the depth) above the seabed;
@@ -95,6 +98,8 @@ STINGER_LENGTH = (30.0, 150.0)
 DEPARTURE_MAX = math.radians(60.0)
 JLAY_TOP_ANGLE = (math.radians(2.0), math.radians(20.0))
 DP_PULL_SHARE = 0.4
+BENDING_SHARE = 0.5
+DRAG_SHARE = 1.0
 
 RULES: dict[str, str] = {
     "d/t": "D/t in [15, 45]",
@@ -102,6 +107,8 @@ RULES: dict[str, str] = {
     "floats": "specific gravity ≥ 1.1 (coatings and contents included)",
     "sagbend": "catenary sagbend strain (D/2)/a ≤ 0.20 %",
     "tension": "top tension ≤ 6000 kN",
+    "stiffness": "the pipe's bending length sqrt(EI/H) ≤ half the catenary's height (the catenary design holds)",
+    "drag": "the current's drag on the suspended span, ½ρC_d D_h v²·s, ≤ H (the tension holds the catenary)",
     "overbend": "D/2R + T_top/EA ≤ 0.85·SMYS/E on the stinger",
     "stinger": "stinger 30–150 m long, radius 50–400 m, departure ≤ 60°, its tip clear of the seabed",
     "tower": "J-lay natural top angle 2–20° from the vertical",
@@ -344,6 +351,12 @@ def design(c: Choices, index: int = -1, seed: int = 0) -> LayCase:
         raise Unsensible("sagbend", f"{100 * d['sagbend_strain']:.3f} %")
     if d["top_tension"] > TOP_TENSION_MAX:
         raise Unsensible("tension", f"{d['top_tension'] / 1e3:.0f} kN")
+    bending_length = math.sqrt(ei / (a * w))
+    if bending_length > BENDING_SHARE * h:
+        raise Unsensible("stiffness", f"sqrt(EI/H) = {bending_length:.0f} m for a height of {h:.0f} m")
+    drag = 0.5 * RHO_WATER * pipe["drag"][1] * dh * c.current**2 * arc
+    if drag > DRAG_SHARE * a * w:
+        raise Unsensible("drag", f"{drag / 1e3:.0f} kN on the span against H = {a * w / 1e3:.0f} kN")
     if c.kind == "s-lay":
         d["overbend_strain"] = 0.5 * od / d["stinger_radius"] + d["top_tension"] / ea
         if d["overbend_strain"] > strain_limit:
@@ -607,10 +620,10 @@ def _pick(rng: np.random.Generator, options: tuple[tuple[Any, float], ...]) -> A
     return options[int(rng.choice(len(options), p=weights / weights.sum()))][0]
 
 
-def draw_choices(rng: np.random.Generator) -> Choices:
-    """Choices at random: S-lay (60 %) in 30–1000 m or J-lay in 300–3000 m (log-uniform), any size and wall,
-    grades, coatings and contents as a project would, currents, waves and DP as the sea and the spread come."""
-    kind = "s-lay" if rng.random() < 0.6 else "j-lay"
+def draw_choices(rng: np.random.Generator, kind: str) -> Choices:
+    """Choices at random for a lay of `kind`: S-lay in 30–1000 m or J-lay in 300–3000 m (log-uniform), any size
+    and wall, grades, coatings and contents as a project would, currents, waves and DP as the sea and the spread
+    come."""
     low, high = (30.0, 1000.0) if kind == "s-lay" else (300.0, 3000.0)
     depth = float(np.round(np.exp(rng.uniform(math.log(low), math.log(high))), 1))
     nps = int(rng.choice(list(NOMINAL_OD)))
@@ -631,7 +644,7 @@ def draw_choices(rng: np.random.Generator) -> Choices:
     hs = float(np.round(rng.uniform(0.5, 3.0), 2)) if waves else 0.0
     tp = float(np.round(rng.uniform(max(5.0, 4.0 * math.sqrt(max(hs, 0.5))), 13.0), 2))
     wave_heading = float(np.round(rng.uniform(0.0, 360.0), 1))
-    elements = 500 if rng.random() < 0.15 else None
+    elements = 500 if rng.random() < 0.3 else None
     spacing = float(np.round(rng.uniform(5.0, 8.0), 2))
     choices = Choices(
         kind=kind,
@@ -684,11 +697,12 @@ def _coated(choices: Choices) -> Choices:
 
 
 def draw(seed: int, index: int, rejections: Counter[str] | None = None) -> LayCase:
-    """Case `index` of the campaign of seed `seed`: draws from its own random stream ((seed, index)) until a
-    draw is sensible, counting the others in `rejections` by rule."""
+    """Case `index` of the campaign of seed `seed`: an S-lay (60 %) or a J-lay, drawn from its own random stream
+    ((seed, index)) until a draw is sensible, counting the others in `rejections` by rule."""
     rng = np.random.default_rng([seed, index])
+    kind = "s-lay" if rng.random() < 0.6 else "j-lay"
     for _ in range(10_000):
-        choices = draw_choices(rng)
+        choices = draw_choices(rng, kind)
         try:
             return design(choices, index, seed)
         except Unsensible as refused:
