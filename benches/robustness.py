@@ -23,9 +23,9 @@ Per case:
   with the current, waves and DP of the case; it fails on an error or when a number blows up (not finite, a node
   more than max(50 m, depth/2) from its static position, the top tension beyond 10 × the static one);
 * the target search (every ``--target-every`` case): ``find_lay_position`` for the top tension or the layback (at
-  random) that statics give with the vessel 2–5 m from the case's position, searched from the case's
-  position; reachable by construction (when statics converge there, physically). It succeeds when it returns that
-  value within 0.1 %.
+  random) that statics give with the vessel where the design's equations put a horizontal tension 5–15 % above or
+  below the case's, searched from the case's position; reachable by construction (when statics converge there,
+  physically). It succeeds when it returns that value within 0.1 % (or that position within 2 cm).
 
 The campaign runs in one worker process at a time (restarted after a timeout or a crash), the engine on
 ``--threads`` threads (1 by default: ``RAYON_NUM_THREADS``), so that it leaves the machine's other core free.
@@ -65,8 +65,12 @@ import lay_cases
 from machine import machine
 
 KINDS = ("s-lay", "j-lay")
-TARGET_SHIFT = (2.0, 5.0)
-"""How far (m) from the case's position the target's vessel position lies, either way."""
+TARGET_CHANGE = (0.05, 0.15)
+"""By how much (a share, either way) the target's catenary horizontal tension differs from the case's: the target's
+vessel position is where the design's equations put that tension (a fraction of a metre from the case's in shallow
+water, metres in deep)."""
+TARGET_TOLERANCE = 0.01
+"""find_lay_position's tolerance on x (m)."""
 
 
 # Scenario documents as TOML.
@@ -237,15 +241,17 @@ def run_dynamics(
 
 def run_target(case: lay_cases.LayCase) -> dict[str, Any]:
     """The target search for a value reachable by construction: the top tension or the layback (at random) of the
-    physical static state with the vessel 2–5 m from the case's position (half and a quarter that
-    where statics fail there or give a non-physical state)."""
+    physical static state with the vessel where the design's equations put a horizontal tension 5–15 % above or
+    below the case's (half and a quarter as far where statics fail there or give a non-physical state). Found: the
+    value within 0.1 %, or the position within twice the search's tolerance (where the quantity is steep)."""
     import pipelay as pl
     from pipelay.analysis.lay import find_lay_position, lay_quantity
 
     rng = np.random.default_rng([case.seed, case.index, 7])
     quantity = "top_tension" if rng.random() < 0.5 else "layback"
     x0 = float(case.scenario["vessel"]["eta"][0])
-    shift = float(rng.uniform(*TARGET_SHIFT)) * (1.0 if rng.random() < 0.5 else -1.0)
+    change = float(rng.uniform(*TARGET_CHANGE)) * (1.0 if rng.random() < 0.5 else -1.0)
+    shift = lay_cases.vessel_position(case, case.design["a"] * (1.0 + change)) - x0
     record: dict[str, Any] = {"quantity": quantity, "x_start": x0, "x_target": x0 + shift}
     value, why = math.nan, ""
     for _ in range(
@@ -274,7 +280,9 @@ def run_target(case: lay_cases.LayCase) -> dict[str, Any]:
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", pl.PhysicsWarning)
-            found = find_lay_position(lambda x: _build(case, x), quantity, value, start=x0, step=1.0)
+            found = find_lay_position(
+                lambda x: _build(case, x), quantity, value, start=x0, step=1.0, tolerance=TARGET_TOLERANCE
+            )
     except BaseException as error:
         if isinstance(error, KeyboardInterrupt):
             raise
@@ -285,8 +293,12 @@ def run_target(case: lay_cases.LayCase) -> dict[str, Any]:
         return record | outcome
     seconds = time.perf_counter() - started
     record |= {"seconds": seconds, "solves": found.solves, "x_found": found.x, "value_found": found.value}
-    if abs(found.value - value) > 1e-3 * abs(value):
-        return record | {"ok": False, "kind": "value missed", "message": f"{found.value:.6g} for {value:.6g}"}
+    near = abs(found.x - record["x_target"]) <= 2.0 * TARGET_TOLERANCE
+    if abs(found.value - value) > 1e-3 * abs(value) and not near:
+        message = (
+            f"{found.value:.6g} at x = {found.x:.3f} m for {value:.6g} at x = {record['x_target']:.3f} m"
+        )
+        return record | {"ok": False, "kind": "value missed", "message": message}
     return record | {"ok": True, "kind": "found", "message": ""}
 
 

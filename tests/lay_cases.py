@@ -453,6 +453,29 @@ def _s_lay(
     return x_liftoff, onboard_arc
 
 
+def vessel_position(case: LayCase, a: float) -> float:
+    """The vessel's x (m) at which the design's equations put a catenary of parameter `a` (m) with the case's pipe:
+    the same unstretched length, the laid pipe taking up what the catenary and the stinger leave (S-lay: the
+    lift-off moves along the stinger with the departure angle a gives), stretched by the tension. The design's own
+    position for the design's a; a target's position for another a."""
+    c, d = case.choices, case.design
+    w, dh = d["w"], d["D_h"]
+    if c.kind == "s-lay":
+        radius, angle = d["stinger_radius"], d["departure"]
+        for _ in range(100):  # the departure whose lift-off height gives cos(angle) = a/(a + h)
+            h = c.depth - stinger_centreline(radius, angle, dh)[1]
+            angle = math.acos(a / (a + h))
+        onboard = stinger_centreline(radius, angle, dh)[0]
+        path = (radius + 0.5 * dh) * angle + (TENSIONER[0] - STINGER_ORIGIN[0])
+    else:
+        h, onboard, path = d["h"], TOWER_EXIT[0], 0.0
+    span, arc = catenary_span(a, h)
+    top = w * (a + c.depth - d["hold_z"])
+    stretch = (a * w * d["x_touchdown"] + catenary_tension_integral(a, h, w) + top * path) / d["EA"]
+    laid = d["length"] + stretch - arc - path
+    return laid + span - onboard
+
+
 def _j_lay(c: Choices, od: float, w: float, d: dict[str, float]) -> tuple[float, float]:
     """The J-lay's catenary and tower into `d`; returns the tower exit's body-frame x (m) and 0 (no path beyond
     the catenary)."""
