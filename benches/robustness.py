@@ -13,8 +13,10 @@ S depends on (S, i) only, so any case replays alone.
 Per case:
 
 * statics as ``pipelay static`` solves them (``model.static(steps, start)`` of the scenario); the outcome is
-  "converged", a failure named from the error's message ("load step fell below", "capsized", "Newton did not
-  converge", "catenary start", "input error", "panic", ...), a "timeout" or a "crash" of the process, or, for a
+  "converged", a failure named from the error's message ("load step fell below (loads)" when it fell below
+  while the loads were brought in, "(supports)" while the supports were moved to their positions, "capsized",
+  "Newton did not converge", "catenary start", "input error", "panic", ...), a "timeout" or a "crash" of the
+  process, or, for a
   converged state that ``lay_cases.physical_problems`` finds non-physical (the pipe through the stinger, a roller
   overloaded, the pipe through the seabed, compression at the hold point, deflected against the current, a strain
   beyond 5 × yield), "non-physical: <what>", the worst kind: a state accepted that is wrong. Suspect states
@@ -47,6 +49,7 @@ import math
 import multiprocessing
 import multiprocessing.connection
 import os
+import re
 import statistics
 import sys
 import time
@@ -127,9 +130,13 @@ def failure_kind(error: BaseException) -> str:
             return "not bracketed"
         return "input error"
     if isinstance(error, pl.ConvergenceError):
+        if "load step fell below" in message and "lay position search" not in message:
+            loads = re.search(r"at load factor ([0-9.]+)", message)
+            if loads and float(loads.group(1)) < 1.0:
+                return "load step fell below (loads)"
+            return "load step fell below (supports)"
         for words, kind in (
             ("lay position search: statics failed", "statics failed in the search"),
-            ("load step fell below", "load step fell below"),
             ("capsized", "capsized"),
             ("Newton did not converge", "Newton did not converge"),
             ("catenary", "catenary start"),
@@ -368,7 +375,10 @@ def run_case(
 def _worker(connection: multiprocessing.connection.Connection) -> None:
     """Runs the cases it receives (run_case's arguments) until it receives None."""
     while True:
-        job = connection.recv()
+        try:
+            job = connection.recv()
+        except EOFError:  # the campaign is gone
+            return
         if job is None:
             return
         connection.send(run_case(*job))
