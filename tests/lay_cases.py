@@ -77,8 +77,8 @@ GRADES = (("X52", 0.10), ("X60", 0.15), ("X65", 0.50), ("X70", 0.25))
 SMYS = {"X52": 360e6, "X60": 415e6, "X65": 450e6, "X70": 485e6}
 """Specified minimum yield strength (Pa) of each grade (as pipelay.analysis.checks tabulates them)."""
 
-TENSIONER = (10.0, 0.0)
-"""The S-lay tensioner's body-frame x and the stinger's origin offset: the examples' OSV layout (m)."""
+TENSIONER_X = 10.0
+"""The S-lay tensioner's body-frame x (m), as in the examples; its z puts the pipe on the stinger's first roller."""
 STINGER_ORIGIN = (-40.0, -6.0)
 """The stinger's origin (top line), body frame x and z (m): 40 m aft of CO, 6 m above the waterline."""
 TOWER_EXIT = (0.0, -10.0)
@@ -86,7 +86,11 @@ TOWER_EXIT = (0.0, -10.0)
 ROLLER_RADIUS = 0.25
 """Roller radius (m), pl.Stinger's default."""
 
-# The design rules ("sensible"), each with its limit.
+# The design rules ("sensible"), each with its limit: D/t range, collapse safety factor γ_m·γ_SC, least specific
+# gravity, largest sagbend strain, largest top tension (N), overbend strain as a share of SMYS/E, stinger radius and
+# length (m), steepest departure (rad), J-lay natural top angle (rad from the vertical), largest DP pull as a share of
+# the OSV's surge thrust, largest bending length as a share of the catenary's height, largest current drag on the
+# span as a share of H.
 DT_RANGE = (15.0, 45.0)
 COLLAPSE_FACTOR = 1.15 * 1.04
 SPECIFIC_GRAVITY_MIN = 1.1
@@ -172,11 +176,13 @@ class LayCase:
         seed: the campaign's seed.
         choices: what it was made of.
         scenario: the scenario document (the dict of a TOML scenario file).
-        design: the design's numbers (SI units, rad): "a" (m), "H" and "top_tension" (N), "departure" (rad),
-            "sagbend_strain", "overbend_strain", "layback" (m), "x_touchdown" (m), "x_vessel" (m), "length" (m),
-            "elements", "w" (submerged weight, N/m), "w_dry" (N/m), "D_h" (m), "EA" (N), "EI" (N·m²), and for
-            an S-lay "stinger_radius", "stinger_length" (m), "rollers", "liftoff_arc" (m); for a J-lay
-            "top_angle" (natural, rad from the vertical) and "tower_angle" (rad).
+        design: the design's numbers (SI units, rad): "a" (m), "h" (the catenary's height, m), "H" and
+            "top_tension" (N), "departure" (rad), "sagbend_strain", "overbend_strain", "layback" (m),
+            "x_touchdown" (m), "x_vessel" (m), "length" (unstretched, m), "stretch" (m), "hold_z" (the hold
+            point's body-frame z, m), "elements", "w" (submerged weight, N/m), "w_dry" (N/m), "D_h" (m),
+            "specific_gravity", "EA" (N), "EI" (N·m²), and for an S-lay "stinger_radius", "stinger_length" (m),
+            "rollers", "liftoff_arc" (m); for a J-lay "top_angle" (natural, rad from the vertical) and
+            "tower_angle" (rad).
     """
 
     index: int
@@ -187,7 +193,7 @@ class LayCase:
 
     @property
     def kind(self) -> str:
-        """ "s-lay" or "j-lay"."""
+        """The lay: "s-lay" or "j-lay"."""
         return self.choices.kind
 
     @property
@@ -341,7 +347,7 @@ def design(c: Choices, index: int = -1, seed: int = 0) -> LayCase:
     d.update(
         H=a * w,
         sagbend_strain=0.5 * od / a,
-        layback=span + (TENSIONER[0] if c.kind == "s-lay" else TOWER_EXIT[0]) - onboard,
+        layback=span + (TENSIONER_X if c.kind == "s-lay" else TOWER_EXIT[0]) - onboard,
         x_touchdown=laid,
         x_vessel=x_vessel,
         length=length,
@@ -366,7 +372,7 @@ def design(c: Choices, index: int = -1, seed: int = 0) -> LayCase:
     fine_zone = 0.0
     if c.kind == "s-lay":  # onboard and the whole stinger
         fine_zone = (
-            TENSIONER[0] - STINGER_ORIGIN[0] + d["stinger_length"] * (1.0 + 0.5 * dh / d["stinger_radius"])
+            TENSIONER_X - STINGER_ORIGIN[0] + d["stinger_length"] * (1.0 + 0.5 * dh / d["stinger_radius"])
         )
     nodes = _mesh(c, length, fine_zone)
     d["elements"] = float(len(nodes) - 1)
@@ -438,7 +444,7 @@ def _s_lay(
         raise Unsensible("stinger", f"tip {tip:.1f} m deep in {c.depth:.0f} m")
     rollers = max(4, round(length / c.roller_spacing) + 1)
     x_liftoff = stinger_centreline(radius, angle, dh)[0]
-    onboard_arc = (radius + 0.5 * dh) * angle + (TENSIONER[0] - STINGER_ORIGIN[0])
+    onboard_arc = (radius + 0.5 * dh) * angle + (TENSIONER_X - STINGER_ORIGIN[0])
     d.update(
         a=a,
         h=h,
@@ -466,7 +472,7 @@ def vessel_position(case: LayCase, a: float) -> float:
             h = c.depth - stinger_centreline(radius, angle, dh)[1]
             angle = math.acos(a / (a + h))
         onboard = stinger_centreline(radius, angle, dh)[0]
-        path = (radius + 0.5 * dh) * angle + (TENSIONER[0] - STINGER_ORIGIN[0])
+        path = (radius + 0.5 * dh) * angle + (TENSIONER_X - STINGER_ORIGIN[0])
     else:
         h, onboard, path = d["h"], TOWER_EXIT[0], 0.0
     span, arc = catenary_span(a, h)
@@ -571,7 +577,7 @@ def _scenario(c: Choices, pipe: dict[str, Any], xs: list[float], d: dict[str, fl
     if c.kind == "s-lay":
         vessel["lay"] = {
             "kind": "s-lay",
-            "tensioner": [TENSIONER[0], 0.0, round(d["hold_z"], 4)],
+            "tensioner": [TENSIONER_X, 0.0, round(d["hold_z"], 4)],
             "stinger": {
                 "radius": d["stinger_radius"],
                 "length": d["stinger_length"],
