@@ -388,11 +388,13 @@ class Worker:
     """One worker process, restarted after a timeout or a crash."""
 
     def __init__(self) -> None:
+        """No process yet: the first case starts it."""
         self.context = multiprocessing.get_context("spawn")
         self.process: Any = None
         self.connection: Any = None
 
     def start(self) -> None:
+        """A new worker process, the engine's threads as RAYON_NUM_THREADS says."""
         ours, theirs = self.context.Pipe()
         self.process = self.context.Process(target=_worker, args=(theirs,), daemon=True)
         self.process.start()
@@ -418,6 +420,7 @@ class Worker:
             return f"crash (exit code {code})"
 
     def stop(self) -> None:
+        """Ends the worker when it is idle."""
         if self.process is not None and self.process.is_alive():
             self.connection.send(None)
             self.process.join(10)
@@ -445,14 +448,17 @@ def _lost(seed: int, index: int, why: str, timeout: float, planar: bool) -> dict
 
 
 def _percent(part: int, whole: int) -> str:
+    """ "12.5 % (1/8)", or "–" of nothing."""
     return "–" if whole == 0 else f"{100.0 * part / whole:.1f} % ({part}/{whole})"
 
 
 def _median(values: list[float], digits: int) -> str:
+    """The median with `digits` decimals, or "–" of nothing."""
     return "–" if not values else f"{statistics.median(values):.{digits}f}"
 
 
 def _seconds(values: list[float]) -> str:
+    """Median / max of times (s), or "–" of nothing."""
     return "–" if not values else f"{statistics.median(values):.3f} / {max(values):.3f}"
 
 
@@ -489,6 +495,7 @@ def summary_table(records: list[dict[str, Any]]) -> list[str]:
 
 
 def _examples(indices: Iterable[int], count: int = 6) -> str:
+    """The first `count` case indices, "…" for the rest."""
     chosen = sorted(indices)
     text = ", ".join(str(i) for i in chosen[:count])
     return text + (", …" if len(chosen) > count else "")
