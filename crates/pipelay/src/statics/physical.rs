@@ -6,17 +6,21 @@
 //! A rod over one-sided roller contacts has several equilibria, and Newton may converge to one no lay spread
 //! holds: the pipe passed through a roller to its far side, or hanging under the stinger between its first and
 //! last roller (the stinger's structure is there). Each roller's contact sees only the pipe near it, so neither
-//! shows in the residual. With the rollers' tops t_k (the hold point t_0 first) and their normals n_k, the line
-//! the pipe rests on is the polyline t_0 t_1 … t_m in the vessel's body frame; a node at y whose foot on the
-//! segment t_k t_{k+1} lies within it stands h = (y − foot)·n̄ above it, n̄ the normals interpolated there.
-//! Resting on the rollers, the pipe's centreline stands half a diameter above; a node more than a diameter
-//! below its resting height (h < −D/2), is under the stinger.
+//! shows in the residual. With the rollers' tops t_k (the hold point t_0 first), the line the pipe rests on is the
+//! polyline t_0 t_1 … t_m in the vessel's body frame; a node whose body x lies between those of t_k and t_{k+1}
+//! stands h above it, measured along the body's vertical. Resting on the rollers, the pipe's centreline stands
+//! half a diameter above, and between two supports a span s sags by w s²/(8T) under its weight; a node more than
+//! a diameter and a twentieth of the span below its resting height (h < −D/2 − s/20, a sag that would need a
+//! tension as low as 2.5 w s) is under the stinger.
 // Indexing cannot go out of bounds here: node and roller indices of the state's own model.
 #![allow(clippy::indexing_slicing)]
 use crate::contact::rollers::roller_gap;
 use crate::model::Model;
 use nalgebra::{UnitQuaternion, Vector3};
 use std::fmt;
+
+/// The sag below the rollers' line allowed per length of the span between two supports: a twentieth.
+const SAG_PER_SPAN: f64 = 0.05;
 
 /// What makes a converged static state unphysical.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -139,7 +143,8 @@ pub fn check(
                 Some(Unphysical::UnderStinger { depth: worst, .. }) => depth > worst,
                 _ => true,
             };
-            if depth > 0.5 * diameter && deeper {
+            let span = (pair[1] - pair[0]).norm();
+            if depth > 0.5 * diameter + SAG_PER_SPAN * span && deeper {
                 deepest = Some(Unphysical::UnderStinger {
                     node: i,
                     after: k,

@@ -38,12 +38,23 @@ pub fn body_rotation(
     node_rotation.to_rotation_matrix().into_inner() * attachment.angle
 }
 
-/// Round-off of the vessel's static forces (N): the holding springs turn the last bits of positions of size
-/// `extent` (m) into force (and of the heading into moment).
+/// Round-off of the vessel's static forces (N): the holding springs, or the gains of a controller that holds the
+/// vessel in statics, turn the last bits of positions of size `extent` (m) into force (and of the heading into
+/// moment).
 pub fn static_round_off(attachment: &VesselAttachment, extent: f64) -> f64 {
-    let restoring = &attachment.vessel.restoring;
-    let k = HOLD_STIFFNESS * restoring[(2, 2)].max(1.0);
-    let k_yaw = HOLD_STIFFNESS * restoring[(4, 4)].max(1.0);
+    let (k, k_yaw) = match attachment.controller.as_ref().filter(|c| c.start <= 0.0) {
+        Some(controller) => (
+            controller.kp[(0, 0)].max(controller.kp[(1, 1)]),
+            controller.kp[(5, 5)],
+        ),
+        None => {
+            let restoring = &attachment.vessel.restoring;
+            (
+                HOLD_STIFFNESS * restoring[(2, 2)].max(1.0),
+                HOLD_STIFFNESS * restoring[(4, 4)].max(1.0),
+            )
+        }
+    };
     8.0 * f64::EPSILON * (k * (extent + attachment.hang_off().norm()) + k_yaw)
 }
 
