@@ -73,7 +73,8 @@ def test_a_monotone_miss_far_away_either_way(root: float, most: int) -> None:
 
 
 def test_a_quantity_that_turns_back_is_searched_at_its_extremum() -> None:
-    """A narrow hump, 0.3 − (x − 640)²/4 (the departure angle peaks like this in s_lay.toml): from 660 m the
+    """A narrow hump, 0.3 − (x − 640)²/4 (a quantity with a maximum, like the overbend strain's minimum near
+    x = 658 m in s_lay.toml): from 660 m the
     doubling steps 645 → 629 jump over both roots (640 ± 1.095 m); the parabola through the last three points
     finds the hump and a root, to 0.01 m, in at most 16 solves. A hump that stays 0.5 below the target is no
     bracket, and the closest position found is its top to 0.5 m after at most 15 solves."""
@@ -116,7 +117,8 @@ def test_a_root_inside_a_gap_is_narrowed_to_the_gaps_edge() -> None:
 
 def test_a_wall_of_failures_and_a_miss_that_grows_the_other_way_end_the_search() -> None:
     """Statics fails beyond 663 m and the root is at 680 m behind it; the other way the miss grows: no
-    bracket, the closest is 663 m (the last good position before the wall), after at most 10 solves."""
+    bracket, the closest is 663 m (the last good position before the wall), after at most 10 solves (three
+    failed solves in a row, or three steps in a row away from the target, give a direction up)."""
 
     def miss(x: float) -> float:
         return _no_state(x) if x > 663.0 else x - 680.0

@@ -71,8 +71,9 @@ _HELD = ("departure_angle", "overbend_strain")
 _TURN_PROBES = 3
 """Parabola probes at an extremum of the quantity, to see whether it reaches the target."""
 
-_AWAY = 3
-"""Steps in a row a direction of the search may take away from the target before it is given up."""
+_GIVE_UP = 3
+"""Steps in a row away from the target, or failed solves in a row, after which a direction of the search is
+given up (a failed solve far from the start can take seconds)."""
 
 
 @dataclass(frozen=True)
@@ -238,7 +239,7 @@ class _Probes:
 class _Front:
     """One direction of the bracket search: its farthest position with a value (x, miss), the position before
     it, the next step (m), whether it has passed an extremum, and how many steps in a row took it away from the
-    target."""
+    target and how many solves in a row failed."""
 
     x: float
     value: float
@@ -247,6 +248,7 @@ class _Front:
     before: tuple[float, float] | None = None
     turned: bool = False
     away: int = 0
+    failed: int = 0
 
 
 def _search_bracket(probes: _Probes, start: float, step: float) -> tuple[float, float] | None:
@@ -258,7 +260,7 @@ def _search_bracket(probes: _Probes, start: float, step: float) -> tuple[float, 
     with a value by a step that doubles after each success; a position with no state halves the step, so the
     next tries come back toward the last good position and, once one succeeds, the doubling steps past the
     gap. A direction is blocked when it would need a step shorter than `step`, and given up after three steps
-    in a row away from the target. The direction advanced is the one whose farthest miss is the smallest, so
+    in a row away from the target or three failed solves in a row. The direction advanced is the one whose farthest miss is the smallest, so
     the search heads toward the target and turns to the other side when this one stops coming closer. A
     direction that comes closer and then turns away has passed an extremum
     of the quantity: up to three parabola probes look whether the extremum crosses the target.
@@ -268,7 +270,7 @@ def _search_bracket(probes: _Probes, start: float, step: float) -> tuple[float, 
         return start, start
     fronts = [_Front(start, here, step, 1.0), _Front(start, here, step, -1.0)]
     while not probes.spent:
-        open_fronts = [f for f in fronts if f.size >= step and f.away < _AWAY]
+        open_fronts = [f for f in fronts if f.size >= step and f.away < _GIVE_UP and f.failed < _GIVE_UP]
         if not open_fronts:
             return None
         front = min(open_fronts, key=lambda f: abs(f.value) if math.isfinite(f.value) else math.inf)
@@ -276,7 +278,9 @@ def _search_bracket(probes: _Probes, start: float, step: float) -> tuple[float, 
         there = probes(trial)
         if not math.isfinite(there):
             front.size *= 0.5
+            front.failed += 1
             continue
+        front.failed = 0
         if math.isfinite(front.value):
             if front.value * there <= 0.0:
                 return min(front.x, trial), max(front.x, trial)
