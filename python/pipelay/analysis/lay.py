@@ -104,7 +104,7 @@ class TargetNotReached(pl.InputError):
 
     Attributes:
         closest: the tried position whose quantity is closest to the target, with its state
-            (``reached`` False); None when no position tried had a state.
+            (``reached`` False); None when the quantity is undefined at every position tried (no touchdown).
     """
 
     def __init__(self, message: str, closest: LayPosition | None) -> None:
