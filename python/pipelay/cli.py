@@ -1,7 +1,7 @@
 """The ``pipelay`` command line.
 
     pipelay run SCENARIO -o RESULTS.nc [--plots DIR] [--checkpoint FILE] [--resume FILE] [--no-progress]
-    pipelay static SCENARIO [--plots DIR] [--target QUANTITY=VALUE [--bracket LOW,HIGH]]
+    pipelay static SCENARIO [--plots DIR] [--target QUANTITY=VALUE[UNIT] [--bracket LOW,HIGH] [--max-solves N]]
     pipelay check SCENARIO
     pipelay plot RESULTS.nc --plots DIR
     pipelay sweep SCENARIO --over KEY=V1,V2,... [--over ...] -o DIR [--scheduler ADDRESS | --workers N]
@@ -16,6 +16,9 @@
 
 `pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
 flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
+`pipelay static --target` moves the vessel along e1 until a lay quantity reaches VALUE, in the unit `pipelay
+static` prints it in (kN, degrees, m, %) or in the UNIT given (pipelay.analysis.lay.find_lay_position, at most
+--max-solves static solves).
 `pipelay sweep` runs the scenario for every combination of the --over values on Dask
 (pipelay.analysis.sweep): a local cluster of --workers processes (default: one a core) or the scheduler at
 --scheduler; the cases' results and the summary go to DIR (DIR/summary.nc), and finished cases found there
@@ -44,6 +47,8 @@ from __future__ import annotations
 import argparse
 import copy
 import json
+import math
+import re
 import sys
 import tomllib
 from pathlib import Path
@@ -54,7 +59,14 @@ import numpy as np
 import pipelay as pl
 from pipelay import plots
 from pipelay.analysis.capability import dp_capability
-from pipelay.analysis.lay import TARGETS, find_lay_position
+from pipelay.analysis.lay import (
+    MAX_SOLVES,
+    RANGES,
+    TARGETS,
+    TargetNotReached,
+    check_target,
+    find_lay_position,
+)
 from pipelay.analysis.suspect import PhysicsWarning, worst_of_each_kind
 from pipelay.analysis.sweep import SUMMARY_TITLE, _label, sweep
 from pipelay.analysis.sweep import run as run_simulation
@@ -63,6 +75,24 @@ from pipelay.results import checkpoint, load
 from pipelay.scenario import Scenario, load_scenario, parse_scenario
 
 INTERRUPTED = 130
+
+_TARGET_UNITS: dict[str, tuple[str, dict[str, float], str]] = {
+    "top_tension": ("kN", {"kN": 1e3, "N": 1.0, "MN": 1e6}, "1000 (kN), 1e6N, 1MN"),
+    "departure_angle": (
+        "°",
+        {"deg": math.pi / 180, "°": math.pi / 180, "rad": 1.0},
+        "62 (degrees below the horizontal), 62deg, 62°, 1.08rad",
+    ),
+    "layback": ("m", {"m": 1.0}, "500 (m)"),
+    "touchdown_arc_length": ("m", {"m": 1.0}, "200 (m from end A)"),
+    "sagbend_strain": ("%", {"%": 0.01}, "0.15 (%), 0.15%"),
+    "overbend_strain": ("%", {"%": 0.01}, "0.2 (%)"),
+    "sagbend_utilisation": ("", {"": 1.0}, "0.8"),
+}
+"""`--target`'s quantities: the unit `pipelay static` prints each in (a bare number's unit), the units that may
+be written after the number with their size in SI units (rad for angles, a fraction for strains), examples."""
+
+_NUMBER = re.compile(r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*)")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -93,13 +123,25 @@ def _parser() -> argparse.ArgumentParser:
     static.add_argument("--plots", type=Path, help="directory for the tension and bending figure")
     static.add_argument(
         "--target",
-        help="move the vessel along e1 until a lay quantity reaches a value, e.g. top_tension=8e5 "
-        f"(quantities: {', '.join(TARGETS)})",
+        metavar="QUANTITY=VALUE[UNIT]",
+        help="move the vessel along e1 until a lay quantity reaches a value, in the unit this command prints "
+        "it in or with a unit: "
+        + "; ".join(f"{q}={_TARGET_UNITS[q][2]}" for q in TARGETS).replace("%", "%%")
+        + "; a target the lay equipment fixes (a J-lay's departure angle) is refused",
     )
     static.add_argument(
         "--bracket",
-        help="LOW,HIGH: the vessel positions (η's x, m) to search between; default: searched from vessel.eta "
-        "in steps that double from 1 m",
+        metavar="LOW,HIGH",
+        help="the vessel positions (η's x, m) to search between; default: searched from vessel.eta "
+        "both ways in steps that double from 1 m, around positions where statics fails",
+    )
+    static.add_argument(
+        "--max-solves",
+        type=int,
+        default=MAX_SOLVES,
+        metavar="N",
+        help=f"the most static solves the search spends (default: {MAX_SOLVES}); without an answer by then it "
+        "prints the closest state found and exits 2",
     )
     check = commands.add_parser("check", help="validate a scenario file without solving")
     check.add_argument("scenario", type=Path, help="scenario file (TOML)")
@@ -370,18 +412,50 @@ def _print_suspects(suspects: dict[str, PhysicsWarning]) -> None:
         print(f"warning: {warning}", file=sys.stderr)
 
 
-def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
-    """`--target`: the static state with the vessel moved along e1 until the lay quantity hits the value."""
-    quantity, _, text = str(args.target).partition("=")
-    try:
-        value = float(text)
-    except ValueError:
+def _target_value(text: str) -> tuple[str, float]:
+    """`--target QUANTITY=VALUE[UNIT]`: the quantity and its value in SI units (rad, a fraction for strains):
+    a bare number is in the unit `pipelay static` prints the quantity in (kN, degrees, m, %), or a unit is
+    written after it (700kN, 62deg, 1.08rad, 0.15%); out of range is an InputError naming --target."""
+    quantity, equals, given = text.partition("=")
+    quantity = quantity.strip()
+    if quantity not in TARGETS:
+        raise pl.InputError(f"--target: {quantity!r} is not a lay quantity; allowed: {', '.join(TARGETS)}")
+    printed, units, examples = _TARGET_UNITS[quantity]
+    number = _NUMBER.fullmatch(given.strip())
+    if not equals or number is None:
         raise pl.InputError(
-            f"--target: {args.target!r} must be QUANTITY=VALUE, e.g. top_tension=8e5"
-        ) from None
+            f"--target: {text!r} must be QUANTITY=VALUE[UNIT], e.g. {quantity}={examples.split(',')[0]}"
+        )
+    unit = number[2].strip() or printed
+    if unit not in units:
+        allowed = ", ".join(u for u in units if u) or "none"
+        raise pl.InputError(
+            f"--target: {text!r}: {unit!r} is not a unit of {quantity}; allowed: {allowed} (a bare number is "
+            f"in {printed or 'no unit'}, as `pipelay static` prints it)"
+        )
+    value = float(number[1]) * units[unit]
+    low, high = RANGES[quantity]
+    if not (math.isfinite(value) and low < value <= high):
+        size, space = units[printed], "" if printed in ("°", "") else " "
+        span = f"> {low / size:g}" if math.isinf(high) else f"in ({low / size:g}, {high / size:g}]"
+        what = "an angle" if quantity == "departure_angle" else "a value"
+        below = " below the horizontal" if quantity == "departure_angle" else ""
+        raise pl.InputError(
+            f"--target: {text!r} is {value / size:g}{space}{printed}, out of range; allowed: {what} {span}"
+            f"{space}{printed}{below} (e.g. {quantity}={examples})"
+        )
+    return quantity, value
+
+
+def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
+    """`--target`: the static state with the vessel moved along e1 until the lay quantity hits the value; without
+    one, the closest state found is printed before the error."""
+    quantity, value = _target_value(str(args.target))
     vessel = scenario.source.get("vessel")
     if not isinstance(vessel, dict):
         raise pl.InputError("--target: needs a [vessel] to move")
+    if args.max_solves < 2:
+        raise pl.InputError(f"--max-solves: {args.max_solves} must be at least 2 (static solves)")
     x0 = float(vessel["eta"][0])
     bracket = None
     if args.bracket:
@@ -399,15 +473,30 @@ def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
             controller["reference"][0] += x - x0
         return parse_scenario(data, str(args.scenario)).model
 
-    found = find_lay_position(build, quantity, value, bracket, start=x0)
+    check_target(quantity, rest=build(x0).rest(), argument="--target")
+    unit, units, _ = _TARGET_UNITS[quantity]
+
+    def shown(si: float) -> str:
+        return f"{si / units[unit]:.6g}" + ("" if unit in ("°", "") else " ") + unit
+
+    try:
+        found = find_lay_position(build, quantity, value, bracket, start=x0, max_solves=args.max_solves)
+    except TargetNotReached as missed:
+        if missed.closest is not None:
+            print(
+                f"lay position: not reached; the closest state found: vessel x = {missed.closest.x:.3f} m "
+                f"gives {quantity} = {shown(missed.closest.value)}"
+            )
+            print(_summary(missed.closest.state))
+        raise
     print(
-        f"lay position: vessel x = {found.x:.3f} m gives {quantity} = {found.value:.6g} "
+        f"lay position: vessel x = {found.x:.3f} m gives {quantity} = {shown(found.value)} "
         f"({found.solves} static solves)"
     )
-    if abs(found.value - value) > 1e-3 * max(abs(value), 1e-12):
+    if not found.reached:
         print(
-            f"lay position: {quantity} jumps across {value:.6g} there (the lift-off moves to another roller, "
-            "say): the closest a static state comes"
+            f"lay position: {quantity} jumps across {shown(value)} there (the lift-off moves to "
+            "another roller, say): the closest a static state comes"
         )
     return found.state
 
