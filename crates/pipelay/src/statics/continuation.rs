@@ -82,6 +82,41 @@ pub fn legs_from_still_water(model: &Model) -> Vec<Leg> {
     }
 }
 
+impl std::fmt::Display for Leg {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Leg::Bending => "the bending stiffness",
+            Leg::Friction => "the seabed's friction",
+            Leg::Current => "the current",
+        })
+    }
+}
+
+/// Where a continuation stalled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stall {
+    /// Newton's and relaxation's iterations spent.
+    pub iterations: usize,
+    /// The leg it stalled on and how far that leg's factor had come (0 to 1); `None` at the legs' start.
+    pub at: Option<(Leg, f64)>,
+    /// The residual of the last attempt (N, N·m mixed).
+    pub residual: f64,
+}
+
+impl std::fmt::Display for Stall {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.at {
+            None => write!(f, "did not converge at its start (residual {:.3e})", self.residual),
+            Some((leg, progress)) => write!(
+                f,
+                "stalled with {leg} {:.1} % of the way in (residual {:.3e})",
+                100.0 * progress,
+                self.residual
+            ),
+        }
+    }
+}
+
 /// Continuation steps below which a point Newton cannot reach is relaxed to instead.
 const RELAX_BELOW: f64 = 1.0 / 32.0;
 
@@ -96,15 +131,14 @@ const MIN_STEP: f64 = 1e-4;
 /// failure. From a cable (bending stiffness scaled down, which the catenary fits) to the pipe; from a
 /// frictionless seabed to the seabed's friction (friction stays relative to statics' start, so the path does not
 /// change the answer); from still water to the current. A point that Newton misses at the start, or with steps
-/// below [`RELAX_BELOW`], is relaxed to from the last one reached (at most [`MAX_RELAXATIONS`] times). The
-/// iterations spent if it stalls.
+/// below [`RELAX_BELOW`], is relaxed to from the last one reached (at most [`MAX_RELAXATIONS`] times).
 pub fn continuation(
     model: &Model,
     assembler: &mut Assembler,
     mut config: Configuration,
     legs: &[Leg],
     options: &StaticOptions,
-) -> std::result::Result<StaticSolution, usize> {
+) -> std::result::Result<StaticSolution, Stall> {
     let end = legs.len() as f64;
     let mut t = 0.0;
     let mut step: f64 = 0.25;
@@ -112,6 +146,7 @@ pub fn continuation(
     let mut steps = 0;
     let mut relaxations = 0;
     let mut first = true;
+    let mut last_residual = f64::NAN;
     let outcome = loop {
         let target = if first { 0.0 } else { (t + step).min(end) };
         Homotopy::at(target, legs).apply(assembler);
@@ -146,9 +181,11 @@ pub fn continuation(
                 }
             }
             Newton::Failed {
-                iterations: its, ..
+                iterations: its,
+                residual,
             } => {
                 iterations += its;
+                last_residual = residual;
                 step *= 0.5;
                 if first || step < MIN_STEP {
                     break None;
@@ -158,7 +195,19 @@ pub fn continuation(
     };
     Homotopy::at(end, legs).apply(assembler);
     let Some(residual) = outcome else {
-        return Err(iterations);
+        // The leg and its factor where the last point reached stands (t = k + progress on leg k).
+        let k = t.floor() as usize;
+        let at = if first {
+            None
+        } else {
+            legs.get(k.min(legs.len().saturating_sub(1)))
+                .map(|leg| (*leg, t - k.min(legs.len().saturating_sub(1)) as f64))
+        };
+        return Err(Stall {
+            iterations,
+            at,
+            residual: last_residual,
+        });
     };
     Ok(StaticSolution {
         response: Response::with_assembler(model, &config, assembler),

@@ -113,18 +113,26 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
     )
 }
 
-/// What the paths tried so far came to: their iterations, the last one's failure, and the first unphysical
-/// state one converged to.
+/// What the paths tried so far came to: their iterations, and what each one reached.
 #[derive(Default)]
 struct Attempts {
     iterations: usize,
-    failure: Option<Error>,
+    /// Each path's name and outcome, in the order tried.
+    outcomes: Vec<(&'static str, String)>,
+    /// The first unphysical state a path converged to, and its residual.
     unphysical: Option<(Unphysical, f64)>,
+    /// The last path's failure, reported as it is when it is the only one.
+    failure: Option<Error>,
 }
 
 impl Attempts {
-    /// The solution, if it is physical; else it is noted and `None`.
-    fn accept(&mut self, model: &Model, mut solution: StaticSolution) -> Option<StaticSolution> {
+    /// The solution of path `path`, if it is physical; else it is noted and `None`.
+    fn accept(
+        &mut self,
+        model: &Model,
+        path: &'static str,
+        mut solution: StaticSolution,
+    ) -> Option<StaticSolution> {
         self.iterations += solution.iterations;
         match verdict(model, &solution) {
             None => {
@@ -132,34 +140,44 @@ impl Attempts {
                 Some(solution)
             }
             Some(unphysical) => {
-                self.unphysical
-                    .get_or_insert((unphysical, solution.residual));
+                self.outcomes
+                    .push((path, format!("converged to a state that is not physical: {unphysical}")));
+                self.unphysical.get_or_insert((unphysical, solution.residual));
                 None
             }
         }
     }
 
-    /// The error to report when no path gave a physical state: the unphysical state found, else the last failure.
+    /// Path `path` failed after `iterations`, as `outcome` says.
+    fn failed(&mut self, path: &'static str, iterations: usize, outcome: String) {
+        self.iterations += iterations;
+        self.outcomes.push((path, outcome));
+    }
+
+    /// The error to report when no path gave a physical state: each path's outcome, and what to change.
     fn error(self) -> Error {
-        match (self.unphysical, self.failure) {
-            (Some((unphysical, residual)), _) => Error::Convergence {
-                context: "static solve".into(),
-                reached: 1.0,
-                iterations: self.iterations,
-                residual,
-                reason: format!(
-                    "every path converged to a state that is not physical: {unphysical}; {}",
-                    unphysical.advice()
-                ),
-            },
-            (None, Some(failure)) => failure,
-            (None, None) => Error::Convergence {
-                context: "static solve".into(),
-                reached: 0.0,
-                iterations: self.iterations,
-                residual: f64::NAN,
-                reason: "no path to the solution could be tried".into(),
-            },
+        if let (1, Some(failure)) = (self.outcomes.len(), self.failure) {
+            return failure;
+        }
+        let tried: Vec<String> = self
+            .outcomes
+            .iter()
+            .map(|(path, outcome)| format!("{path} {outcome}"))
+            .collect();
+        let (residual, advice) = match self.unphysical {
+            Some((unphysical, residual)) => (residual, unphysical.advice()),
+            None => (
+                f64::NAN,
+                "check that the line can hang between its supports (its length, the vessel's position, the \
+                 stinger), or give the reference path more load steps",
+            ),
+        };
+        Error::Convergence {
+            context: "static solve".into(),
+            reached: if self.unphysical.is_some() { 1.0 } else { 0.0 },
+            iterations: self.iterations,
+            residual,
+            reason: format!("no path reached a physical state: {}; {advice}", tried.join("; ")),
         }
     }
 }
@@ -325,19 +343,27 @@ fn solve_on_paths(model: &Model, options: &StaticOptions) -> Result<StaticSoluti
     };
     let mut attempts = Attempts::default();
     if let Some(guess) = catenary {
-        for legs in [
-            legs_from_still_water(model),
-            legs_from_cable(model, &assembler),
-        ] {
+        let paths = [
+            (
+                "Newton from the catenary in still water, then the current,",
+                legs_from_still_water(model),
+            ),
+            (
+                "the continuation from a cable (bending, friction, current)",
+                legs_from_cable(model, &assembler),
+            ),
+        ];
+        for (path, legs) in paths {
             match continuation(model, &mut assembler, guess.clone(), &legs, options) {
                 Ok(solution) => {
-                    if let Some(solution) = attempts.accept(model, solution) {
+                    if let Some(solution) = attempts.accept(model, path, solution) {
                         return Ok(solution);
                     }
                 }
-                Err(iterations) => attempts.iterations += iterations,
+                Err(stall) => attempts.failed(path, stall.iterations, stall.to_string()),
             }
         }
+        let path = "relaxation from the catenary";
         let mut config = guess;
         match relax(model, &mut assembler, &mut config, 1.0, options) {
             Newton::Converged {
@@ -353,20 +379,35 @@ fn solve_on_paths(model: &Model, options: &StaticOptions) -> Result<StaticSoluti
                     from_catenary: true,
                     relaxations: 1,
                 };
-                if let Some(solution) = attempts.accept(model, solution) {
+                if let Some(solution) = attempts.accept(model, path, solution) {
                     return Ok(solution);
                 }
             }
-            Newton::Failed { iterations, .. } => attempts.iterations += iterations,
+            Newton::Failed {
+                iterations,
+                residual,
+            } => attempts.failed(
+                path,
+                iterations,
+                format!("did not converge in {iterations} iterations (residual {residual:.3e})"),
+            ),
         }
     }
+    let path = "the path from the straight reference";
     match from_reference(model, &mut assembler, &targets, options) {
         Ok(solution) => {
-            if let Some(solution) = attempts.accept(model, solution) {
+            if let Some(solution) = attempts.accept(model, path, solution) {
                 return Ok(solution);
             }
         }
-        Err(failure) => attempts.failure = Some(failure),
+        Err(failure) => {
+            let outcome = match &failure {
+                Error::Convergence { reason, .. } => format!("failed: {reason}"),
+                other => format!("failed: {other}"),
+            };
+            attempts.failed(path, 0, outcome);
+            attempts.failure = Some(failure);
+        }
     }
     Err(attempts.error())
 }
