@@ -46,6 +46,14 @@ pub const MAX_NODES: usize = 12;
 /// whose nearest elements lie further apart, a pipe sliding more than an element in one step, leaves the
 /// entries beyond out of the tangent; the residual stays exact.)
 pub const COUPLING_REACH: usize = 4;
+/// The central differences' step of the tangent on the nodes' and the end node's positions (m): far below the
+/// overlap of a roller carrying a few kilonewtons (its force over its stiffness, ~1e-4 m), so that a contact near
+/// its start is differenced on one side of it, and far above the positions' round-off (ε|x| ≤ 1e-12 m).
+const TANGENT_STEP: f64 = 1e-6;
+/// The lever (m) that turns the end node's rotation step into a move of the rollers of about [`TANGENT_STEP`]: they
+/// stand up to ~100 m from it.
+const ROTATION_LEVER: f64 = 100.0;
+
 /// Most spline elements one roller's distance is minimised over: one per state of the step.
 const MAX_SEGMENTS: usize = 3;
 const MAX_VARIABLES: usize = 3 * MAX_NODES + 6;
@@ -640,12 +648,11 @@ impl RollerContact {
                 }
             }
             if let Some(sink) = sink.as_deref_mut() {
-                let scale = 1.0 + positions[n].norm();
                 for j in 0..variables {
                     let h = if j < 3 * count + 3 {
-                        1e-6 * scale
+                        TANGENT_STEP
                     } else {
-                        1e-7
+                        TANGENT_STEP / ROTATION_LEVER
                     };
                     let mut plus = base;
                     let mut minus = base;

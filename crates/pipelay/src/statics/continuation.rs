@@ -106,7 +106,11 @@ pub struct Stall {
 impl std::fmt::Display for Stall {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.at {
-            None => write!(f, "did not converge at its start (residual {:.3e})", self.residual),
+            None => write!(
+                f,
+                "did not converge at its start (residual {:.3e})",
+                self.residual
+            ),
             Some((leg, progress)) => write!(
                 f,
                 "stalled with {leg} {:.1} % of the way in (residual {:.3e})",

@@ -5,9 +5,9 @@
 //! line's motion from rest, the velocity dropped after every step (the damping that brings dynamic relaxation to
 //! rest). Where Newton's correction would swing a soft mode (a laid pipe pivoting about its anchor, a slack
 //! span) far past the solution, σM holds each node's move to about |r|/(σm). The pseudo-time step grows as the
-//! residual falls (switched evolution relaxation: σ_{k+1} = σ_k (|r_k|/|r_{k−1}|)²), so that the iteration
-//! turns into Newton's, and converges quadratically, near the solution. A step that raises the residual tenfold
-//! is taken back and retried with σ sixteen times larger.
+//! residual falls (switched evolution relaxation: σ_{k+1} = σ_k (|r_k|/|r_{k−1}|)², at least halved on a step
+//! that lowers the residual), so that the iteration turns into Newton's, and converges quadratically, near the
+//! solution. A step that raises the residual tenfold is taken back and retried with σ sixteen times larger.
 // Indexing cannot go out of bounds here: node and element indices of the model's own mesh.
 #![allow(clippy::indexing_slicing)]
 use crate::assembly::assembler::Assembler;
@@ -51,6 +51,18 @@ fn nodal_masses(model: &Model) -> Vec<Matrix6<f64>> {
         }
     }
     masses
+}
+
+/// The factor on σ after a step that took the residual's norm by `ratio`: switched evolution relaxation, (ratio)²
+/// within [1/100, 100], and at most 1/2 where the residual fell, so that the pseudo-time step keeps growing while
+/// the residual falls slowly.
+fn shift_factor(ratio: f64) -> f64 {
+    let factor = ratio.powi(2).clamp(0.01, 100.0);
+    if ratio < 1.0 {
+        factor.min(0.5)
+    } else {
+        factor
+    }
 }
 
 /// Relaxes `config` to equilibrium at load factor `load_factor` by pseudo-transient continuation.
@@ -98,9 +110,7 @@ pub fn relax(
                 }
                 largest / (FIRST_MOVE * shortest)
             }
-            Some((sigma, Some(previous))) => {
-                sigma * (residual / previous).powi(2).clamp(0.01, 100.0)
-            }
+            Some((sigma, Some(previous))) => sigma * shift_factor(residual / previous),
             Some((sigma, None)) => sigma,
         };
         sigma = Some((shift, Some(residual)));

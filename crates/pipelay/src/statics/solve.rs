@@ -140,9 +140,12 @@ impl Attempts {
                 Some(solution)
             }
             Some(unphysical) => {
-                self.outcomes
-                    .push((path, format!("converged to a state that is not physical: {unphysical}")));
-                self.unphysical.get_or_insert((unphysical, solution.residual));
+                self.outcomes.push((
+                    path,
+                    format!("converged to a state that is not physical: {unphysical}"),
+                ));
+                self.unphysical
+                    .get_or_insert((unphysical, solution.residual));
                 None
             }
         }
@@ -177,7 +180,10 @@ impl Attempts {
             reached: if self.unphysical.is_some() { 1.0 } else { 0.0 },
             iterations: self.iterations,
             residual,
-            reason: format!("no path reached a physical state: {}; {advice}", tried.join("; ")),
+            reason: format!(
+                "no path reached a physical state: {}; {advice}",
+                tried.join("; ")
+            ),
         }
     }
 }
