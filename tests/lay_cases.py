@@ -755,8 +755,8 @@ NONPHYSICAL: dict[str, str] = {
     "share (the last roller: plus T_top times the angle by which the departure exceeds the stinger's tip slope)",
     "through the seabed": "a node deeper in the seabed than max(D_h, 10 × the penetration under the submerged weight)",
     "compression": "the pipe pushed at the hold point (top tension < 0)",
-    "against the current": "the suspended pipe's largest sideways offset against the current's cross component "
-    "(≥ 0.1 m/s), by more than D_h",
+    "against the current": "the suspended span's largest sideways offset from its chord (touchdown to lift-off) "
+    "against the current's cross component (≥ 0.1 m/s), by more than D_h",
     "strain": "a strain beyond 5 × the yield strain SMYS/E",
 }
 """What makes a converged state non-physical (`physical_problems`), by kind."""
@@ -854,8 +854,15 @@ def physical_problems(state: pl.State, case: LayCase) -> list[tuple[str, str]]:
         problems.append(("through the seabed", f"a node {deepest:.2f} m below the seabed"))
     cross = current_cross(case)
     if abs(cross) >= 0.1:
-        suspended = positions[:, 2] < -dh  # off the seabed, below the vessel
-        offsets = positions[suspended, 1]
+        # The suspended span, from the touchdown to the lift-off, bowed from its chord: the vessel's heel and yaw
+        # move the span's top sideways either way, the current bows the span downstream of its chord.
+        arcs = np.asarray(state.reference_arc_length)
+        liftoff = float(summary.get("liftoff_arc_length", arcs[-1]))
+        span = np.flatnonzero((positions[:, 2] < -dh) & (arcs <= liftoff))
+        offsets = np.empty(0)
+        if span.size > 2:
+            ends = [int(span[0]), int(span[-1])]
+            offsets = positions[span, 1] - np.interp(arcs[span], arcs[ends], positions[ends, 1])
         if offsets.size:
             largest = float(offsets[int(np.argmax(np.abs(offsets)))])
             if largest * cross < 0.0 and abs(largest) > dh:

@@ -228,7 +228,8 @@ def test_physical_check_flags_what_is_wrong() -> None:
 
     def altered(**changes: object) -> types.SimpleNamespace:
         """A stand-in for the state with some of its numbers changed."""
-        names = ("positions", "rotations", "tension", "eta", "roller_positions", "roller_reactions", "strain")
+        names = ("positions", "rotations", "tension", "eta", "roller_positions", "roller_reactions", "strain",
+                 "reference_arc_length")  # fmt: skip
         fields: dict[str, object] = {name: np.array(getattr(state, name)) for name in names}
         summary = dict(state.lay_summary() or {}) | dict(changes.pop("summary", {}))  # type: ignore[call-overload]
         fields["lay_summary"] = lambda: summary
