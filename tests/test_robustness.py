@@ -21,8 +21,7 @@ issue, each at its design position and at positions around it. What is asserted 
   run from the calm static state until the pipe stops, gives ratios of 1.3 to 1.8 and the touchdown 0.3–3.4 m
   downstream.)
 
-Most cases with a current across the lay plane fail on the solver before issue 43's statics rework; they are marked
-xfail (not strict) until it lands. The generator itself and the physical check are tested on their own at the end.
+The generator itself and the physical check are tested on their own at the end.
 """
 
 from __future__ import annotations
@@ -39,9 +38,6 @@ import numpy as np
 import pipelay as pl
 import pytest
 from pipelay.scenario import parse_scenario
-
-CROSS = pytest.mark.xfail(strict=False, reason="statics with cross currents: issue 43")
-NEAR = pytest.mark.xfail(strict=False, reason="statics fail 1 m from a position that converges: issue 43")
 
 SLAY = lc.Choices(
     kind="s-lay", depth=150.0, nps=20, wall=0.0206, coating="concrete", concrete=0.05, element=8.0
@@ -123,8 +119,7 @@ def currents(base: lc.Choices, name: str) -> list[object]:
     cases: list[object] = []
     for heading in (0.0, 90.0, 135.0):
         choices = dataclasses.replace(base, current=CURRENT, current_heading_deg=heading)
-        marks = [CROSS] if heading else []
-        cases.append(pytest.param(choices, id=f"{name}-current-{heading:.0f}", marks=marks))
+        cases.append(pytest.param(choices, id=f"{name}-current-{heading:.0f}"))
     return cases
 
 
@@ -139,7 +134,7 @@ def test_lay_in_a_current(choices: lc.Choices) -> None:
     ("choices", "shifts"),
     [
         pytest.param(ISSUE_16, (-2.0, -1.0, 0.0, 1.0, 2.0), id="16in-concrete-120m"),
-        pytest.param(ISSUE_6, (-1.0, 0.0, 1.0), id="6in-bare-227m", marks=NEAR),
+        pytest.param(ISSUE_6, (-1.0, 0.0, 1.0), id="6in-bare-227m"),
     ],
 )
 def test_issue_cases_around_their_position(choices: lc.Choices, shifts: tuple[float, ...]) -> None:

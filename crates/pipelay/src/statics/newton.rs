@@ -95,9 +95,12 @@ pub fn newton(
             }
             None => (options.max_rotation_increment / largest_rotation).min(1.0),
         };
-        // With seabed contact (non-smooth friction, contact switching), backtrack along the correction while
-        // the residual grows. Not with rollers: a roller's contact switching raises the residual for an
-        // iteration on the way to convergence, and backtracking then stalls.
+        // With seabed contact (non-smooth friction, contact switching), backtrack along the correction while the
+        // residual grows more than LINE_SEARCH_GROWTH-fold. Not with rollers: a roller's contact switching raises
+        // the residual for an iteration on the way to convergence, and backtracking then stalls. Nor for a
+        // moderate growth: a laid pipe pivoting sideways about its anchor (a current across the lay) stretches,
+        // to second order, under Newton's linear correction, and the next correction takes the stretch back;
+        // halving each such step made Newton crawl.
         let start = (assembler.contact.is_some() && assembler.rollers.is_none() && !predictor)
             .then(|| config.clone());
         for _ in 0..LINE_SEARCH_HALVINGS {
@@ -106,7 +109,7 @@ pub fn newton(
             assembler.assemble(model, config, load_factor, false, None);
             let trial = free_norm(assembler);
             let floor = 1e3 * (options.tolerance * scale + round_off);
-            if trial.is_finite() && (trial <= residual || trial <= floor) {
+            if trial.is_finite() && (trial <= LINE_SEARCH_GROWTH * residual || trial <= floor) {
                 break;
             }
             config.clone_from(start);
@@ -182,6 +185,9 @@ pub fn largest_increments(model: &Model, assembler: &Assembler, delta: &[f64]) -
     }
     (largest_rotation, largest_translation)
 }
+
+/// Growth of the residual's norm beyond which the line search with seabed contact takes a correction back.
+const LINE_SEARCH_GROWTH: f64 = 10.0;
 
 /// Backtracking steps of the line search with seabed contact.
 const LINE_SEARCH_HALVINGS: usize = 6;
