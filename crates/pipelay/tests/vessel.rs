@@ -94,9 +94,10 @@ fn static_vessel_holds_the_pipe() {
         vessel.thrust.as_slice(),
         vessel.pipe_force.as_slice()
     );
+    // The holding springs (1e3 times the heave restoring) hold η to 1e-4 m per MN of pull (here 1.4 MN).
     assert!(
-        (vessel.eta[0] - 850.0).abs() < 1e-4
-            && vessel.eta[1].abs() < 1e-4
+        (vessel.eta[0] - 850.0).abs() < 2e-4
+            && vessel.eta[1].abs() < 2e-4
             && vessel.eta[5].abs() < 1e-8
     );
     // In e, the horizontal thrust balances the pipe's horizontal pull (restoring is vertical).

@@ -27,10 +27,12 @@ use crate::so3::{cayley, cayley_parameter, exp, log, quat_from_matrix, skew};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 
 /// Stiffness of the holding springs relative to the vessel's heave restoring G33 (translation) and pitch
-/// restoring G55 (yaw): large enough that η is held to ~1e-5 m under a pull of 1 MN (1e11 N/m for the OSV), small
-/// enough for a well-conditioned tangent (at 1e6, 1e14 N/m turned the positions' round-off into a residual of
-/// tens of newtons and, through the lever to CO, the node's pitch into 1e15 N·m/rad).
-const HOLD_STIFFNESS: f64 = 1e4;
+/// restoring G55 (yaw): large enough that η is held to ~1e-4 m under a pull of 1 MN (1.2e10 N/m for the OSV),
+/// small enough for a tangent that Newton's corrections stay accurate in. Stiffer springs turned the positions'
+/// round-off into residuals of newtons to tens of newtons and, through the lever from CO to the hold point, the
+/// node's pitch into 1e13–1e15 N·m/rad: deep S-lays that converge at 1e3 failed at 1e4 and 1e6 (campaign cases
+/// 19, 70, 116, the pipe jumping through rollers), and at 1e2 a shallow one did (case 51).
+const HOLD_STIFFNESS: f64 = 1e3;
 
 /// The vessel's frame from the end node's: Λ_B = Λ_N R_b^t.
 pub fn body_rotation(
