@@ -61,6 +61,9 @@ pub struct Assembler {
     pub contact_slips: Vec<Vector2<f64>>,
     /// The vessel's rollers, if it has any.
     pub rollers: Option<RollerContact>,
+    /// Whether statics' Newton corrections are kept from carrying the line through the rollers
+    /// ([`crate::statics::newton::roller_step_factor`]).
+    pub limit_roller_steps: bool,
 }
 
 /// Relative size of the shift added to the rotational diagonal of the tangent. It removes the exact
@@ -138,6 +141,7 @@ impl Assembler {
             rollers,
             bending_scale: 1.0,
             current_scale: 1.0,
+            limit_roller_steps: true,
             contact,
             contact_start: model.rod.nodes.clone(),
             contact_slips: vec![Vector2::zeros(); model.rod.node_count()],

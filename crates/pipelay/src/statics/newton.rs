@@ -93,7 +93,9 @@ pub fn newton(
                 apply_increment(config, increment);
                 1.0
             }
-            None => (options.max_rotation_increment / largest_rotation).min(1.0),
+            None => (options.max_rotation_increment / largest_rotation)
+                .min(1.0)
+                .min(roller_step_factor(model, assembler, config, &delta)),
         };
         // With seabed contact (non-smooth friction, contact switching), backtrack along the correction while the
         // residual grows more than LINE_SEARCH_GROWTH-fold. Not with rollers: a roller's contact switching raises
@@ -184,6 +186,52 @@ pub fn largest_increments(model: &Model, assembler: &Assembler, delta: &[f64]) -
         largest_rotation = largest_rotation.max(spin.norm());
     }
     (largest_rotation, largest_translation)
+}
+
+/// The factor that keeps a correction `delta` from moving any node near the rollers down toward them, relative
+/// to the vessel's node and in the vessel's body frame, by more than the rollers' reach (a roller's radius and
+/// the line's half diameter): the contact sees a line only within twice that on the rollers' far side, and a
+/// correction that carries a node further can pass it through the stinger. 1 without rollers, or where
+/// `assembler.limit_roller_steps` is off.
+pub fn roller_step_factor(
+    model: &Model,
+    assembler: &Assembler,
+    config: &Configuration,
+    delta: &[f64],
+) -> f64 {
+    let (Some(rollers), Some(attachment), true) = (
+        &assembler.rollers,
+        &model.vessel,
+        assembler.limit_roller_steps,
+    ) else {
+        return 1.0;
+    };
+    let reach = attachment
+        .rollers()
+        .iter()
+        .map(|r| r.radius)
+        .fold(f64::INFINITY, f64::min)
+        + 0.5
+            * (0..model.rod.element_count())
+                .map(|e| model.rod.section(e).hydrodynamic_diameter)
+                .fold(f64::INFINITY, f64::min);
+    let moved = |node: usize| {
+        Vector3::from_fn(|k, _| {
+            assembler.dofs.equation[NODE_DOFS * node + k].map_or(0.0, |i| delta[i])
+        })
+    };
+    let vessel_node = attachment.node;
+    let body = crate::vessel::coupling::body_rotation(attachment, &config.rotations[vessel_node]);
+    let vessel_move = moved(vessel_node);
+    let deepest = rollers
+        .nodes()
+        .map(|node| (body.transpose() * (moved(node) - vessel_move)).z)
+        .fold(0.0, f64::max);
+    if deepest > reach {
+        reach / deepest
+    } else {
+        1.0
+    }
 }
 
 /// Growth of the residual's norm beyond which the line search with seabed contact takes a correction back.

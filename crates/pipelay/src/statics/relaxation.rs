@@ -16,7 +16,8 @@ use crate::assembly::dofs::NODE_DOFS;
 use crate::linalg::factorisation::Factorisation;
 use crate::model::Model;
 use crate::statics::newton::{
-    apply_correction, free_norm, largest_increments, residual_norms, round_off_floor, Newton,
+    apply_correction, free_norm, largest_increments, residual_norms, roller_step_factor,
+    round_off_floor, Newton,
 };
 use crate::statics::solve::StaticOptions;
 use nalgebra::Matrix6;
@@ -130,7 +131,9 @@ pub fn relax(
             break;
         }
         let (largest_rotation, _) = largest_increments(model, assembler, &delta);
-        let factor = (options.max_rotation_increment / largest_rotation).min(1.0);
+        let factor = (options.max_rotation_increment / largest_rotation)
+            .min(1.0)
+            .min(roller_step_factor(model, assembler, config, &delta));
         let start = config.clone();
         apply_correction(model, assembler, config, &delta, factor);
         assembler.assemble(model, config, load_factor, false, None);

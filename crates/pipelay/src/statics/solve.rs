@@ -5,6 +5,10 @@
 //! 2. from the same guess as a cable on a frictionless seabed in still water: the pipe's bending stiffness, the
 //!    seabed's friction and the current, one after the other;
 //! 3. relaxation from the guess at full load ([`relax`]);
+//!
+//! paths 1–3 with Newton's steps kept from carrying the line through a stinger's rollers
+//! ([`crate::statics::newton::roller_step_factor`]), then, where that kept it from sliding far along them,
+//! again with the steps free;
 //! 4. from the stress-free reference (without a guess, or when all else fails), along one parameter
 //!    s ∈ [0, 2]: first the loads grow (λ = s) with the supports at the reference, so that a hanging line is in
 //!    tension before its ends move; then the supports move to their prescribed positions and rotations
@@ -118,7 +122,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
 struct Attempts {
     iterations: usize,
     /// Each path's name and outcome, in the order tried.
-    outcomes: Vec<(&'static str, String)>,
+    outcomes: Vec<(String, String)>,
     /// The first unphysical state a path converged to, and its residual.
     unphysical: Option<(Unphysical, f64)>,
     /// The last path's failure, reported as it is when it is the only one.
@@ -130,7 +134,7 @@ impl Attempts {
     fn accept(
         &mut self,
         model: &Model,
-        path: &'static str,
+        path: &str,
         mut solution: StaticSolution,
     ) -> Option<StaticSolution> {
         self.iterations += solution.iterations;
@@ -141,7 +145,7 @@ impl Attempts {
             }
             Some(unphysical) => {
                 self.outcomes.push((
-                    path,
+                    path.to_string(),
                     format!("converged to a state that is not physical: {unphysical}"),
                 ));
                 self.unphysical
@@ -152,9 +156,9 @@ impl Attempts {
     }
 
     /// Path `path` failed after `iterations`, as `outcome` says.
-    fn failed(&mut self, path: &'static str, iterations: usize, outcome: String) {
+    fn failed(&mut self, path: &str, iterations: usize, outcome: String) {
         self.iterations += iterations;
-        self.outcomes.push((path, outcome));
+        self.outcomes.push((path.to_string(), outcome));
     }
 
     /// The error to report when no path gave a physical state: each path's outcome, and what to change.
@@ -348,7 +352,7 @@ fn solve_on_paths(model: &Model, options: &StaticOptions) -> Result<StaticSoluti
         ),
     };
     let mut attempts = Attempts::default();
-    if let Some(guess) = catenary {
+    if let Some(guess) = &catenary {
         let paths = [
             (
                 "Newton from the catenary in still water, then the current,",
@@ -359,45 +363,64 @@ fn solve_on_paths(model: &Model, options: &StaticOptions) -> Result<StaticSoluti
                 legs_from_cable(model, &assembler),
             ),
         ];
-        for (path, legs) in paths {
-            match continuation(model, &mut assembler, guess.clone(), &legs, options) {
-                Ok(solution) => {
-                    if let Some(solution) = attempts.accept(model, path, solution) {
+        // Newton's steps kept from carrying the line through the rollers first; where that also keeps it from
+        // sliding far along them (a strong current across the lay), every path again with the steps free.
+        let passes: &[bool] = if assembler.rollers.is_some() {
+            &[true, false]
+        } else {
+            &[true]
+        };
+        for &limited in passes {
+            assembler.limit_roller_steps = limited;
+            let free = if limited {
+                ""
+            } else {
+                " (steps on the stinger free)"
+            };
+            for (path, legs) in &paths {
+                let path = format!("{path}{free}");
+                match continuation(model, &mut assembler, guess.clone(), legs, options) {
+                    Ok(solution) => {
+                        if let Some(solution) = attempts.accept(model, &path, solution) {
+                            return Ok(solution);
+                        }
+                    }
+                    Err(stall) => attempts.failed(&path, stall.iterations, stall.to_string()),
+                }
+            }
+            let path = format!("relaxation from the catenary{free}");
+            let mut config = guess.clone();
+            match relax(model, &mut assembler, &mut config, 1.0, options) {
+                Newton::Converged {
+                    iterations,
+                    residual,
+                } => {
+                    let solution = StaticSolution {
+                        response: Response::with_assembler(model, &config, &mut assembler),
+                        configuration: config,
+                        iterations,
+                        steps: 1,
+                        residual,
+                        from_catenary: true,
+                        relaxations: 1,
+                    };
+                    if let Some(solution) = attempts.accept(model, &path, solution) {
                         return Ok(solution);
                     }
                 }
-                Err(stall) => attempts.failed(path, stall.iterations, stall.to_string()),
-            }
-        }
-        let path = "relaxation from the catenary";
-        let mut config = guess;
-        match relax(model, &mut assembler, &mut config, 1.0, options) {
-            Newton::Converged {
-                iterations,
-                residual,
-            } => {
-                let solution = StaticSolution {
-                    response: Response::with_assembler(model, &config, &mut assembler),
-                    configuration: config,
+                Newton::Failed {
                     iterations,
-                    steps: 1,
                     residual,
-                    from_catenary: true,
-                    relaxations: 1,
-                };
-                if let Some(solution) = attempts.accept(model, path, solution) {
-                    return Ok(solution);
-                }
+                } => attempts.failed(
+                    &path,
+                    iterations,
+                    format!(
+                        "did not converge in {iterations} iterations (residual {residual:.3e})"
+                    ),
+                ),
             }
-            Newton::Failed {
-                iterations,
-                residual,
-            } => attempts.failed(
-                path,
-                iterations,
-                format!("did not converge in {iterations} iterations (residual {residual:.3e})"),
-            ),
         }
+        assembler.limit_roller_steps = true;
     }
     let path = "the path from the straight reference";
     match from_reference(model, &mut assembler, &targets, options) {
