@@ -46,13 +46,16 @@ pub const MAX_NODES: usize = 12;
 /// whose nearest elements lie further apart, a pipe sliding more than an element in one step, leaves the
 /// entries beyond out of the tangent; the residual stays exact.)
 pub const COUPLING_REACH: usize = 4;
-/// The central differences' step of the tangent on the nodes' and the end node's positions (m): far below the
+/// In statics, the central differences' step of the tangent on the nodes' and the end node's positions (m): far below the
 /// overlap of a roller carrying a few kilonewtons (its force over its stiffness, ~1e-4 m), so that a contact near
 /// its start is differenced on one side of it, and far above the positions' round-off (ε|x| ≤ 1e-12 m).
 const TANGENT_STEP: f64 = 1e-6;
 /// The lever (m) that turns the end node's rotation step into a move of the rollers of about [`TANGENT_STEP`]: they
 /// stand up to ~100 m from it.
 const ROTATION_LEVER: f64 = 100.0;
+/// In a time step, the relative step of the positions' differences (times 1 + |x| m) and the rotations' (rad).
+const STEP_TANGENT_STEP: f64 = 1e-6;
+const STEP_TANGENT_ROTATION: f64 = 1e-7;
 
 /// Most spline elements one roller's distance is minimised over: one per state of the step.
 const MAX_SEGMENTS: usize = 3;
@@ -648,11 +651,19 @@ impl RollerContact {
                 }
             }
             if let Some(sink) = sink.as_deref_mut() {
+                // A step's residual is a discrete gradient, itself a difference over the step: differenced on
+                // the positions' scale ([`STEP_TANGENT_STEP`]) so that its digits are not lost.
+                let (step, rotation_step) = if stepping {
+                    let step = STEP_TANGENT_STEP * (1.0 + positions[n].norm());
+                    (step, STEP_TANGENT_ROTATION)
+                } else {
+                    (TANGENT_STEP, TANGENT_STEP / ROTATION_LEVER)
+                };
                 for j in 0..variables {
                     let h = if j < 3 * count + 3 {
-                        TANGENT_STEP
+                        step
                     } else {
-                        TANGENT_STEP / ROTATION_LEVER
+                        rotation_step
                     };
                     let mut plus = base;
                     let mut minus = base;
