@@ -984,6 +984,9 @@ class Results:
     def iterations(self) -> _FloatArray:
         """Newton iterations of the step leading to each record (T,)."""
     @property
+    def substeps(self) -> _FloatArray:
+        """The most substeps any step since the record before was taken in (T,): 1 where no step was split."""
+    @property
     def eta(self) -> _FloatArray | None:
         """Vessel pose η (T, 6) in e: its total motion (low and wave frequency), None without a vessel."""
     @property

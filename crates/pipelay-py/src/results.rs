@@ -253,6 +253,13 @@ impl Results {
         let its: Vec<f64> = self.history.iterations.iter().map(|&i| i as f64).collect();
         PyArray1::from_slice(py, &its)
     }
+    /// The most substeps any step since the record before was taken in (T,): 1 where no step was split; a step
+    /// whose Newton failed or whose state was rejected is retried in 2, 4, … substeps.
+    #[getter]
+    fn substeps<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        let counts: Vec<f64> = self.history.substeps.iter().map(|&i| i as f64).collect();
+        PyArray1::from_slice(py, &counts)
+    }
     /// Normal force of each roller (T, k) (N); None without rollers.
     #[getter]
     fn roller_reactions<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
@@ -452,7 +459,7 @@ impl Results {
 
     /// Results rebuilt from arrays (as written by `to_netcdf`): `nodes` (n + 1) and a mapping of the names
     /// time, positions, rotations, velocities, section_forces, reaction_A, reaction_B, pipe_kinetic,
-    /// pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, supplied_work, dissipated, iterations and,
+    /// pipe_strain, pipe_gravity, vessel_kinetic, vessel_potential, supplied_work, dissipated, iterations, substeps and,
     /// with a vessel, eta, nu, tau, chi (and, if recorded, eta_low_frequency, tau_commanded, eta_estimate,
     /// thrust, azimuth). Used by `pl.load`.
     #[staticmethod]
@@ -494,6 +501,11 @@ impl Results {
         h.supplied_work = get("supplied_work")?;
         h.dissipated = get("dissipated")?;
         h.iterations = get("iterations")?.iter().map(|&i| i as usize).collect();
+        // Results written before substeps were recorded: none taken.
+        h.substeps = optional("substeps")?.iter().map(|&i| i as usize).collect();
+        if h.substeps.is_empty() {
+            h.substeps = vec![1; h.time.len()];
+        }
         // Results written before pay-out existed have neither: the length is then unknown (NaN).
         h.length = optional("length")?;
         if h.length.is_empty() {

@@ -346,7 +346,7 @@ impl Simulation {
             ),
         )
         .map_err(to_py)?;
-        let mut history = History::starting_at(&self.integrator.snapshot(0)).map_err(to_py)?;
+        let mut history = History::starting_at(&self.integrator.snapshot(0, 1)).map_err(to_py)?;
         history.reserve_records(records - 1).map_err(to_py)?;
         let bar = if progress && steps >= 200 {
             let tqdm = py.import("tqdm")?.getattr("tqdm")?;

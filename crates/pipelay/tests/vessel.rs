@@ -365,10 +365,10 @@ fn sampled_dp_loop_keeps_the_energy_ledger() {
     let scale = start.strain.abs() + start.gravity.abs() + start.vessel_potential.abs();
     let mut worst: f64 = 0.0;
     let mut history =
-        pipelay::dynamics::history::History::starting_at(&sim.snapshot(0)).expect("h");
+        pipelay::dynamics::history::History::starting_at(&sim.snapshot(0, 1)).expect("h");
     for _ in 0..300 {
         sim.step().expect("step");
-        history.record(&sim.snapshot(0)).expect("record");
+        history.record(&sim.snapshot(0, 1)).expect("record");
         let change = sim.observe().energy().total() - start.total();
         worst = worst
             .max((change - sim.ledger().supplied_work() + sim.ledger().dissipated()).abs() / scale);

@@ -105,6 +105,11 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "supplied_work": (("time",), "J", "work supplied since the start of the run"),
     "dissipated": (("time",), "J", "energy dissipated since the start of the run"),
     "iterations": (("time",), "1", "Newton iterations of the step leading to the record"),
+    "substeps": (
+        ("time",),
+        "1",
+        "the most substeps any step since the record before was taken in (1: none split)",
+    ),
     "eta": (
         ("time", "dof"),
         "m, rad",
@@ -145,6 +150,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "pay_out_energy",
         "length",
         "iterations",
+        "substeps",
     ),
     "vessel": (
         "eta",
@@ -223,6 +229,7 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         "supplied_work": lambda: results.supplied_work,
         "dissipated": lambda: results.dissipated,
         "iterations": lambda: results.iterations,
+        "substeps": lambda: results.substeps,
         **{key: partial(getattr, results, key) for key in (*GROUPS["seabed"], *GROUPS["vessel"])},
         "roller_reactions": lambda: results.roller_reactions,
         # touchdown_arc_length is recorded with the seabed already.

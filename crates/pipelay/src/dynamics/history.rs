@@ -45,6 +45,8 @@ pub struct Snapshot<'a> {
     pub pay_out_energy: f64,
     /// Newton iterations of the step that led to this state.
     pub iterations: usize,
+    /// The most substeps any step since the last record was taken in (1: none split).
+    pub substeps: usize,
 }
 
 /// A vessel's station keeping at one record.
@@ -125,6 +127,8 @@ pub struct History {
     pub dissipated: Vec<f64>,
     /// Newton iterations of the step that led to each record (0 for the first).
     pub iterations: Vec<usize>,
+    /// The most substeps any step since the record before was taken in (1: none split; 1 for the first).
+    pub substeps: Vec<usize>,
     /// The pipe's unstretched length at each record (m).
     pub length: Vec<f64>,
     /// Energy pay-out brought in since the start of the run (J; part of `supplied_work`).
@@ -177,7 +181,7 @@ impl History {
         let seabed = !self.touchdown_arc_length.is_empty();
         let six = |series: &Vec<f64>| if series.is_empty() { 0 } else { 6 };
         let k = self.thrusters_count;
-        let fields: [(&str, usize, usize); 34] = [
+        let fields: [(&str, usize, usize); 35] = [
             (
                 "eta_low_frequency",
                 self.eta_low_frequency.len(),
@@ -247,6 +251,7 @@ impl History {
             ("supplied_work", self.supplied_work.len(), 1),
             ("dissipated", self.dissipated.len(), 1),
             ("iterations", self.iterations.len(), 1),
+            ("substeps", self.substeps.len(), 1),
             ("eta", self.eta.len(), if vessel { 6 } else { 0 }),
             ("nu", self.nu.len(), if vessel { 6 } else { 0 }),
             ("tau", self.tau.len(), if vessel { 6 } else { 0 }),
@@ -399,6 +404,7 @@ impl History {
         self.dissipated
             .push(snapshot.dissipated - self.dissipated_offset);
         self.iterations.push(snapshot.iterations);
+        self.substeps.push(snapshot.substeps);
         Ok(())
     }
 }

@@ -52,8 +52,11 @@ use crate::vessel::hull_loads::{HullEnvironment, HullValues};
 use crate::vessel::wave_motion::station;
 use nalgebra::{Vector3, Vector6};
 
-/// How many times a step may be halved when Newton fails in it.
-pub const MAX_HALVINGS: usize = 4;
+/// How many times a step may be halved when Newton fails in it or its state is rejected: the substeps' floor is
+/// Δt / 2^MAX_HALVINGS.
+pub const MAX_HALVINGS: u32 = 10;
+/// Substeps of one size that succeed in a row before the next is tried at twice the size.
+pub const GROW_AFTER: usize = 2;
 
 /// Settings of the integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,8 +90,10 @@ pub struct StepReport {
     pub factorisations: usize,
     /// Final residual norm over the free DOFs.
     pub residual: f64,
-    /// The residual at the predictor relative to the force scale (the largest of the step's halves).
+    /// The residual at the predictor relative to the force scale (the largest of the step's substeps).
     pub predictor_residual: f64,
+    /// The substeps the step was taken in (1: the step as a whole).
+    pub substeps: usize,
 }
 
 /// Advances a model in time.
@@ -149,6 +154,8 @@ pub struct Integrator {
     pub(super) stages: Option<Stages>,
     /// The axial force the winch's wire took on at the hand-over (N), once it happened in this run.
     pub(super) handed_over: Option<f64>,
+    /// The most substeps any step since the last record was taken in.
+    substeps_since_record: usize,
 }
 
 /// An assembler for `state` at rest, with the reactions of its configuration (static ones for a static state,
@@ -270,6 +277,7 @@ impl Integrator {
             growth: None,
             stages: None,
             handed_over: None,
+            substeps_since_record: 1,
         })
     }
 
@@ -332,8 +340,9 @@ impl Integrator {
         }
     }
 
-    /// The current state as a record, reached after `iterations` Newton iterations.
-    pub fn snapshot(&self, iterations: usize) -> Snapshot<'_> {
+    /// The current state as a record, reached after `iterations` Newton iterations, where the steps since the
+    /// last record were taken in at most `substeps` substeps each.
+    pub fn snapshot(&self, iterations: usize, substeps: usize) -> Snapshot<'_> {
         let state = &self.state;
         let observables = self.observe();
         let section_forces = observables.section_forces();
@@ -356,6 +365,7 @@ impl Integrator {
             length: observables.length(),
             pay_out_energy: self.ledger.pay_out_energy(),
             iterations,
+            substeps,
         }
     }
 
@@ -401,8 +411,11 @@ impl Integrator {
             for _ in 0..steps {
                 let report = self.step()?;
                 *counter += 1;
+                self.substeps_since_record = self.substeps_since_record.max(report.substeps);
                 if *counter % record_every.max(1) == 0 {
-                    history.record(&self.snapshot(report.iterations))?;
+                    history
+                        .record(&self.snapshot(report.iterations, self.substeps_since_record))?;
+                    self.substeps_since_record = 1;
                 }
             }
             Ok(())
@@ -414,8 +427,7 @@ impl Integrator {
         pool::worth_it(self.model.rod.element_count())
     }
 
-    /// Advances one time step Δt. Where Newton fails, the step is split into two halves, up to
-    /// [`MAX_HALVINGS`] times; each sub-step keeps the exact energy balance.
+    /// Advances one time step Δt, in substeps where Newton fails or a step is rejected ([`Self::substeps`]).
     pub fn step(&mut self) -> Result<StepReport> {
         if self
             .stages
@@ -431,7 +443,7 @@ impl Integrator {
         {
             self.restart_from_statics(stage)?;
         }
-        pool::run(self.parallel(), || self.substep(self.options.time_step, 0))
+        pool::run(self.parallel(), || self.substeps(self.options.time_step))
     }
 
     /// Starts stage `stage` from statics of the configuration as it is: the vessel held where it is (its surge,
@@ -502,23 +514,74 @@ impl Integrator {
         Ok(())
     }
 
-    fn substep(&mut self, dt: f64, depth: usize) -> Result<StepReport> {
-        match self.try_step(dt) {
-            Err(Error::Convergence { .. }) if depth < MAX_HALVINGS => {
-                let first = self.substep(0.5 * dt, depth + 1)?;
-                let second = self.substep(0.5 * dt, depth + 1)?;
-                Ok(StepReport {
-                    iterations: first.iterations + second.iterations,
-                    factorisations: first.factorisations + second.factorisations,
-                    residual: second.residual,
-                    predictor_residual: first.predictor_residual.max(second.predictor_residual),
-                })
+    /// The step of size `dt`, in substeps where it must be: a substep whose Newton fails or whose state is
+    /// rejected ([`Integrator::accept_step`]) is tried again at half its size, down to the floor
+    /// Δt / 2^[`MAX_HALVINGS`]; after [`GROW_AFTER`] successes in a row the size doubles again (where the
+    /// time reached is a multiple of the doubled size, so that the substeps tile the step). Each substep is an
+    /// energy–momentum step with its own ledger entries, and the decisions depend on the state alone, so a
+    /// resumed run takes the same substeps.
+    fn substeps(&mut self, dt: f64) -> Result<StepReport> {
+        let start = self.state.time;
+        let whole: u64 = 1 << MAX_HALVINGS;
+        let (mut done, mut size, mut successes) = (0u64, whole, 0usize);
+        let mut total = StepReport {
+            iterations: 0,
+            factorisations: 0,
+            residual: 0.0,
+            predictor_residual: 0.0,
+            substeps: 0,
+        };
+        while done < whole {
+            let h = dt * size as f64 / whole as f64;
+            match self.try_step(h) {
+                Ok(report) => {
+                    total.iterations += report.iterations;
+                    total.factorisations += report.factorisations;
+                    total.residual = report.residual;
+                    total.predictor_residual =
+                        total.predictor_residual.max(report.predictor_residual);
+                    total.substeps += 1;
+                    done += size;
+                    successes += 1;
+                    if successes >= GROW_AFTER && size < whole && done % (2 * size) == 0 {
+                        size *= 2;
+                        successes = 0;
+                    }
+                }
+                Err(Error::Convergence {
+                    iterations,
+                    residual,
+                    reason,
+                    ..
+                }) if size == 1 => {
+                    return Err(Error::Convergence {
+                        context: "time step".into(),
+                        reached: self.state.time,
+                        iterations,
+                        residual,
+                        reason: format!(
+                            "{reason}; the step from t = {start:.6} s was split down to its floor Δt/{whole} = \
+                             {:.3e} s: reduce dt, soften the contacts (roller or seabed stiffness) or ease \
+                             the loads",
+                            dt / whole as f64
+                        ),
+                    });
+                }
+                Err(Error::Convergence { .. }) => {
+                    size /= 2;
+                    successes = 0;
+                }
+                Err(other) => return Err(other),
             }
-            other => other,
         }
+        if total.substeps > 1 {
+            // The substeps' times summed may differ from the step's in the last bit.
+            self.state.time = start + dt;
+        }
+        Ok(total)
     }
 
-    /// One step of size `dt`; the state is untouched if Newton fails.
+    /// One step of size `dt`; the state is untouched if Newton fails or the step is rejected.
     fn try_step(&mut self, dt: f64) -> Result<StepReport> {
         let time_next = self.state.time + dt;
         let time_mid = self.state.time + 0.5 * dt;
@@ -576,7 +639,9 @@ impl Integrator {
         );
         self.predict(&targets, dt);
         self.wave_kinematics.clear();
-        let outcome = self.newton(&scales, time_mid, dt);
+        let outcome = self
+            .newton(&scales, time_mid, dt)
+            .and_then(|report| self.accept_step(dt, &report).map(|()| report));
         if outcome.is_err() {
             if let Some(growth) = self.growth.take() {
                 growth.undo(&mut self.model, &mut self.nodal);

@@ -2,6 +2,7 @@
 //!
 //! May use: the model and its parts, [`crate::assembly`], [`crate::contact`], [`crate::linalg`] and
 //! [`crate::response`] (for the reactions and lay summary of a state). Nothing below imports it.
+//! - [`acceptance`]: whether a converged step is kept or retried in substeps;
 //! - [`state`]: the state of the rod and vessel at one time; [`nodal`]: its lumped inertia;
 //! - [`integrator`]: the time step as a whole (predict, solve, commit); [`step_residual`]: a step's residual
 //!   and tangent, of which [`rod_step`] is the rod's share; [`newton`]: Newton's method on the increments;
@@ -10,6 +11,7 @@
 //! - [`stages`]: the stages of a lay as functions of time; [`hand_over`]: the line passed to the A&R winch;
 //! - [`ledger`]: the storage function and the work supplied and dissipated;
 //! - [`observables`]: what users read off a state; [`history`]: the record of a run.
+pub mod acceptance;
 pub mod hand_over;
 pub mod history;
 pub mod integrator;

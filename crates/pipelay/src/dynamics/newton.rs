@@ -147,6 +147,7 @@ impl Integrator {
             factorisations,
             residual,
             predictor_residual,
+            substeps: 1,
         })
     }
 }
