@@ -109,10 +109,22 @@ def test_the_head_lands_at_the_laid_pipes_end(abandonment: tuple[Scenario, pl.St
 def test_the_ledger_closes_through_the_abandonment(
     abandonment: tuple[Scenario, pl.State, pl.Results],
 ) -> None:
-    """E(t) − E(0) = W(t) − D(t) through the hand-over, the head's passage over the rollers and its landing: to
-    1e-9 of the energy."""
+    """E(t) − E(0) = W(t) − D(t) through the hand-over, the head's passage over the rollers (where steps are
+    taken in substeps) and its landing: to 1e-9 of the energy."""
     _, _, results = abandonment
+    split = results.substeps > 1
+    assert 0 < np.count_nonzero(split) < len(results.time) // 2
+    assert results.substeps[0] == 1 and results.substeps.max() <= 1024
     energy = results.energy["total"]
     balance = energy - energy[0] - results.supplied_work + results.dissipated
     print(f"\nbalance {np.abs(balance).max():.2e} J of {np.abs(energy).max():.2e} J")
     assert np.abs(balance).max() < 1e-9 * np.abs(energy).max()
+
+
+def test_the_substeps_are_kept_in_the_file(
+    abandonment: tuple[Scenario, pl.State, pl.Results], tmp_path: Path
+) -> None:
+    """`results.substeps` goes to the netCDF file and comes back from it."""
+    _, _, results = abandonment
+    loaded = pl.load(results.to_netcdf(tmp_path / "abandonment.nc"))
+    assert np.array_equal(loaded.substeps, results.substeps)

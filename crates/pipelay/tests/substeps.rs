@@ -96,3 +96,38 @@ fn a_step_out_of_physical_bounds_is_rejected() {
     assert_eq!(rod.state().time, 0.0);
     assert!(rod.state().velocities.iter().all(|v| v.norm() == 0.0));
 }
+
+/// A run resumed from its state after 6 of the 0.5 s steps (a new integrator from a copy of the state and the
+/// ledger, as a checkpoint restores them) takes the same substeps and reaches, bit for bit, the same state as
+/// the run that went on.
+#[test]
+fn a_resumed_run_takes_the_same_substeps_bit_for_bit() {
+    let force = Vector3::new(20.0, 0.0, 0.0);
+    let moment = Vector3::new(0.0, 2000.0, 1000.0);
+    let mut rod = pushed_rod(0.5, force, moment);
+    for _ in 0..6 {
+        rod.step().expect("step");
+    }
+    let mut resumed = Integrator::new(
+        pushed_rod(0.5, force, moment).model().clone(),
+        rod.state().clone(),
+        *rod.options(),
+    )
+    .expect("integrator");
+    resumed.restore_ledger(*rod.ledger());
+    let mut split = 0;
+    for _ in 0..8 {
+        let on = rod.step().expect("step");
+        let again = resumed.step().expect("step");
+        assert_eq!(on.substeps, again.substeps);
+        assert_eq!(on.iterations, again.iterations);
+        split += usize::from(on.substeps > 1);
+    }
+    assert!(split >= 1, "the steps compared include split ones");
+    assert_eq!(
+        rod.state().configuration.positions,
+        resumed.state().configuration.positions
+    );
+    assert_eq!(rod.state().velocities, resumed.state().velocities);
+    assert_eq!(rod.ledger(), resumed.ledger());
+}
