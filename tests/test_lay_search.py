@@ -183,7 +183,7 @@ def test_a_target_beyond_the_solves_reports_the_closest_state() -> None:
     28.4 kN, whose state it carries; no other position tried comes closer."""
     calls: list[float] = []
     build = _s_lay(calls)
-    with pytest.raises(TargetNotReached, match=r"x = 597\.000 m with 28390\.9 N") as missed:
+    with pytest.raises(TargetNotReached, match=r"x = 597\.000 m with 28391 N \(28\.391 kN\)") as missed:
         find_lay_position(build, "top_tension", 5e4, start=660.0, max_solves=8)
     closest = missed.value.closest
     assert isinstance(missed.value, pl.InputError)

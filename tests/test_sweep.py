@@ -172,20 +172,22 @@ def test_run_case_here_equals_the_cluster(swept: Sweep, tmp_path: Path) -> None:
 
 
 def test_failed_cases_are_recorded_and_the_others_finish(client: Any, tmp_path: Path) -> None:
-    """A factory's case with a negative wall thickness (InputError, on its worker) and an empty pipe whose
-    statics fail (ConvergenceError) are failures with their messages; the good case finishes."""
+    """A factory's case with a negative wall thickness (InputError, on its worker) and a 100 GN sway force on
+    the vessel, whose time steps fail (ConvergenceError), are failures with their messages; the good case
+    finishes."""
     factory = functools.partial(apply_overrides, tomllib.loads(SCENARIO))
-    over = {"pipe.wall_thickness": [0.015, -0.01], "pipe.contents_density": [1025.0, 0.0]}
+    held, pushed = (0.0, 6e5, 0.0, 0.0, 0.0, 0.0), (0.0, 1e11, 0.0, 0.0, 0.0, 0.0)
+    over = {"pipe.wall_thickness": [0.015, -0.01], "environment[0].value": [list(held), list(pushed)]}
     done = pl.sweep(factory, over, client=client, output=tmp_path / "out", progress=False)
-    assert set(done.failures) == {(0.015, 0.0), (-0.01, 1025.0), (-0.01, 0.0)}
-    assert done.failures[(-0.01, 1025.0)].startswith("InputError: pipe.wall_thickness")
-    assert "ConvergenceError" in done.failures[(0.015, 0.0)]
-    assert list(done.cases) == [(0.015, 1025.0)] and done.cases[(0.015, 1025.0)].is_file()
+    assert set(done.failures) == {(0.015, pushed), (-0.01, held), (-0.01, pushed)}
+    assert done.failures[(-0.01, held)].startswith("InputError: pipe.wall_thickness")
+    assert "ConvergenceError" in done.failures[(0.015, pushed)]
+    assert list(done.cases) == [(0.015, held)] and done.cases[(0.015, held)].is_file()
     summary = done.summary
     assert summary["failed"].values.tolist() == [[0, 1], [1, 1]]
     assert np.isfinite(summary["top_tension_max"].values[0, 0])
     assert np.isnan(summary["top_tension_max"].values[[0, 1, 1], [1, 0, 1]]).all()
-    assert summary["error"].values[1, 0] == done.failures[(-0.01, 1025.0)]
+    assert summary["error"].values[1, 0] == done.failures[(-0.01, held)]
     # Failed cases have no results file, only their record.
     assert len(list((tmp_path / "out" / "cases").glob("*.nc"))) == 1
     assert len(list((tmp_path / "out" / "cases").glob("*.json"))) == 4

@@ -48,13 +48,16 @@ def test_pid_removes_the_sway_bias_of_the_pd(runs) -> None:
 
 
 def test_static_vessel_holds_the_pipe(runs) -> None:
-    """The static state: x, y, ψ at η; the holding thrust in surge balances the pipe's horizontal force
-    (the pipe, in compression near the vessel, pushes it forward: negative holding thrust)."""
+    """The static state: x, y, ψ at η, within the holding springs' give of 1e-4 m per MN of the pipe's pull;
+    the holding thrust in surge balances the pipe's horizontal force (the pipe, in compression near the
+    vessel, pushes it forward: negative holding thrust)."""
     state = runs["PD"][0]
-    np.testing.assert_allclose(state.eta[[0, 1, 5]], [730.0, 0.0, 0.0], atol=1e-5)
     body = state.rotations[-1]  # β = 0: the pipe's end frame is the body frame
     thrust = body @ state.tau[:3]
     pipe = body @ state.chi[:3]
+    give = 1e-4 * np.linalg.norm(pipe) / 1e6
+    np.testing.assert_allclose(state.eta[[0, 1, 5]], [730.0, 0.0, 0.0], rtol=0.0, atol=give)
+    assert abs(state.eta[0] - 730.0) > 0.01 * give  # held by a spring, not fixed
     assert thrust[0] + pipe[0] == pytest.approx(0.0, abs=1e-6 * np.linalg.norm(pipe))
     assert state.tau[0] < 0.0 < pipe[0]
     # At the vessel's end the reaction is the pipe's force on the vessel, in e.
