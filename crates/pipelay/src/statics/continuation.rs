@@ -5,7 +5,7 @@ use crate::assembly::configuration::Configuration;
 use crate::model::Model;
 use crate::response::configuration::Response;
 use crate::statics::newton::{newton, Newton};
-use crate::statics::solve::{StaticOptions, StaticSolution};
+use crate::statics::options::{StaticOptions, StaticSolution};
 
 /// Smallest factor on the bending stiffness that the continuation from a cable starts at.
 const CABLE_BENDING_SCALE: f64 = 1e-8;

@@ -9,7 +9,7 @@ use crate::assembly::dofs::NODE_DOFS;
 use crate::linalg::factorisation::Factorisation;
 use crate::model::Model;
 use crate::so3::exp_quat;
-use crate::statics::solve::StaticOptions;
+use crate::statics::options::StaticOptions;
 use nalgebra::Vector3;
 
 /// Outcome of Newton at one load factor.

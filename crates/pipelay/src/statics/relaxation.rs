@@ -19,7 +19,7 @@ use crate::statics::newton::{
     apply_correction, free_norm, largest_increments, residual_norms, roller_step_factor,
     round_off_floor, Newton,
 };
-use crate::statics::solve::StaticOptions;
+use crate::statics::options::StaticOptions;
 use nalgebra::Matrix6;
 
 /// Iterations the relaxation may take.
