@@ -18,7 +18,7 @@ use pipelay::rod::{section::Section, Rod};
 use pipelay::statics::newton::Newton;
 use pipelay::statics::physical::{check, Unphysical};
 use pipelay::statics::relaxation::relax;
-use pipelay::statics::solve::{solve, Start, StaticOptions};
+use pipelay::statics::solve::{solve, Start, StaticOptions, StaticSolution};
 use pipelay::vessel::control::{Pid, Reference};
 use pipelay::vessel::lay::{stinger_rollers, LayEquipment};
 use pipelay::vessel::rigid_body::Vessel;
@@ -254,24 +254,32 @@ fn relaxation_reaches_newtons_state() {
     assert!(iterations < 100, "{iterations} iterations");
 }
 
+/// Each roller's nearest element in a solution of an S-lay.
+fn nearest_elements(solution: &StaticSolution) -> Vec<usize> {
+    let rollers = solution.response.rollers.as_ref().expect("rollers");
+    rollers.elements.clone()
+}
+
+/// What the physical check says of a solution of an S-lay.
+fn verdict(model: &Model, solution: &StaticSolution) -> Option<Unphysical> {
+    let config = &solution.configuration;
+    check(
+        model,
+        &config.positions,
+        &config.rotations,
+        &nearest_elements(solution),
+    )
+}
+
 /// The check of a converged state: the S-lay's state is physical; the same with a stretch of pipe dropped under
 /// the stinger, or a node pushed through a roller, or the vessel turned over, is not, and says where.
 #[test]
 fn the_check_refuses_a_pipe_under_or_through_the_stinger_and_a_capsized_vessel() {
     let model = s_lay(None);
     let solution = solve(&model, &StaticOptions::default()).expect("statics");
-    let nearest = solution
-        .response
-        .rollers
-        .as_ref()
-        .expect("rollers")
-        .elements
-        .clone();
+    let nearest = nearest_elements(&solution);
     let config = &solution.configuration;
-    assert_eq!(
-        check(&model, &config.positions, &config.rotations, &nearest),
-        None
-    );
+    assert_eq!(verdict(&model, &solution), None);
 
     let roller = 6;
     let element = nearest[roller];
@@ -326,21 +334,11 @@ fn a_pipe_curled_under_the_stinger_is_refused() {
             );
             assert!(reason.contains("move the vessel forward"), "{reason}");
         }
-        Ok(solution) => {
-            let nearest = solution
-                .response
-                .rollers
-                .as_ref()
-                .expect("rollers")
-                .elements
-                .clone();
-            let config = &solution.configuration;
-            assert_eq!(
-                check(&model, &config.positions, &config.rotations, &nearest),
-                None,
-                "a state returned must be physical"
-            );
-        }
+        Ok(solution) => assert_eq!(
+            verdict(&model, &solution),
+            None,
+            "a state returned must be physical"
+        ),
         Err(other) => panic!("unexpected error {other}"),
     }
 }

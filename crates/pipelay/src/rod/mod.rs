@@ -316,6 +316,14 @@ impl Rod {
         self.nodes.len()
     }
 
+    /// The shortest element's reference length (m).
+    pub fn shortest_element(&self) -> f64 {
+        self.elements
+            .iter()
+            .map(|e| e.length)
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Total reference length (m).
     pub fn length(&self) -> f64 {
         self.elements.iter().map(|e| e.length).sum()

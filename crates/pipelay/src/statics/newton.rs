@@ -140,12 +140,7 @@ pub fn newton(
 /// like a random walk. Never below 1e-13·EA·√n. A vessel's holding springs add theirs.
 pub fn round_off_floor(model: &Model) -> f64 {
     let extent = model.rod.nodes.iter().map(|x| x.norm()).fold(1.0, f64::max);
-    let shortest = model
-        .rod
-        .elements
-        .iter()
-        .map(|e| e.length)
-        .fold(f64::INFINITY, f64::min);
+    let shortest = model.rod.shortest_element();
     let per_element = (4.0 * f64::EPSILON * extent / shortest).max(1e-13);
     let vessel = model.vessel.as_ref().map_or(0.0, |attachment| {
         crate::vessel::coupling::static_round_off(attachment, extent)

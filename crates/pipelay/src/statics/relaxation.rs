@@ -76,12 +76,7 @@ pub fn relax(
 ) -> Newton {
     let masses = nodal_masses(model);
     let round_off = round_off_floor(model);
-    let shortest = model
-        .rod
-        .elements
-        .iter()
-        .map(|e| e.length)
-        .fold(f64::INFINITY, f64::min);
+    let shortest = model.rod.shortest_element();
     let mut delta = vec![0.0; assembler.dofs.free];
     // σ and the residual it was last updated at (`None` after a step taken back: σ stands).
     let mut sigma: Option<(f64, Option<f64>)> = None;
