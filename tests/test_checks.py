@@ -450,3 +450,105 @@ def test_errors_are_input_errors() -> None:
     u = checks.dnv_st_f101(FakeState())
     with pytest.raises(pl.InputError, match="check"):
         u.worst_element("both")  # type: ignore[arg-type]
+
+
+class ContentsSection(FakeSection):
+    """A section with contents of density `contents_density` (kg/m³)."""
+
+    def __init__(self, contents_density: float) -> None:
+        super().__init__()
+        self.contents_density = contents_density
+
+
+def test_a_flooded_pipe_has_its_contents_pressure_inside_and_no_overpressure() -> None:
+    # flooded with sea water open to the surface: p_i = p_e at every depth, so no pressure term, and the
+    # strain resistance of zero pressure difference (hand calculation, D/t = 20.4: α_gw 0.99)
+    depths = np.array([50.0, 400.0, 800.0])
+    state = FakeState(z=-depths, water_depth=1e3, moment3=2e5, strain=1e-3, section=ContentsSection(RHO))
+    u = checks.dnv_st_f101(state)
+    p_e = RHO * G * (1e3 - depths)
+    np.testing.assert_allclose(u.internal_pressure, p_e, rtol=1e-14)
+    np.testing.assert_allclose(u.external_pressure, p_e, rtol=1e-14)
+    f_y, f_u = strengths()
+    alpha_c = alpha_c_expected(D / T, f_y, f_u)
+    bending = (GAMMA_M * GAMMA_SC_MEDIUM * 2e5 / (alpha_c * f_y * (D - T) ** 2 * T)) ** 2
+    np.testing.assert_allclose(u.load_controlled, bending, rtol=1e-12)
+    alpha_gw = 1.0 - 0.4 * (D / T - 20.0) / 40.0
+    allowable = 0.78 * (T / D - 0.01) * 0.93**-1.5 * alpha_gw / 2.5
+    np.testing.assert_allclose(u.allowable_strain, allowable, rtol=1e-12)
+    assert "contents (1025 kg/m³" in u.basis and "safety class medium" in u.basis
+
+
+def test_an_empty_pipe_has_no_internal_pressure() -> None:
+    state = FakeState(z=[-200.0], water_depth=600.0, section=ContentsSection(0.0))
+    u = checks.dnv_st_f101(state)
+    f_y, _ = strengths()
+    p_e = RHO * G * 400.0
+    assert u.internal_pressure[0] == 0.0
+    expected = (GAMMA_M * GAMMA_SC_MEDIUM * p_e / collapse_by_roots(f_y, 1.0, 0.005)) ** 2
+    assert u.load_controlled[0] == pytest.approx(expected, rel=1e-12)
+    assert "p_i 0 (empty)" in u.basis
+
+
+def test_contents_heavier_than_sea_water_take_the_internal_overpressure_form() -> None:
+    # brine of 1200 kg/m³: p_i − p_e = (1200 − 1025) g h > 0, small against p_b (α_p = 1 − β)
+    state = FakeState(z=[-100.0], water_depth=900.0, section=ContentsSection(1200.0))
+    u = checks.dnv_st_f101(state)
+    f_y, f_u = strengths()
+    p_b = 2 * T / (D - T) * min(f_y, f_u / 1.15) * 2 / math.sqrt(3)
+    beta = (60 - D / T) / 90
+    alpha_c = (1 - beta) + beta * f_u / f_y
+    overpressure = (1200.0 - RHO) * G * 800.0
+    assert u.internal_pressure[0] == pytest.approx(1200.0 * G * 800.0, rel=1e-14)
+    assert u.load_controlled[0] == pytest.approx(
+        ((1 - beta) * overpressure / (alpha_c * p_b)) ** 2, rel=1e-12
+    )
+
+
+def test_a_given_internal_pressure_replaces_the_contents() -> None:
+    state = FakeState(z=[-100.0, -500.0], water_depth=900.0, section=ContentsSection(RHO))
+    u = checks.dnv_st_f101(state, internal_pressure=2e6)
+    np.testing.assert_array_equal(u.internal_pressure, 2e6)
+    assert "p_i 2 MPa given" in u.basis
+
+
+def test_the_defaults_live_in_one_place() -> None:
+    import inspect
+
+    for function in (checks.dnv_st_f101, checks.propagation_buckling):
+        signature = inspect.signature(function)
+        given = {name: p.default for name, p in signature.parameters.items() if name != "state"}
+        assert given == checks.DEFAULTS
+
+
+def test_propagation_buckling_by_hand() -> None:
+    # D/t = 20.4 (inside 15 … 45); p_pr = 35 f_y α_fab (t/D)^2.5 ≈ 8.07 MPa, its design value / 1.311
+    depths_below_surface = np.array([100.0, 500.0, 700.0, 900.0])
+    state = FakeState(z=depths_below_surface - 1e3, water_depth=1e3)
+    result = checks.propagation_buckling(state, fabrication="uoe")
+    f_y, _ = strengths()
+    p_pr = 35.0 * f_y * 0.85 * (T / D) ** 2.5
+    p_e = RHO * G * depths_below_surface
+    expected = GAMMA_M * GAMMA_SC_MEDIUM * p_e / p_pr
+    np.testing.assert_allclose(result.propagation_pressure, p_pr, rtol=1e-14)
+    np.testing.assert_allclose(result.utilisation, expected, rtol=1e-13)
+    failing = expected > 1.0
+    assert failing.tolist() == [False, False, True, True]
+    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(state.positions, axis=0), axis=1))])
+    middle = 0.5 * (arc[:-1] + arc[1:])
+    said = f"buckle arrestors needed from {middle[2]:.1f} m to {middle[3]:.1f} m from end A (water deeper than 700.0"
+    assert result.arrestors is not None and said in result.arrestors
+    assert result.worst_element() == 3 and result.max() == pytest.approx(expected[3], rel=1e-13)
+    assert result.notes == ()
+
+
+def test_propagation_buckling_of_a_flooded_pipe_is_nil() -> None:
+    state = FakeState(z=[-10.0, -20.0], water_depth=2e3, section=ContentsSection(RHO))
+    result = checks.propagation_buckling(state)
+    np.testing.assert_array_equal(result.utilisation, 0.0)
+    assert result.arrestors is None
+
+
+def test_propagation_buckling_notes_a_thick_wall() -> None:
+    state = FakeState(z=[0.0], water_depth=100.0, section=FakeSection(wall_thickness=0.03))
+    assert "outside 15 < D/t2 < 45" in checks.propagation_buckling(state).notes[0]

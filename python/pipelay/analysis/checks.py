@@ -85,8 +85,12 @@ Assumptions
 -----------
 * The state's forces, moments and strains are taken as the design load effects: DNV's load effect factors
   (γ_F, γ_E, γ_c, Sec.4) are not applied — factor the loads before, or scale the result.
-* `internal_pressure` is one local internal pressure for the whole pipe, used as p_i of the
-  internal-overpressure criteria and as p_min (minimum sustained internal pressure) of the external ones.
+* The internal pressure p_i is, by default, that of the section's contents open to the sea surface,
+  ρ_c g h at each element's depth h below the surface (a flooded pipe: p_i = p_e; an empty one: 0), or one
+  pressure given for the whole pipe (``internal_pressure``, a design or lay pressure); it is p_i of the
+  internal-overpressure criteria and p_min (minimum sustained internal pressure) of the external ones.
+* The defaults of every parameter live in `DEFAULTS`; a scenario's ``[checks]`` table overrides them for the
+  command line, the figures, the report and sweeps alike, so that each shows the same utilisation.
 * The strain demand is |state.strain| (largest longitudinal strain at the outer fibre, axial + bending).
 
 Imports of pipelay: only the engine's ``InputError``, when an error is raised (the module reads a state by its
@@ -102,7 +106,15 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["GRADES", "Utilisation", "dnv_st_f101"]
+__all__ = [
+    "DEFAULTS",
+    "GRADES",
+    "Propagation",
+    "Utilisation",
+    "contents_pressure",
+    "dnv_st_f101",
+    "propagation_buckling",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -144,6 +156,24 @@ ALPHA_H = 0.93
 """Assumed maximum yield-to-tensile ratio α_h = (R_t0.5/R_m)_max of C-Mn line pipe."""
 
 CONDITIONS = ("installation", "operation")
+
+DEFAULTS: dict[str, Any] = {
+    "grade": None,
+    "wall_thickness": None,
+    "safety_class": "medium",
+    "internal_pressure": None,
+    "fabrication": "seamless",
+    "corrosion_allowance": 0.0,
+    "ovality": 0.005,
+    "temperature_derating": 0.0,
+    "condition": "installation",
+    "strain_limit": None,
+}
+"""The parameters of every check where neither the call nor the scenario's ``[checks]`` table sets them, in one
+place: the section's grade (X65 without one) and wall thickness; safety class medium (DNV classifies
+installation as low: set ``safety_class = "low"`` to use it); the internal pressure of the section's contents
+(`contents_pressure`); a seamless pipe; installation (no corrosion allowance deducted); DNV's minimum ovality
+0.5 %; no temperature de-rating; DNV's strain resistance."""
 DEFAULT_YOUNGS_MODULUS = 207e9
 DEFAULT_POISSON_RATIO = 0.3
 
@@ -186,12 +216,16 @@ class Utilisation:
         Specified and characteristic (de-rated, × α_U) yield and tensile strengths (Pa).
     outer_diameter, wall_thickness, t2 : float
         D, nominal t and the t₂ of the criteria (m).
-    internal_pressure : float
-        p_i = p_min (Pa).
+    internal_pressure : ndarray (n,)
+        p_i = p_min at the element midpoints (Pa): the one given, or that of the section's contents.
     gamma_m, gamma_sc, gamma_epsilon, alpha_c, alpha_u, alpha_fab, alpha_h, alpha_gw, beta : float
         Factors used.
     grade, safety_class, fabrication, condition : str
         The choices made.
+    basis : str
+        Those choices and the pressures in one line, to state beside every utilisation shown (e.g.
+        "DNV-ST-F101, X65, safety class medium (γ_SC 1.14), seamless (α_fab 1.00), installation, p_i 0 (empty),
+        p_e hydrostatic (1025 kg/m³)").
     notes : tuple of str
         Where the state lies outside the stated validity of the criteria.
     segment_of : ndarray (n,) of int or None
@@ -223,7 +257,7 @@ class Utilisation:
     outer_diameter: float
     wall_thickness: float
     t2: float
-    internal_pressure: float
+    internal_pressure: FloatArray
     gamma_m: float
     gamma_sc: float
     gamma_epsilon: float
@@ -237,6 +271,7 @@ class Utilisation:
     safety_class: str
     fabrication: str
     condition: str
+    basis: str = ""
     notes: tuple[str, ...] = field(default=())
     segment_of: NDArray[np.int64] | None = None
     segments: tuple[Utilisation | None, ...] = field(default=())
@@ -275,16 +310,16 @@ class Utilisation:
 def dnv_st_f101(
     state: Any,
     *,
-    grade: str | None = None,
-    wall_thickness: float | None = None,
-    safety_class: str = "medium",
-    internal_pressure: float = 0.0,
-    fabrication: str = "seamless",
-    corrosion_allowance: float = 0.0,
-    ovality: float = 0.005,
-    temperature_derating: float = 0.0,
-    condition: str = "installation",
-    strain_limit: float | None = None,
+    grade: str | None = DEFAULTS["grade"],
+    wall_thickness: float | None = DEFAULTS["wall_thickness"],
+    safety_class: str = DEFAULTS["safety_class"],
+    internal_pressure: float | None = DEFAULTS["internal_pressure"],
+    fabrication: str = DEFAULTS["fabrication"],
+    corrosion_allowance: float = DEFAULTS["corrosion_allowance"],
+    ovality: float = DEFAULTS["ovality"],
+    temperature_derating: float = DEFAULTS["temperature_derating"],
+    condition: str = DEFAULTS["condition"],
+    strain_limit: float | None = DEFAULTS["strain_limit"],
 ) -> Utilisation:
     """Local-buckling checks of DNV-ST-F101 Sec.5 [5.4.6] for every element of `state`.
 
@@ -303,8 +338,10 @@ def dnv_st_f101(
         Nominal wall thickness t (m); None takes ``state.section.wall_thickness``.
     safety_class : {"low", "medium", "high"}
         Sets γ_SC and γ_ε. DNV normally classifies installation as "low".
-    internal_pressure : float
-        Local internal pressure p_i, also the minimum sustained internal pressure p_min (Pa, ≥ 0).
+    internal_pressure : float or None
+        Local internal pressure p_i, also the minimum sustained internal pressure p_min (Pa, ≥ 0), the same at
+        every element (a design or lay pressure); None takes that of the section's contents at each element,
+        ρ_c g h with h its depth below the surface (`contents_pressure`: 0 for an empty pipe).
     fabrication : {"seamless", "uoe", "uo_tre", "welded"}
         Sets the fabrication factor α_fab of the collapse pressure.
     corrosion_allowance : float
@@ -349,27 +386,224 @@ def dnv_st_f101(
     positions = _state_array(state, "positions", (n + 1, 3))
     strain = np.abs(_state_array(state, "strain", (n,)))
 
-    p_e = _external_pressure(state, positions)
+    water = _water(state, positions)
     segment_of = _attribute(state, "segment_of", "state", required=False)
     sections = _attribute(state, "sections", "state", required=False)
     if segment_of is None or sections is None or len(sections) <= 1:
         section = _attribute(state, "section", "state")
-        return _check_section(section, "state.section", forces, tension, strain, p_e, options)
-    return _check_segments(list(sections), np.asarray(segment_of), forces, tension, strain, p_e, options)
+        return _check_section(section, "state.section", forces, tension, strain, water, options)
+    return _check_segments(list(sections), np.asarray(segment_of), forces, tension, strain, water, options)
+
+
+@dataclass(frozen=True, eq=False)
+class Propagation:
+    """DNV-ST-F101 propagation buckling along a pipe, per element (arrays (n,), read-only).
+
+    Attributes
+    ----------
+    utilisation : ndarray (n,)
+        γ_m γ_SC (p_e − p_min)/p_pr, at least 0 (1 = limit: beyond it a local buckle, once started, runs along
+        the pipe); 0 for a cable's elements. Dimensionless.
+    propagation_pressure : ndarray (n,)
+        p_pr = 35 f_y α_fab (t₂/D)^2.5 of each element's section (Pa); NaN for a cable's elements.
+    external_pressure, internal_pressure : ndarray (n,)
+        p_e and p_i = p_min at the element midpoints (Pa).
+    gamma_m, gamma_sc : float
+        The factors of the criterion.
+    safety_class : str
+        The safety class chosen.
+    basis : str
+        The parameters and pressures in one line, to state beside the utilisation.
+    arrestors : str or None
+        Where buckle arrestors are needed (the utilisation exceeds 1), in words; None where it nowhere does.
+    notes : tuple of str
+        Where the pipe lies outside the criterion's stated validity (15 < D/t₂ < 45).
+    """
+
+    utilisation: FloatArray
+    propagation_pressure: FloatArray
+    external_pressure: FloatArray
+    internal_pressure: FloatArray
+    gamma_m: float
+    gamma_sc: float
+    safety_class: str
+    basis: str
+    arrestors: str | None
+    notes: tuple[str, ...] = field(default=())
+
+    def max(self) -> float:
+        """The largest utilisation along the pipe."""
+        return float(np.max(self.utilisation))
+
+    def worst_element(self) -> int:
+        """Index of the element with the largest utilisation (0 at end A)."""
+        return int(np.argmax(self.utilisation))
+
+
+def propagation_buckling(
+    state: Any,
+    *,
+    grade: str | None = DEFAULTS["grade"],
+    wall_thickness: float | None = DEFAULTS["wall_thickness"],
+    safety_class: str = DEFAULTS["safety_class"],
+    internal_pressure: float | None = DEFAULTS["internal_pressure"],
+    fabrication: str = DEFAULTS["fabrication"],
+    corrosion_allowance: float = DEFAULTS["corrosion_allowance"],
+    ovality: float = DEFAULTS["ovality"],
+    temperature_derating: float = DEFAULTS["temperature_derating"],
+    condition: str = DEFAULTS["condition"],
+    strain_limit: float | None = DEFAULTS["strain_limit"],
+) -> Propagation:
+    """Propagation buckling of DNV-ST-F101 Sec.5 [5.4.5] along `state`'s pipe.
+
+    A local buckle (from a dent, or excessive bending) in a pipe whose external overpressure exceeds the
+    propagation pressure runs along it until the pressure drops or an arrestor stops it. The criterion,
+
+        p_e − p_min ≤ p_pr/(γ_m γ_SC),   p_pr = 35 f_y α_fab (t₂/D)^2.5   (valid for 15 < D/t₂ < 45),
+
+    is evaluated at every element midpoint; the utilisation is γ_m γ_SC (p_e − p_min)/p_pr.
+
+    Parameters
+    ----------
+    state : State-like
+        Provides ``positions`` (n + 1, 3) (m, frame e, e3 down), ``water_depth`` (m, or None), ``water_density``
+        (kg/m³) and ``section`` (or ``sections`` and ``segment_of`` for a line of segments).
+    grade, wall_thickness, safety_class, internal_pressure, fabrication, corrosion_allowance,
+    temperature_derating, condition
+        As for `dnv_st_f101` (the same defaults, `DEFAULTS`): the grade sets f_y, the fabrication α_fab, the
+        condition and corrosion allowance t₂, the safety class γ_SC; p_min is the internal pressure.
+    ovality, strain_limit
+        Accepted so that one set of parameters serves every check; they do not enter this one.
+
+    Returns
+    -------
+    Propagation
+
+    Raises
+    ------
+    pipelay.InputError
+        If an argument or a state attribute is missing, of the wrong type, shape or value.
+    """
+    options = _options(
+        grade=grade,
+        wall_thickness=wall_thickness,
+        safety_class=safety_class,
+        internal_pressure=internal_pressure,
+        fabrication=fabrication,
+        corrosion_allowance=corrosion_allowance,
+        ovality=ovality,
+        temperature_derating=temperature_derating,
+        condition=condition,
+        strain_limit=strain_limit,
+    )
+    positions = _state_array(state, "positions", (None, 3))
+    n = positions.shape[0] - 1
+    if n < 1:
+        raise _input_error("state.positions", _Described("one node"), "at least two nodes", "is too short")
+    water = _water(state, positions)
+    p_e = water.external_pressure()
+    p_i = np.zeros(n)
+    p_pr = np.full(n, np.nan)
+    gamma = GAMMA_M * GAMMA_SC[options.safety_class]
+    notes = []
+    basis = ""
+    for section, prefix, elements in _steel_parts(state, n):
+        steel = _steel(section, prefix, options)
+        p_pr[elements] = (
+            35.0 * steel.f_y * ALPHA_FAB[options.fabrication] * (steel.t2 / steel.outer_diameter) ** 2.5
+        )
+        p_i[elements] = _internal_pressure(section, prefix, water.part(elements), options.internal_pressure)
+        d_over_t = steel.outer_diameter / steel.t2
+        if not 15.0 < d_over_t < 45.0:
+            notes.append(
+                f"{prefix}: D/t2 = {d_over_t:.3g} is outside 15 < D/t2 < 45, the criterion's validity"
+            )
+        basis = basis or (
+            f"DNV-ST-F101 [5.4.5], {steel.grade}, safety class {options.safety_class} "
+            f"(γ_SC {GAMMA_SC[options.safety_class]:.2f}), {options.fabrication} (α_fab "
+            f"{ALPHA_FAB[options.fabrication]:.2f}), {options.condition}, "
+            f"{_pressure_basis(section, water, options.internal_pressure)}"
+        )
+    steel_elements = np.isfinite(p_pr)
+    utilisation = np.zeros(n)
+    utilisation[steel_elements] = np.clip(
+        gamma * (p_e - p_i)[steel_elements] / p_pr[steel_elements], 0.0, None
+    )
+    return Propagation(
+        utilisation=_frozen(utilisation),
+        propagation_pressure=_frozen(p_pr),
+        external_pressure=_frozen(p_e),
+        internal_pressure=_frozen(p_i),
+        gamma_m=GAMMA_M,
+        gamma_sc=GAMMA_SC[options.safety_class],
+        safety_class=options.safety_class,
+        basis=basis,
+        arrestors=_arrestor_advice(state, positions, water, utilisation, p_pr / gamma),
+        notes=tuple(notes),
+    )
+
+
+def _steel_parts(state: Any, n: int) -> list[tuple[Any, str, NDArray[np.bool_]]]:
+    """The steel sections of `state` with their names in errors and the elements (n,) each covers; cables
+    are left out; an input error where there is no steel."""
+    segment_of = _attribute(state, "segment_of", "state", required=False)
+    sections = _attribute(state, "sections", "state", required=False)
+    if segment_of is None or sections is None or len(sections) <= 1:
+        return [(_attribute(state, "section", "state"), "state.section", np.ones(n, dtype=bool))]
+    indices = np.asarray(segment_of)
+    if indices.shape != (n,) or np.any(indices < 0) or np.any(indices >= len(sections)):
+        raise _input_error(
+            "state.segment_of",
+            _Described(f"an array of shape {indices.shape}"),
+            f"({n},) segment indices in 0..{len(sections) - 1}",
+        )
+    parts = [
+        (section, f"state.sections[{k}]", indices == k)
+        for k, section in enumerate(sections)
+        if not getattr(section, "is_cable", False) and np.any(indices == k)
+    ]
+    if not parts:
+        raise _input_error(
+            "state.sections", _Described(f"{len(sections)} cable segments"), "at least one steel pipe segment"
+        )
+    return parts
+
+
+def _arrestor_advice(
+    state: Any, positions: FloatArray, water: _Water, utilisation: FloatArray, design_pressure: FloatArray
+) -> str | None:
+    """Where the propagation criterion fails, in words: the stretch of pipe (arc length from end A along the
+    reference, as `state.reference_arc_length`, else along the configuration), the depth beyond which it
+    fails, and the advice; None where it nowhere fails."""
+    failing = utilisation > 1.0
+    if not np.any(failing):
+        return None
+    arc = _attribute(state, "reference_arc_length", "state", required=False)
+    if arc is None or np.shape(arc) != (positions.shape[0],):
+        arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(positions, axis=0), axis=1))])
+    middle = 0.5 * (arc[:-1] + arc[1:])
+    first, last = np.flatnonzero(failing)[[0, -1]]
+    shallowest = float(np.min(water.below_surface[failing]))
+    return (
+        f"buckle arrestors needed from {middle[first]:.1f} m to {middle[last]:.1f} m from end A (water deeper "
+        f"than {shallowest:.1f} m): there p_e − p_min exceeds p_pr/(γ_m γ_SC) = "
+        f"{float(np.nanmin(design_pressure[failing])) / 1e6:.3g} MPa, so a local buckle started there would run "
+        "along the pipe; arrestors along that stretch stop it (DNV-ST-F101 [5.4.5])"
+    )
 
 
 def _options(
     *,
-    grade: str | None = None,
-    wall_thickness: float | None = None,
-    safety_class: str = "medium",
-    internal_pressure: float = 0.0,
-    fabrication: str = "seamless",
-    corrosion_allowance: float = 0.0,
-    ovality: float = 0.005,
-    temperature_derating: float = 0.0,
-    condition: str = "installation",
-    strain_limit: float | None = None,
+    grade: str | None = DEFAULTS["grade"],
+    wall_thickness: float | None = DEFAULTS["wall_thickness"],
+    safety_class: str = DEFAULTS["safety_class"],
+    internal_pressure: float | None = DEFAULTS["internal_pressure"],
+    fabrication: str = DEFAULTS["fabrication"],
+    corrosion_allowance: float = DEFAULTS["corrosion_allowance"],
+    ovality: float = DEFAULTS["ovality"],
+    temperature_derating: float = DEFAULTS["temperature_derating"],
+    condition: str = DEFAULTS["condition"],
+    strain_limit: float | None = DEFAULTS["strain_limit"],
 ) -> _Options:
     """The arguments of `dnv_st_f101` checked (the same keywords and defaults)."""
     return _Options(
@@ -378,7 +612,7 @@ def _options(
         _choice("safety_class", safety_class, list(GAMMA_SC), "is not a safety class"),
         _choice("fabrication", fabrication, list(ALPHA_FAB), "is not a fabrication"),
         _choice("condition", condition, list(CONDITIONS), "is not a condition"),
-        _number("internal_pressure", internal_pressure, minimum=0.0),
+        None if internal_pressure is None else _number("internal_pressure", internal_pressure, minimum=0.0),
         _number("corrosion_allowance", corrosion_allowance, minimum=0.0),
         _number("ovality", ovality, minimum=0.005, maximum=1.0, allowed="a fraction from 0.005 to 1"),
         _number("temperature_derating", temperature_derating, minimum=0.0),
@@ -413,13 +647,13 @@ def _records_utilisation(
         rows = slice(start, min(start + block, count))
         size = (rows.stop - rows.start) * n
         if sea is None:
-            p_e = np.zeros(size)
+            water = _Water(np.zeros(size), 0.0)
         else:
             z_mid = 0.5 * (positions[rows, :-1, 2] + positions[rows, 1:, 2])
-            p_e = (density * GRAVITY * np.clip(depth + z_mid, 0.0, None)).reshape(size)
+            water = _Water(np.clip(depth + z_mid, 0.0, None).reshape(size), density)
         flat = forces[rows].reshape(size, 6)
         checked = _check_section(
-            section, "state.section", flat, flat[:, 0], np.abs(strain[rows].reshape(size)), p_e, options
+            section, "state.section", flat, flat[:, 0], np.abs(strain[rows].reshape(size)), water, options
         )
         load[rows] = checked.load_controlled.reshape(-1, n)
         displacement[rows] = checked.displacement_controlled.reshape(-1, n)
@@ -435,7 +669,7 @@ class _Options:
     safety_class: str
     fabrication: str
     condition: str
-    internal_pressure: float
+    internal_pressure: float | None
     corrosion_allowance: float
     ovality: float
     temperature_derating: float
@@ -448,7 +682,7 @@ def _check_segments(
     forces: FloatArray,
     tension: FloatArray,
     strain: FloatArray,
-    p_e: FloatArray,
+    water: _Water,
     options: _Options,
 ) -> Utilisation:
     """The checks of a line of segments: each steel segment with its own section, joined element by element."""
@@ -472,7 +706,7 @@ def _check_segments(
                 forces[elements],
                 tension[elements],
                 strain[elements],
-                p_e[elements],
+                water.part(elements),
                 options,
             )
         )
@@ -488,7 +722,8 @@ def _check_segments(
         "moment": moment,
         "effective_axial_force": tension,
         "wall_tension": tension.copy(),
-        "external_pressure": p_e,
+        "external_pressure": water.external_pressure(),
+        "internal_pressure": np.zeros(n),
         "strain": strain,
         "allowable_strain": np.full(n, np.inf),
         "alpha_p": np.zeros(n),
@@ -501,6 +736,7 @@ def _check_segments(
             "wall_tension",
             "allowable_strain",
             "alpha_p",
+            "internal_pressure",
         ):
             arrays[name][elements] = getattr(part, name)
     governing_segment = max(checked, key=lambda item: float(np.max(item[1].load_controlled)))
@@ -521,6 +757,7 @@ def _check_segments(
         strain=frozen["strain"],
         allowable_strain=frozen["allowable_strain"],
         alpha_p=frozen["alpha_p"],
+        internal_pressure=frozen["internal_pressure"],
         notes=tuple(notes),
         segment_of=_frozen_indices(segment_of),
         segments=tuple(parts),
@@ -534,36 +771,32 @@ def _frozen_indices(values: NDArray[Any]) -> NDArray[np.int64]:
     return result
 
 
-def _check_section(
-    section: Any,
-    prefix: str,
-    forces: FloatArray,
-    tension: FloatArray,
-    strain: FloatArray,
-    p_e: FloatArray,
-    options: _Options,
-) -> Utilisation:
-    """The checks of elements of one steel `section` (named `prefix` in errors) under their forces."""
-    grade_key, wall_thickness, safety, fab, cond = (
-        options.grade,
-        options.wall_thickness,
-        options.safety_class,
-        options.fabrication,
-        options.condition,
-    )
-    p_i, t_corr, f0, f_temp, limit = (
-        options.internal_pressure,
-        options.corrosion_allowance,
-        options.ovality,
-        options.temperature_derating,
-        options.strain_limit,
-    )
-    n = forces.shape[0]
+@dataclass(frozen=True)
+class _Steel:
+    """A steel section's wall and strength as the checks take them (SI units)."""
+
+    grade: str
+    outer_diameter: float
+    wall_thickness: float
+    t2: float
+    smys: float
+    smts: float
+    f_y: float
+    f_u: float
+    youngs_modulus: float
+    poisson_ratio: float
+
+
+def _steel(section: Any, prefix: str, options: _Options) -> _Steel:
+    """The wall and strength of `section` (named `prefix` in errors) under `options`: the grade given or the
+    section's (X65 without one), the wall thickness given or the section's, t₂ (less the corrosion allowance
+    in operation), SMYS/SMTS and the characteristic (de-rated, × α_U) f_y, f_u."""
+    grade_key = options.grade
     if grade_key is None:
         section_grade = _attribute(section, "grade", required=False) or DEFAULT_GRADE
         grade_key = _choice(f"{prefix}.grade", section_grade, list(GRADES), "is not a known grade")
     diameter = _number(f"{prefix}.outer_diameter", _attribute(section, "outer_diameter"), positive=True)
-    if wall_thickness is None:
+    if options.wall_thickness is None:
         section_t = _attribute(section, "wall_thickness", prefix, required=False)
         if section_t is None:
             raise _input_error(
@@ -574,23 +807,60 @@ def _check_section(
             )
         t = _number(f"{prefix}.wall_thickness", section_t, positive=True)
     else:
-        t = _number("wall_thickness", wall_thickness, positive=True)
+        t = _number("wall_thickness", options.wall_thickness, positive=True)
     if t >= diameter / 2:
         raise _input_error("wall_thickness", t, f"less than half the outer diameter ({diameter / 2!r} m)")
     youngs = _optional_number(section, "youngs_modulus", DEFAULT_YOUNGS_MODULUS, prefix, positive=True)
     poisson = _optional_number(
         section, "poisson_ratio", DEFAULT_POISSON_RATIO, prefix, minimum=0.0, maximum=0.5
     )
-
-    t2 = t - t_corr if cond == "operation" else t
+    t_corr = options.corrosion_allowance
+    t2 = t - t_corr if options.condition == "operation" else t
     if t2 <= 0:
         raise _input_error("corrosion_allowance", t_corr, f"less than the wall thickness ({t!r} m)")
-
     smys, smts = GRADES[grade_key]
+    f_temp = options.temperature_derating
     if f_temp >= smys:
         raise _input_error("temperature_derating", f_temp, f"less than the SMYS of {grade_key} ({smys!r} Pa)")
-    f_y = _characteristic_strength(smys, f_temp, ALPHA_U)
-    f_u = _characteristic_strength(smts, f_temp, ALPHA_U)
+    return _Steel(
+        grade=grade_key,
+        outer_diameter=diameter,
+        wall_thickness=t,
+        t2=t2,
+        smys=smys,
+        smts=smts,
+        f_y=_characteristic_strength(smys, f_temp, ALPHA_U),
+        f_u=_characteristic_strength(smts, f_temp, ALPHA_U),
+        youngs_modulus=youngs,
+        poisson_ratio=poisson,
+    )
+
+
+def _check_section(
+    section: Any,
+    prefix: str,
+    forces: FloatArray,
+    tension: FloatArray,
+    strain: FloatArray,
+    water: _Water,
+    options: _Options,
+) -> Utilisation:
+    """The checks of elements of one steel `section` (named `prefix` in errors) under their forces, at the
+    depths below the surface of `water`."""
+    safety, fab, cond, f0, limit = (
+        options.safety_class,
+        options.fabrication,
+        options.condition,
+        options.ovality,
+        options.strain_limit,
+    )
+    n = forces.shape[0]
+    steel = _steel(section, prefix, options)
+    grade_key, diameter, t, t2 = steel.grade, steel.outer_diameter, steel.wall_thickness, steel.t2
+    smys, smts, f_y, f_u = steel.smys, steel.smts, steel.f_y, steel.f_u
+    youngs, poisson = steel.youngs_modulus, steel.poisson_ratio
+    p_e = water.external_pressure()
+    p_i = _internal_pressure(section, prefix, water, options.internal_pressure)
 
     gamma_sc = GAMMA_SC[safety]
     gamma_eps = GAMMA_EPSILON[safety]
@@ -661,7 +931,7 @@ def _check_section(
         outer_diameter=diameter,
         wall_thickness=t,
         t2=t2,
-        internal_pressure=p_i,
+        internal_pressure=_frozen(p_i),
         gamma_m=GAMMA_M,
         gamma_sc=gamma_sc,
         gamma_epsilon=gamma_eps,
@@ -675,6 +945,10 @@ def _check_section(
         safety_class=safety,
         fabrication=fab,
         condition=cond,
+        basis=(
+            f"DNV-ST-F101, {grade_key}, safety class {safety} (γ_SC {gamma_sc:.2f}), {fab} (α_fab "
+            f"{alpha_fab:.2f}), {cond}, {_pressure_basis(section, water, options.internal_pressure)}"
+        ),
         notes=notes,
     )
 
@@ -758,17 +1032,64 @@ def _strain_resistance(
     )
 
 
-def _external_pressure(state: Any, positions: FloatArray) -> FloatArray:
-    """Hydrostatic pressure (Pa) at the element midpoints; zero above the surface and without a sea."""
+@dataclass(frozen=True)
+class _Water:
+    """The sea around elements: each element midpoint's depth below the surface (m, 0 above it and without a
+    sea) and the water's density (kg/m³, 0 without a sea)."""
+
+    below_surface: FloatArray
+    density: float
+
+    def external_pressure(self) -> FloatArray:
+        """Hydrostatic pressure p_e = ρ_w g h at the element midpoints (Pa)."""
+        pressure: FloatArray = self.density * GRAVITY * self.below_surface
+        return pressure
+
+    def part(self, elements: NDArray[Any]) -> _Water:
+        """The same sea around the elements selected by `elements`."""
+        return _Water(self.below_surface[elements], self.density)
+
+
+def _water(state: Any, positions: FloatArray) -> _Water:
+    """The sea around the elements of `state`, whose node positions are `positions` (frame e, e3 down)."""
     n = positions.shape[0] - 1
     water_depth = _attribute(state, "water_depth", "state", required=False)
     if water_depth is None:
-        return np.zeros(n)
+        return _Water(np.zeros(n), 0.0)
     depth = _number("state.water_depth", water_depth, positive=True)
     density = _number("state.water_density", _attribute(state, "water_density"), positive=True)
     z_mid = 0.5 * (positions[:-1, 2] + positions[1:, 2])
-    result: FloatArray = density * GRAVITY * np.clip(depth + z_mid, 0.0, None)
-    return result
+    return _Water(np.clip(depth + z_mid, 0.0, None), density)
+
+
+def contents_pressure(contents_density: float, below_surface: FloatArray) -> FloatArray:
+    """The internal pressure of a pipe's contents open to the sea surface, p_i = ρ_c g h (Pa), at depths h below
+    the surface (m): a flooded pipe's water stands at sea level inside it, an empty pipe (ρ_c = 0) has none."""
+    pressure: FloatArray = contents_density * GRAVITY * np.asarray(below_surface, dtype=np.float64)
+    return pressure
+
+
+def _internal_pressure(section: Any, prefix: str, water: _Water, given: float | None) -> FloatArray:
+    """p_i at each element (Pa): `given` everywhere, or that of the section's contents (`contents_pressure`)."""
+    if given is not None:
+        return np.full(water.below_surface.shape, given)
+    density = _optional_number(section, "contents_density", 0.0, prefix, minimum=0.0)
+    return contents_pressure(density, water.below_surface)
+
+
+def _pressure_basis(section: Any, water: _Water, given: float | None) -> str:
+    """How p_i and p_e were taken, in words."""
+    if given is not None:
+        inside = f"p_i {given / 1e6:.4g} MPa given"
+    else:
+        density = _attribute(section, "contents_density", required=False) or 0.0
+        inside = (
+            f"p_i of the contents ({density:g} kg/m³, open to the surface)"
+            if density > 0
+            else "p_i 0 (empty)"
+        )
+    outside = f"p_e hydrostatic ({water.density:g} kg/m³)" if water.density > 0 else "p_e 0 (no sea)"
+    return f"{inside}, {outside}"
 
 
 def _validity_notes(d_over_t: float, internal: NDArray[np.bool_], axial_ratio: FloatArray) -> tuple[str, ...]:

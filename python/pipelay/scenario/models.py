@@ -81,6 +81,7 @@ __all__ = [
     "AzimuthThruster",
     "Bathymetry",
     "Cable",
+    "Checks",
     "Clamp",
     "Controller",
     "ControllerTable",
@@ -699,6 +700,43 @@ class Solver(Table):
     )
 
 
+class Checks(Table):
+    """The parameters of the design checks (`pl.checks.dnv_st_f101`, `pl.checks.propagation_buckling`) for every
+    utilisation the command line, the figures, the report and sweeps show; a key left out takes the checks'
+    default (`pipelay.analysis.checks.DEFAULTS`).
+    """
+
+    grade: Annotated[
+        Literal["X52", "X56", "X60", "X65", "X70", "X80"] | None,
+        Choice(("X52", "X56", "X60", "X65", "X70", "X80")),
+    ] = api("line pipe grade (SMYS, SMTS); none: the pipe's `grade`, else X65")
+    safety_class: Annotated[Literal["low", "medium", "high"] | None, Choice(("low", "medium", "high"))] = api(
+        "DNV safety class (γ_SC, γ_ε); DNV classes installation as low", "medium"
+    )
+    fabrication: Annotated[
+        Literal["seamless", "uoe", "uo_tre", "welded"] | None, Choice(("seamless", "uoe", "uo_tre", "welded"))
+    ] = api("fabrication, for α_fab: seamless 1.00, UO/TRB/ERW/HFW 0.93, UOE 0.85", "seamless")
+    internal_pressure: Annotated[float | None, Number("Pa", ge=0)] = api(
+        "one internal (design or lay) pressure for the whole pipe, ≥ 0",
+        words="that of the contents, ρ_c g × depth below the surface",
+    )
+    condition: Annotated[
+        Literal["installation", "operation"] | None, Choice(("installation", "operation"))
+    ] = api("installation (t₂ = t) or operation (t₂ = t − corrosion_allowance)", "installation")
+    corrosion_allowance: Annotated[float | None, Number("m", ge=0)] = api(
+        "corrosion allowance deducted in operation, ≥ 0", 0
+    )
+    ovality: Annotated[float | None, Number(ge=0.005, le=1)] = api(
+        "out-of-roundness (D_max − D_min)/D, from 0.005 to 1", 0.005
+    )
+    temperature_derating: Annotated[float | None, Number("Pa", ge=0)] = api(
+        "de-rating of the yield and tensile strengths, ≥ 0", 0
+    )
+    strain_limit: Annotated[float | None, Number(gt=0)] = api(
+        "allowable strain replacing DNV's strain resistance in the displacement-controlled check, > 0"
+    )
+
+
 class Output(Table):
     """For the figures; kept in `Scenario.output` for the program that runs the scenario."""
 
@@ -742,6 +780,7 @@ class ScenarioFile(Table):
     attachments: list[Attachment] = []  # noqa: RUF012 (as point_loads)
     stages: list[Stage] = []  # noqa: RUF012 (as point_loads)
     solver: Solver = Solver()
+    checks: Checks = Checks()
     output: Output = Output()
 
     @model_validator(mode="after")

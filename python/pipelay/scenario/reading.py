@@ -15,7 +15,7 @@ import re
 import tomllib
 from collections.abc import Callable, Collection, Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal, cast
 
@@ -44,6 +44,8 @@ class Scenario:
         static_steps: initial number of load steps of the static solve; None: the engine's default.
         static_start: Newton's starting shape in statics: "auto", "reference" or "catenary".
         output: the `[output]` table: `plot_times` (list of s, or None when not given).
+        checks: the `[checks]` table's keys given, the keyword arguments of `pl.checks.dnv_st_f101` and
+            `pl.checks.propagation_buckling` for every utilisation shown ({} without one: their defaults).
         source: the parsed TOML as given (a copy), for provenance.
         stages: the `[[stages]]` as a `pl.Stages`, for `model.simulation(..., stages=)` and `pl.resume(...,
             stages=)`; None without stages.
@@ -59,6 +61,7 @@ class Scenario:
     static_start: Literal["auto", "reference", "catenary"]
     output: dict[str, Any]
     source: dict[str, Any]
+    checks: dict[str, Any] = field(default_factory=dict)
     stages: pl.Stages | None = None
     origin: str = "<dict>"
     folder: str | None = None
@@ -106,6 +109,7 @@ def _settings(file: models.ScenarioFile) -> dict[str, Any]:
         "static_steps": solver.static_steps,
         "static_start": solver.static_start,
         "output": {"plot_times": file.output.plot_times},
+        "checks": file.checks.given(),
     }
 
 
