@@ -12,7 +12,13 @@ Choices where the paper is silent or differs (DESIGN.md):
   paper's linearised GNC-toolbox model;
 - the pipe is clamped at the seabed (eqs. 20–21) and to the vessel's CO at β = 0 (eq. 5);
 - the static state holds the vessel at x = 730 m, y = 0, ψ = 0 by thrust (the paper reports η₀ with
-  x = 729.96); until the controller starts at t = 30 s the vessel keeps that holding thrust.
+  x = 729.96); until the controller starts at t = 30 s the vessel keeps that holding thrust, and the PID's
+  integral starts at 0 (``bumpless=False``; by default it would take the holding thrust over).
+
+The paper's C_R = 1e11 N·m² is 409 times the bending stiffness of its 0.60/0.57 m steel pipe (E π (d_o⁴ −
+d_i⁴)/64 = 2.44e8 N·m², E = 207 GPa): the line hangs as a stiff beam, its top end pushes on the vessel (a
+negative top tension and a compression warning) and its bending moments are hundreds of MN·m. The script
+prints this beside the top tension.
 
 Writes figures like the paper's Figs. 2–4 (pipe shapes at t = 0, 30, 200 s; η(t) against η_ref for PD and
 PID) to ``--out`` and prints η₀, the final offsets, the passivity margins and wall times.
@@ -37,6 +43,8 @@ from pipelay.analysis.suspect import worst_of_each_kind
 LENGTH, DEPTH = 1200.0, 800.0  # m
 OUTER, INNER, STEEL = 0.60, 0.57, 7850.0  # m, m, kg/m³
 AREA = math.pi / 4.0 * (OUTER**2 - INNER**2)  # 0.027567 m²
+EI_PAPER = 1e11  # N·m², the paper's C_R
+EI_STEEL = 207e9 * math.pi / 64.0 * (OUTER**4 - INNER**4)  # N·m², 2.44e8: the steel pipe's
 ETA_REF = [780.0, 0.0, 0.0, 0.0, 0.0, 0.0]
 ETA_PAPER = [729.96, 0.0, -800.38, 0.0, 0.13, 0.0]
 PD = {"kp": [0.5e6, 0.5e6, 0, 0, 0, 0], "kd": [0.4e7, 0.4e7, 0, 0, 0, 0]}
@@ -50,7 +58,7 @@ PID = {
 def pipe_section() -> pl.Section:
     """The paper's pipe: stiffness C_T, C_R as given, mass ρ_s A, buoyancy on A, drag and damping 1.5."""
     return pl.Section(
-        EA=1e9, GA=1e9, GJ=1e11, EI=1e11, mass=STEEL * AREA, inertia=(200.0, 100.0, 100.0),
+        EA=1e9, GA=1e9, GJ=1e11, EI=EI_PAPER, mass=STEEL * AREA, inertia=(200.0, 100.0, 100.0),
         outer_diameter=OUTER, displaced_area=AREA, drag=(1.5, 1.5), rotational_damping=1.5,
     )  # fmt: skip
 
@@ -76,7 +84,7 @@ def controllers() -> dict[str, pl.PID]:
     """The paper's PD (46)–(47) and PID (48)–(50) controllers."""
     return {
         "PD": pl.PID(**PD, reference=ETA_REF, start=30.0),
-        "PID": pl.PID(**PID, reference=ETA_REF, start=30.0),
+        "PID": pl.PID(**PID, reference=ETA_REF, start=30.0, bumpless=False),
     }
 
 
@@ -113,6 +121,10 @@ def main(argv: list[str] | None = None) -> int:
             print(f"static η₀ (ours)         {state.eta}")
             print(f"static η₀ (paper)        {np.array(ETA_PAPER)}")
             print(f"holding thrust τ₀        {state.tau[0] / 1e3:.1f} kN in surge")
+            print(
+                f"top tension              {state.lay_summary()['top_tension'] / 1e3:.1f} kN (negative: pushing), "
+                f"with the paper's EI = {EI_PAPER:.0e} N·m², {EI_PAPER / EI_STEEL:.0f} times its steel pipe's"
+            )
             plots.shape(
                 results, times=(0.0, 30.0, 200.0), path=args.out / "jensen2009_shapes.png", depth=DEPTH
             )
@@ -135,7 +147,7 @@ def main(argv: list[str] | None = None) -> int:
             results, reference=reference, path=args.out / f"jensen2009_eta_{name.lower()}.png"
         )
     for note in notes.values():
-        print(f"note: {note} (the paper's clamp at CO, β = 0)")
+        print(f"note: {note} (the paper's EI with its clamp at CO, β = 0)")
     print(f"figures in {args.out}")
     return 0
 

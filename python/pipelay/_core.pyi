@@ -477,8 +477,10 @@ class State:
     def roller_reactions(self) -> _FloatArray | None:
         """Normal force of each roller (k,) (N, ≥ 0; 0: lifted off); None without rollers."""
     def lay_summary(self) -> dict[str, Any] | None:
-        """Top tension, departure angle, lift-off roller, layback, touchdown, overbend and sagbend strain and
-        sagbend moment (SI units, rad); None without a vessel."""
+        """Top tension, departure angle, lift-off roller, layback, touchdown, overbend and sagbend strain,
+        sagbend moment and tip clearance (SI units, rad); None without a vessel. `liftoff_roller` is the 0-based
+        index into `roller_reactions` of the last roller in contact (None: none), where people read the rollers
+        numbered from 1."""
     @property
     def roller_positions(self) -> _FloatArray | None:
         """The rollers' top points (k, 3) in e (m) in this state; None without rollers."""
@@ -677,7 +679,10 @@ class PID:
     """PID on η: τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t), from `start` (s); the reference is
     η_ref (6,), a pl.Route or a callable of t (with `reference_rate`, or central differences). With
     `allocation="qp"` its command goes to the vessel's thrusters through a QP each step; with `observer` it acts
-    on the observer's estimate (both make it a loop sampled once per step)."""
+    on the observer's estimate (both make it a loop sampled once per step). With `bumpless` (the default), a
+    controller that starts after t = 0 takes the static holding thrust τ_h over in its integral: −Jᵀ(η)K_i z₀ =
+    τ_h in surge, sway and yaw where K_i reaches, so the thrust is continuous at `start` with the vessel at its
+    reference; `bumpless=False` starts ∫η̃ at 0 (the paper's PID)."""
 
     def __new__(
         cls,
@@ -692,6 +697,7 @@ class PID:
         tension: TensionControl | None = None,
         allocation: Literal["qp"] | None = None,
         observer: Observer | None = None,
+        bumpless: bool = True,
     ) -> PID: ...
     @property
     def reference(self) -> _FloatArray:
@@ -701,6 +707,9 @@ class PID:
     @property
     def start(self) -> float:
         """Start time (s)."""
+    @property
+    def bumpless(self) -> bool:
+        """Whether the controller takes the holding thrust over in its integral at its start."""
 
 @final
 class Thruster:
@@ -1085,7 +1094,8 @@ class Model:
         hull_loads: bool = False,
     ) -> None:
         """Attach a vessel at `end`: starting pose eta (6,), clamp angle β (zyx, rad), controller, forces; or
-        held by lay equipment (`lay`), with an A&R winch (`winch`) to hand the line over to. `hull_loads`: the
+        held by lay equipment (`lay`), with an A&R winch (`winch`) to hand the line over to. η's z must lie at
+        the sea surface z = −depth within 10 m (at most half the depth) and above the seabed under the vessel. `hull_loads`: the
         sea's wind, current and waves act on the hull through the vessel's coefficient tables (mean and
         slowly varying drift); off, the hull feels only `environment` (the paper's model)."""
     def simulation(

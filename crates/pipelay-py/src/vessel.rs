@@ -259,7 +259,9 @@ impl PyRoute {
 /// over 1 ms). `tension`: a pl.TensionControl moving the set-point to hold the top tension.
 /// `integral_limit` (6,) bounds ∫η̃; `thrust_limit` (3,) bounds the thrust in surge (N), sway (N)
 /// and yaw (N·m). `allocation="qp"`: the command goes to the vessel's thrusters through a QP each step;
-/// `observer` (a pl.Observer): the controller acts on its estimate.
+/// `observer` (a pl.Observer): the controller acts on its estimate. `bumpless`: a controller that starts
+/// after t = 0 takes over the static holding thrust τ_h in its integral (K_i z₀ = −J⁻ᵀ τ_h where K_i reaches),
+/// so that the thrust is continuous at its start; False: ∫η̃ starts at 0 (the paper's PID).
 #[pyclass(module = "pipelay", name = "PID", frozen)]
 #[derive(Clone)]
 pub struct PyPid(pub Pid);
@@ -267,7 +269,7 @@ pub struct PyPid(pub Pid);
 #[pymethods]
 impl PyPid {
     #[new]
-    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None, tension=None, allocation=None, observer=None))]
+    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None, tension=None, allocation=None, observer=None, bumpless=true))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         kp: &Bound<'_, PyAny>,
@@ -281,6 +283,7 @@ impl PyPid {
         tension: Option<&PyTensionControl>,
         allocation: Option<&str>,
         observer: Option<&Observer>,
+        bumpless: bool,
     ) -> PyResult<Self> {
         let allocation = match allocation {
             None => false,
@@ -335,7 +338,12 @@ impl PyPid {
                 .transpose()?,
             tension.map(|t| t.0),
         )
-        .map(|pid| PyPid(pid.with_station_keeping(allocation, observer.map(|o| o.0.clone()))))
+        .map(|pid| {
+            PyPid(
+                pid.with_station_keeping(allocation, observer.map(|o| o.0.clone()))
+                    .with_bumpless(bumpless),
+            )
+        })
         .map_err(to_py)
     }
 
@@ -352,6 +360,11 @@ impl PyPid {
     #[getter]
     fn start(&self) -> f64 {
         self.0.start
+    }
+    /// Whether the controller takes over the holding thrust in its integral at its start.
+    #[getter]
+    fn bumpless(&self) -> bool {
+        self.0.bumpless
     }
 }
 

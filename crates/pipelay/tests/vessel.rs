@@ -123,6 +123,80 @@ fn static_vessel_holds_the_pipe() {
     );
 }
 
+/// Bumpless transfer in a run: the flooded pipe hanging from the OSV at 850 m, a PID on surge, sway and yaw
+/// about the held pose from t = 1 s. With the transfer the thrust in surge is continuous at the start (the
+/// first step the PID acts in delivers the holding thrust to 1e-3) and the vessel stays within 1 cm of where
+/// statics held it over 10 s; with the integral from 0 the thrust drops to the PD's (below half the holding
+/// thrust) and the pipe pulls the vessel off by more than 10 cm.
+#[test]
+fn the_controller_takes_the_holding_thrust_over() {
+    use pipelay::vessel::control::{Pid, Reference};
+    let run = |bumpless: bool| {
+        let mut model = pipe_with_vessel(20);
+        let gains = |values: [f64; 3]| {
+            nalgebra::Matrix6::from_diagonal(&Vector6::new(
+                values[0], values[1], 0.0, 0.0, 0.0, values[2],
+            ))
+        };
+        let reference =
+            Reference::fixed(Vector6::new(850.0, 0.0, 0.0, 0.0, 0.0, 0.0)).expect("reference");
+        let pid = Pid::new(
+            gains([2e5, 2e5, 3.5e7]),
+            gains([4e6, 4e6, 7e8]),
+            gains([4e3, 4e3, 3.5e5]),
+            reference,
+            1.0,
+            None,
+            None,
+            None,
+        )
+        .expect("pid")
+        .with_bumpless(bumpless);
+        model.vessel.as_mut().expect("vessel").controller = Some(pid);
+        let mut sim = common::from_statics(model, 0.1);
+        let hold = sim.state().vessel.expect("vessel").hold_thrust;
+        let start = sim.state().configuration.positions[20];
+        let mut surge = Vec::new();
+        let mut drift: f64 = 0.0;
+        for _ in 0..100 {
+            sim.step().expect("step");
+            surge.push((
+                sim.state().time,
+                sim.state().vessel.expect("vessel").thrust[0],
+            ));
+            drift = drift.max((sim.state().configuration.positions[20] - start).norm());
+        }
+        (hold, surge, drift)
+    };
+    let (hold, surge, drift) = run(true);
+    assert!(hold[0] > 1e6, "the pipe pulls: {hold:?}");
+    // The first step whose midpoint reaches t = 1 s, [1.0, 1.1].
+    let (time, first) = surge
+        .iter()
+        .copied()
+        .find(|(t, _)| *t > 1.05)
+        .expect("a step after the start");
+    println!(
+        "holding {:.1} kN; at t = {time:.1} s {:.1} kN; drift {drift:.4} m",
+        hold[0] / 1e3,
+        first / 1e3
+    );
+    assert!(
+        (first - hold[0]).abs() < 1e-3 * hold[0],
+        "{first} vs {}",
+        hold[0]
+    );
+    assert!(drift < 0.01, "{drift}");
+    let (_, dropped, moved) = run(false);
+    let first = dropped
+        .iter()
+        .find(|(t, _)| *t > 1.05)
+        .expect("a step after the start")
+        .1;
+    assert!(first < 0.5 * hold[0], "{first}");
+    assert!(moved > 0.1, "{moved}");
+}
+
 use pipelay::assembly::configuration::Configuration;
 use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
 use pipelay::dynamics::state::DynamicState;

@@ -320,7 +320,7 @@ class VesselTable(Table):
 
     end: Annotated[End, END] = Field(description='the end held, "A" or "B"; not in `[supports]`')
     eta: Annotated[list[float], Vector(6, Number("m, rad"), ETA)] = Field(
-        description="starting pose η = [x, y, z, φ, θ, ψ] in e (zyx)"
+        description="starting pose η = [x, y, z, φ, θ, ψ] in e (zyx); z at the sea surface, −depth, within 10 m"
     )
     angle: Annotated[list[float] | None, Vector(3, Number("rad"), "[φ, θ, ψ]")] = api(
         "clamp angle β of the pipe on the vessel (zyx)", [0, 0, 0]
@@ -518,6 +518,12 @@ class ControllerTable(Table):
         "integral gains; none: PD control"
     )
     start: Annotated[float | None, START] = api("time the controller takes over from holding thrust", 0)
+    bumpless: Annotated[bool | None, Flag()] = api(
+        "bumpless transfer: a controller starting after t = 0 takes the static holding thrust over in its "
+        "integral (where `ki` reaches), so the thrust is continuous at `start`; false: ∫(η − η_ref) dt starts "
+        "at 0",
+        True,
+    )
     integral_limit: Annotated[list[float] | None, Vector(6, Number("m·s, rad·s", gt=0), ETA)] = api(
         "bound on ∫(η − η_ref) dt, 6 numbers > 0"
     )

@@ -44,7 +44,7 @@ use crate::model::Model;
 use crate::response::configuration::Response;
 use crate::rod::dynamic_element::{GaussPoint, StressRule};
 use crate::so3::cayley_quaternion;
-use crate::vessel::control::{clamp_integral, shifted};
+use crate::vessel::control::{clamp_integral, shifted, transfer_integral};
 use crate::vessel::coupling::{
     eta_of, low_frequency_pose, pipe_force_on_vessel, vessel_pose, VesselContribution,
 };
@@ -624,6 +624,7 @@ impl Integrator {
                 .motion
                 .offset(time_next, &station(attachment, time_next)?)?;
         }
+        self.take_over(dt);
         self.decide_station_keeping(time_mid, dt)?;
         self.growth = None;
         let grown = match Growth::start(&mut self.model, &mut self.nodal, &self.state, dt)? {
@@ -655,6 +656,33 @@ impl Integrator {
         self.ledger.book_pay_out(grown + elastic);
         self.remesh();
         Ok(report)
+    }
+
+    /// Bumpless transfer: in the step that holds the controller's start
+    /// ([`crate::vessel::control::Pid::takes_over`]), its integral takes over the holding thrust at the
+    /// vessel's low-frequency pose at the step's start ([`transfer_integral`]): τ(start) = τ_h at η̃ = 0,
+    /// η̃̇ = 0.
+    fn take_over(&mut self, dt: f64) {
+        let (Some(attachment), Some(motion)) = (&self.model.vessel, &mut self.state.vessel) else {
+            return;
+        };
+        let Some(controller) = attachment
+            .controller
+            .as_ref()
+            .filter(|c| c.takes_over(self.state.time, dt))
+        else {
+            return;
+        };
+        let node = attachment.node;
+        let configuration = &self.state.configuration;
+        let (position, body) = low_frequency_pose(
+            attachment,
+            &configuration.positions[node],
+            &configuration.rotations[node],
+            self.vessel_waves.as_ref().map(|w| &w.now),
+        );
+        motion.integral =
+            transfer_integral(controller, &eta_of(&position, &body), &motion.hold_thrust);
     }
 
     /// The hull's environment over the step and, for a sampled controller that has started, the thrust it

@@ -5,7 +5,7 @@
 use super::euler;
 use crate::error::{finite, Error, Result};
 use crate::table::{travel, Leg, TimeFunction};
-use nalgebra::{Matrix6, Vector2, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
 /// The pose η_ref(t) the controller holds or follows, and its rate η̇_ref(t).
 #[derive(Clone)]
@@ -214,6 +214,9 @@ pub struct Pid {
     /// The observer the controller acts on, if any ([`super::observer`]); `None`: it sees the true
     /// low-frequency pose and velocity.
     pub observer: Option<super::observer::ObserverSettings>,
+    /// Bumpless transfer: a controller that starts after t = 0 takes over the static holding thrust in its
+    /// integral ([`transfer_integral`]) instead of starting from ∫η̃ = 0 (no effect where K_i = 0).
+    pub bumpless: bool,
 }
 
 /// Checks a gain matrix: finite, symmetric and positive semi-definite (K_p and K_d so, the controller is
@@ -388,7 +391,23 @@ impl Pid {
             tension,
             allocation: false,
             observer: None,
+            bumpless: true,
         })
+    }
+
+    /// The same controller with bumpless transfer on or off ([`Pid::bumpless`]).
+    pub fn with_bumpless(mut self, bumpless: bool) -> Self {
+        self.bumpless = bumpless;
+        self
+    }
+
+    /// Whether the controller takes over the holding thrust at the start of the step from `time` to
+    /// `time` + `dt` (s): with bumpless transfer, when it starts after t = 0 (statics hold the vessel by
+    /// thrust; a controller on at t ≤ 0 is already in the static solve) and `time` ≤ start < `time` + `dt`,
+    /// the one step of the run that holds its start. The controller acts from the first step whose
+    /// midpoint reaches its start, this one or the next, so it never acts before its integral is set.
+    pub fn takes_over(&self, time: f64, dt: f64) -> bool {
+        self.bumpless && self.start > 0.0 && time <= self.start && self.start < time + dt
     }
 
     /// The same controller with its command allocated to the thrusters (`allocation`) and acting on an
@@ -452,6 +471,44 @@ pub fn pid_thrust(
     )
 }
 
+/// The integral state z₀ with which the controller takes over the holding thrust τ_h (body frame) at pose η
+/// (bumpless transfer): at η̃ = 0 and η̃̇ = 0 its thrust −Jᵀ(η) K_i z₀ is τ_h in surge, sway and yaw, so the
+/// thrust is continuous at its start when the vessel is at its reference, and the proportional and derivative
+/// parts act on the error alone (a set-point step at the start is answered as without the transfer).
+///
+/// With S selecting surge, sway and yaw and B = −S Jᵀ(η) K_i (3×6), z₀ is the least-squares solution of
+/// B z = S τ_h of least norm, z₀ = Bᵀ (B Bᵀ)⁺ S τ_h (the pseudo-inverse of the symmetric 3×3 B Bᵀ from its
+/// eigenvalues): exact in the directions K_i reaches, zero where K_i = 0; then within `integral_limit`. The
+/// thrust's work stays supplied work in the energy ledger, whatever z₀ is.
+pub fn transfer_integral(
+    controller: &Pid,
+    eta: &Vector6<f64>,
+    hold_thrust: &Vector6<f64>,
+) -> Vector6<f64> {
+    let jacobian = euler::jacobian(eta).unwrap_or_else(Matrix6::identity);
+    let full = -jacobian.transpose() * controller.ki;
+    let rows = [0, 1, 5];
+    let b = nalgebra::SMatrix::<f64, 3, 6>::from_fn(|i, j| full[(rows[i], j)]);
+    let target = Vector3::from_fn(|i, _| hold_thrust[rows[i]]);
+    let normal = b * b.transpose();
+    let scale = normal.abs().max();
+    if scale == 0.0 {
+        return Vector6::zeros();
+    }
+    let eigen = normal.symmetric_eigen();
+    let inverse_values = eigen.eigenvalues.map(|value| {
+        if value > 1e-12 * scale {
+            1.0 / value
+        } else {
+            0.0
+        }
+    });
+    let pseudo_inverse = eigen.eigenvectors
+        * Matrix3::from_diagonal(&inverse_values)
+        * eigen.eigenvectors.transpose();
+    clamp_integral(controller, &(b.transpose() * pseudo_inverse * target))
+}
+
 /// ∫η̃ within the controller's bound.
 pub fn clamp_integral(controller: &Pid, integral: &Vector6<f64>) -> Vector6<f64> {
     match &controller.integral_limit {
@@ -510,6 +567,80 @@ mod tests {
         };
         let moving = fixed.with_speed_changes(&[leg], "k").unwrap();
         assert!((moving.at(4.0).unwrap().0.x - 7.0).abs() < 1e-12);
+    }
+
+    /// A PID with K_i on surge, sway and yaw, its reference at the pose `eta`.
+    fn pid_at(eta: Vector6<f64>, ki: Vector6<f64>, start: f64) -> Pid {
+        Pid::new(
+            Matrix6::from_diagonal(&Vector6::new(2e5, 2e5, 0.0, 0.0, 0.0, 1e7)),
+            Matrix6::from_diagonal(&Vector6::new(4e6, 4e6, 0.0, 0.0, 0.0, 1e8)),
+            Matrix6::from_diagonal(&ki),
+            Reference::Fixed(eta),
+            start,
+            None,
+            None,
+            None,
+        )
+        .unwrap()
+    }
+
+    /// Bumpless transfer: at the reference and at rest, the PID's thrust with the transferred integral is the
+    /// holding thrust it takes over, to round-off, at a heading, roll and pitch where Jᵀ mixes the axes;
+    /// without K_i there is nothing to transfer (z₀ = 0), and with K_i on surge alone only surge is taken
+    /// over at ψ = 0; the integral bound caps z₀.
+    #[test]
+    fn the_thrust_is_continuous_at_the_controllers_start() {
+        let eta = Vector6::new(660.0, -3.0, -150.0, 0.02, -0.03, 0.7);
+        let hold = Vector6::new(866.6e3, -41.0e3, 0.0, 0.0, 0.0, 3.2e6);
+        let pid = pid_at(eta, Vector6::new(1e3, 2e3, 0.0, 0.0, 0.0, 5e4), 5.0);
+        let integral = transfer_integral(&pid, &eta, &hold);
+        let reference = (eta, Vector6::zeros());
+        let thrust = pid_thrust(&pid, &eta, &Vector6::zeros(), &integral, &reference);
+        assert!(
+            (thrust - hold).norm() < 1e-9 * hold.norm(),
+            "{thrust:?} against {hold:?}"
+        );
+        assert!(integral[2] == 0.0 && integral[3] == 0.0 && integral[4] == 0.0);
+
+        let pd = pid_at(eta, Vector6::zeros(), 5.0);
+        assert_eq!(transfer_integral(&pd, &eta, &hold), Vector6::zeros());
+
+        let level = Vector6::new(660.0, 0.0, -150.0, 0.0, 0.0, 0.0);
+        let surge = pid_at(level, Vector6::new(1e3, 0.0, 0.0, 0.0, 0.0, 0.0), 5.0);
+        let z = transfer_integral(&surge, &level, &hold);
+        // τ_x = −K_i,x z_x at ψ = 0.
+        assert!(
+            (z[0] + 866.6).abs() < 1e-9 && z.rows(1, 5).norm() == 0.0,
+            "{z:?}"
+        );
+
+        let mut bounded = surge.clone();
+        bounded.integral_limit = Some(Vector6::repeat(100.0));
+        assert_eq!(transfer_integral(&bounded, &level, &hold)[0], -100.0);
+    }
+
+    /// The transfer happens in exactly one step of a run, the one that holds the start, also when the
+    /// times are sums of a step that is not a binary fraction (0.2 s: 25 steps make 5.000000000000001 s);
+    /// only for a controller that starts after t = 0 and has bumpless transfer on.
+    #[test]
+    fn the_controller_takes_over_in_one_step() {
+        let eta = Vector6::zeros();
+        for (start, dt, expected) in [(30.0, 0.25, 30.0), (5.0, 0.2, 4.8), (5.1, 0.2, 5.0)] {
+            let pid = pid_at(eta, Vector6::repeat(1.0), start);
+            let mut time = 0.0;
+            let mut over = Vec::new();
+            for _ in 0..300 {
+                if pid.takes_over(time, dt) {
+                    over.push(time);
+                }
+                time += dt;
+            }
+            assert_eq!(over.len(), 1, "start {start}: {over:?}");
+            assert!((over[0] - expected).abs() < 1e-9, "start {start}: {over:?}");
+        }
+        let pid = pid_at(eta, Vector6::repeat(1.0), 30.0);
+        assert!(!pid.with_bumpless(false).takes_over(30.0, 0.25));
+        assert!(!pid_at(eta, Vector6::repeat(1.0), 0.0).takes_over(0.0, 0.25));
     }
 
     #[test]
