@@ -830,7 +830,7 @@ def physical_problems(state: pl.State, case: LayCase) -> list[tuple[str, str]]:
             problems.append(
                 (
                     "through the rollers",
-                    f"the pipe's surface {-gaps[k]:.2f} m below roller {k}'s top (of {len(gaps)})",
+                    f"the pipe's surface {-gaps[k]:.2f} m below roller {k + 1}'s top (of {len(gaps)}, from 1)",
                 )
             )
         reactions = np.asarray(state.roller_reactions)
@@ -845,7 +845,7 @@ def physical_problems(state: pl.State, case: LayCase) -> list[tuple[str, str]]:
             problems.append(
                 (
                     "roller overload",
-                    f"roller {k} carries {reactions[k] / 1e3:.0f} kN, > 8 × {share[k] / 1e3:.0f} kN",
+                    f"roller {k + 1} (of {len(reactions)}) carries {reactions[k] / 1e3:.0f} kN, > 8 × {share[k] / 1e3:.0f} kN",
                 )
             )
     penetration = d["w"] / (case.choices.seabed_stiffness * dh)

@@ -112,6 +112,29 @@ def test_an_end_cannot_carry_both_a_vessel_and_a_support() -> None:
         model.attach_vessel("A", pl.Vessel.osv(), eta=np.zeros(6))
 
 
+@pytest.mark.parametrize(
+    ("z", "shown"),
+    [
+        (120.0, "z = 120 m, 240 m below the surface"),  # e3 taken as pointing up: the vessel under the seabed
+        (0.0, "z = 0 m, 120 m below the surface"),  # on the seabed
+        (-135.0, "z = -135 m, 15 m above the surface"),  # floating in the air
+    ],
+)
+def test_a_vessel_off_the_sea_surface_is_refused(z: float, shown: str) -> None:
+    """In 120 m of water the surface is z = −120 m (e3 down, the seabed at z = 0): η's z must lie within 10 m
+    of it, [−130, −110] m; the error names `eta`, the value and what is allowed."""
+    rod = pl.Rod.straight((0, 0, 0), (200, 0, -120), 10, pl.Section.pipe(0.3, 0.02))
+    model = pl.Model(rod, sea=pl.Sea(120.0))
+    with pytest.raises(pl.InputError) as refused:
+        model.attach_vessel("B", pl.Vessel.osv(), eta=[200.0, 0.0, z, 0.0, 0.0, 0.0])
+    message = str(refused.value)
+    assert message.startswith("eta: ") and message.endswith(f"got {shown}")
+    assert "sea surface z = −depth = -120 m within 10 m: in [-130, -110] m" in message
+    assert model.vessel is None
+    for afloat in (-130.0, -120.0, -110.0):
+        model.attach_vessel("B", pl.Vessel.osv(), eta=[200.0, 0.0, afloat, 0.0, 0.0, 0.0])
+
+
 def test_a_rod_held_by_nothing_has_no_statics() -> None:
     rod = pl.Rod.straight((0, 0, 0), (10, 0, 0), 2, paper.pipe_section())
     with pytest.raises(pl.InputError, match="supports"):

@@ -14,6 +14,7 @@ figures; and `pipelay.cli`, the ``pipelay`` command.
 import functools
 import sys
 from collections.abc import Callable
+from importlib import metadata
 from typing import Any
 
 from pipelay._core import (
@@ -57,6 +58,7 @@ from pipelay.analysis import checks, fatigue, lay, statistics, suspect
 from pipelay.analysis import stages as _stages  # noqa: F401 (attaches Results.stage_summary)
 from pipelay.analysis.capability import Capability, dp_capability
 from pipelay.analysis.lay import find_lay_position
+from pipelay.analysis.lay_table import lay_table
 from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep
 from pipelay.results import load, resume, streaming
@@ -172,10 +174,12 @@ __all__ = [
     "fatigue",
     "find_lay_position",
     "lay",
+    "lay_table",
     "load",
     "resume",
     "statistics",
     "streaming",
     "sweep",
 ]
-__version__ = "0.1.0"
+__version__: str = metadata.version("pipelay")
+"""The installed package's version, from its metadata (pyproject.toml's `version`)."""

@@ -221,7 +221,8 @@ impl Model {
     }
 
     /// Attaches a vessel at `end` (usually "B"): the pipe's end is clamped to the vessel's reference point CO at
-    /// the fixed angle β (`angle`, zyx Euler angles of R_b^t, rad). `eta` (6,) is the starting pose; in statics
+    /// the fixed angle β (`angle`, zyx Euler angles of R_b^t, rad). `eta` (6,) is the starting pose, its z at the
+    /// sea surface z = −depth within 10 m (at most half the depth) and above the seabed; in statics
     /// heave, roll and pitch settle and surge, sway and yaw are held at eta by thrust (reported as
     /// `state.tau`), unless the controller is active at t = 0. Until the controller starts, simulations keep
     /// applying the holding thrust of their starting state. `environment`: pl.Force objects (body frame).

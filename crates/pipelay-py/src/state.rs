@@ -361,11 +361,13 @@ impl State {
         self.lay.roller_forces.as_ref().map(|f| to_numpy(py, f))
     }
     /// The lay summary (dict; SI units, angles in rad): top_tension (N, at the hold point), departure_angle
-    /// (below the horizontal where the pipe leaves the equipment), liftoff_roller (index of the last roller in
-    /// contact, or None), liftoff_arc_length, inflection_arc_length (the steepest point, where the overbend
-    /// meets the sagbend), layback (horizontal, hold point to touchdown; NaN without one),
-    /// touchdown_arc_length, overbend_strain (largest, hold point to inflection), sagbend_strain and
-    /// sagbend_moment (largest, inflection to touchdown). None without a vessel.
+    /// (below the horizontal where the pipe leaves the equipment), liftoff_roller (the 0-based index into
+    /// roller_reactions of the last roller in contact, or None; people read rollers numbered from 1),
+    /// liftoff_arc_length, inflection_arc_length (the steepest point, where the overbend meets the sagbend),
+    /// layback (horizontal, hold point to touchdown; NaN without one), touchdown_arc_length, overbend_strain
+    /// (largest, hold point to inflection), sagbend_strain and sagbend_moment (largest, inflection to
+    /// touchdown), tip_clearance (m, the pipe to the stinger's last roller; NaN without rollers). None
+    /// without a vessel.
     fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Some(summary) = &self.lay.summary else {
             return Ok(None);

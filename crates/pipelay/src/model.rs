@@ -90,6 +90,53 @@ fn call_vector(
     Ok(value)
 }
 
+/// How far (m) a vessel's starting η z may lie from the calm sea surface z = −depth: a few metres of heave
+/// with margin (statics put CO on the surface whatever η z says), and never more than half the depth, so that
+/// η z = +depth (the sign of e3 mistaken) or a vessel on the seabed is always refused.
+pub const SURFACE_TOLERANCE: f64 = 10.0;
+
+/// Checks that a vessel's starting pose η puts CO at the sea surface z = −depth (e3 down) within
+/// [`SURFACE_TOLERANCE`] (at most half the depth), and above the seabed under it.
+fn check_afloat(eta: &nalgebra::Vector6<f64>, sea: &Sea) -> Result<()> {
+    // Metres to the millimetre, without trailing zeros (120, -135.3, not 15.300000000000011).
+    let m = |v: f64| {
+        let text = format!("{v:.3}");
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    let (surface, z) = (-sea.depth, eta[2]);
+    let tolerance = SURFACE_TOLERANCE.min(0.5 * sea.depth);
+    if (z - surface).abs() > tolerance {
+        let side = if z < surface { "above" } else { "below" };
+        return Err(Error::input(
+            "eta",
+            format!("z = {} m, {} m {side} the surface", m(z), m((z - surface).abs())),
+            format!(
+                "η's z (the vessel's CO, m, e3 pointing down) must be at the sea surface z = −depth = {} m \
+                 within {} m: in [{}, {}] m",
+                m(surface),
+                m(tolerance),
+                m(surface - tolerance),
+                m(surface + tolerance)
+            ),
+        ));
+    }
+    if let Some(seabed) = &sea.seabed {
+        let bottom = seabed.bathymetry.elevation(eta[0], eta[1]);
+        if z >= bottom {
+            return Err(Error::input(
+                "eta",
+                format!("z = {} m at (x, y) = ({}, {}) m", m(z), m(eta[0]), m(eta[1])),
+                format!(
+                    "η's z (the vessel's CO, m, e3 pointing down) must be above the seabed, which lies at \
+                     z = {} m there",
+                    m(bottom)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl Support {
     /// Whether the support holds the node's rotation.
     pub fn holds_rotation(&self) -> bool {
@@ -487,6 +534,7 @@ impl Model {
                 "must not be clamped, pinned or driven as well: the vessel holds that end",
             ));
         }
+        check_afloat(&eta, sea)?;
         let angle = match &lay {
             Some(_) if angle != Vector3::zeros() => {
                 return Err(Error::input(
@@ -950,5 +998,100 @@ impl Model {
     /// Morison drag coefficients of element `element`.
     pub fn drag_coefficients(&self, element: usize) -> (f64, f64) {
         self.drag_coefficients_of(self.rod.section(element))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::environment::bathymetry::Bathymetry;
+    use crate::environment::seabed::Seabed;
+    use crate::rod::section::Section;
+    use crate::vessel::rigid_body::Vessel;
+    use nalgebra::Vector6;
+
+    /// A 200 m pipe in `depth` of water over `seabed`, its end B at the surface.
+    fn model(depth: f64, seabed: Option<Seabed>) -> Model {
+        let section = Section::pipe(0.3, 0.02, 7850.0, 2.07e11, 0.3, 0.0, [0.0, 1.2], [0.0, 1.0])
+            .expect("pipe");
+        let rod = Rod::straight(
+            Vector3::zeros(),
+            Vector3::new(200.0, 0.0, -depth),
+            10,
+            section,
+        )
+        .expect("rod");
+        let sea = Sea::new(depth, 1025.0, None, seabed).expect("sea");
+        Model::new(rod, Some(sea), 9.81).expect("model")
+    }
+
+    fn attach(model: &mut Model, z: f64) -> Result<()> {
+        let eta = Vector6::new(200.0, 0.0, z, 0.0, 0.0, 0.0);
+        model.attach_vessel(
+            "B",
+            Vessel::osv(),
+            eta,
+            Vector3::zeros(),
+            None,
+            vec![],
+            None,
+        )
+    }
+
+    /// The error's argument and the value it shows.
+    fn refused(result: Result<()>) -> (String, String) {
+        match result {
+            Err(Error::Input {
+                argument, value, ..
+            }) => (argument, value),
+            other => panic!("expected an input error, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_vessel_floats_at_the_surface_within_the_tolerance() {
+        let mut m = model(120.0, None);
+        // At the surface z = −120 m and within 10 m of it: accepted.
+        for z in [-120.0, -110.0, -130.0] {
+            attach(&mut m, z).expect("afloat");
+        }
+        // e3 down mistaken (z = +120, 240 m below the surface), on the seabed (z = 0), 15 m up in the air.
+        for (z, shown) in [
+            (120.0, "z = 120 m, 240 m below the surface"),
+            (0.0, "z = 0 m, 120 m below the surface"),
+            (-135.3, "z = -135.3 m, 15.3 m above the surface"),
+        ] {
+            let mut m = model(120.0, None);
+            assert_eq!(refused(attach(&mut m, z)), ("eta".into(), shown.into()));
+            assert!(m.vessel.is_none());
+        }
+        // In 12 m of water the tolerance is half the depth, 6 m: z = +12 and the seabed at z = 0 stay refused.
+        let mut shallow = model(12.0, None);
+        attach(&mut shallow, -6.5).expect("6 m under the surface");
+        assert_eq!(refused(attach(&mut shallow, -5.5)).0, "eta");
+        assert_eq!(refused(attach(&mut shallow, 12.0)).0, "eta");
+    }
+
+    #[test]
+    fn a_vessel_is_refused_below_a_seabed_that_rises_under_it() {
+        // A plane seabed rising 1 in 20 toward +x: z = 0 at the origin, −12.5 m at x = 250 m.
+        let bathymetry = Bathymetry::plane(0.0, nalgebra::Vector2::new(-0.05, 0.0)).expect("plane");
+        let seabed = Seabed::new(2e5, 0.0, [0.5, 0.8], 0.02, bathymetry).expect("seabed");
+        let mut m = model(20.0, Some(seabed));
+        let eta = Vector6::new(250.0, 0.0, -12.0, 0.0, 0.0, 0.0);
+        let result = m.attach_vessel(
+            "B",
+            Vessel::osv(),
+            eta,
+            Vector3::zeros(),
+            None,
+            vec![],
+            None,
+        );
+        assert_eq!(
+            refused(result),
+            ("eta".into(), "z = -12 m at (x, y) = (250, 0) m".into())
+        );
+        attach(&mut m, -15.0).expect("above the seabed at x = 200 m, z = −10 m");
     }
 }

@@ -69,7 +69,11 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "roller_reactions": (("time", "roller"), "N", "normal force of each roller (0: lifted off)"),
     "top_tension": (("time",), "N", "effective tension at the hold point (tensioner or tower)"),
     "departure_angle": (("time",), "rad", "pipe angle below the horizontal where it leaves the equipment"),
-    "liftoff_roller": (("time",), "1", "index of the last roller in contact, NaN: none"),
+    "liftoff_roller": (
+        ("time",),
+        "1",
+        "0-based index into roller_reactions of the last roller in contact, NaN: none",
+    ),
     "liftoff_arc_length": (("time",), "m", "arc length of the lift-off point from end A"),
     "inflection_arc_length": (
         ("time",),

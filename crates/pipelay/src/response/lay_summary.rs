@@ -20,7 +20,8 @@ pub struct LaySummary {
     pub top_tension: f64,
     /// Angle of the pipe below the horizontal where it leaves the equipment (rad).
     pub departure_angle: f64,
-    /// Index of the lift-off roller (the last in contact), `None` if the pipe touches no roller.
+    /// The 0-based index of the lift-off roller (the last in contact) among the rollers, `None` if the pipe
+    /// touches no roller.
     pub liftoff_roller: Option<usize>,
     /// Arc length of the lift-off point from end A along the reference (m).
     pub liftoff_arc_length: f64,
