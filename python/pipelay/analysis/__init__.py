@@ -6,6 +6,7 @@
   maxima (``pl.statistics``);
 * `pipelay.analysis.lay`: where to put the vessel for a wanted lay configuration (``pl.lay``,
   ``pl.find_lay_position``);
+* `pipelay.analysis.lay_table`: the lay table, that configuration at each water depth (``pl.lay_table``);
 * `pipelay.analysis.sweep`: operability sweeps of a scenario on Dask (``pl.sweep``);
 * `pipelay.analysis.stages`: what each stage of a staged lay did (``Results.stage_summary``);
 * `pipelay.analysis.fatigue`: S-N curves, rainflow and spectral damage, the fatigue of a run and of a standby

@@ -37,6 +37,7 @@ from pipelay.plots.lay import (
     touchdown_path,
     touchdown_track,
 )
+from pipelay.plots.lay_table import lay_table
 from pipelay.plots.operability import operability
 from pipelay.plots.run import all_figures, energy, shape, tension_and_bending, top_tension, vessel_motion
 from pipelay.plots.stages import stage_configurations, stage_tensions
@@ -50,6 +51,7 @@ __all__ = [
     "lay_configuration",
     "lay_deviation",
     "lay_summary",
+    "lay_table",
     "operability",
     "shape",
     "stage_configurations",
