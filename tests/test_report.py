@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import base64
 import functools
+import math
 import tomllib
 from html.parser import HTMLParser
 from pathlib import Path
@@ -22,10 +23,11 @@ import pytest
 from browser import open_page, screenshot, wait_for_plotly
 from dp_in_waves import scenario_text
 from pipelay.analysis.extremes import extremes
-from pipelay.analysis.statistics import METHODS, most_probable_maximum
+from pipelay.analysis.statistics import METHODS, most_probable_maximum, stationarity
 from pipelay.analysis.sweep import STATISTICS
 from pipelay.report import run_report, sweep_report
 from pipelay.report.html import number
+from pipelay.report.run import steady_window
 from pipelay.scenario import apply_overrides, mark_results, parse_scenario
 
 # The tests' DP vessel in waves (tests/dp_in_waves.py: a DP vessel holding a 12-element pipe on the seabed, in a
@@ -144,37 +146,71 @@ def report(results: pl.Results, scenario: Any, tmp_path_factory: pytest.TempPath
 def test_run_report_prints_the_numbers_of_the_analysis(
     report: Path, results: pl.Results, scenario: Any
 ) -> None:
-    """The extremes, lay summary, passivity margin and MPMs in the page are those of the functions, as printed
-    and exactly; the figures are those that apply; the scenario's data reads back; the page is valid."""
+    """The extremes, lay summary, passivity margin and MPMs in the page are those of the functions: printed by
+    their labels in the units people read (kN, kN·m, degrees, percent), their SI values exact in data-value
+    with their SI unit in data-unit; the figures are those that apply; the scenario's data reads back; the
+    page is valid."""
     page = parse(report, TITLE)
     model = scenario.model
 
     found = extremes(results, model=model, checks={})  # the section has a wall thickness: DNV checks
     assert "utilisation_max" in found
-    for key in ("top_tension_max", "top_tension_min", "strain_max", "utilisation_max"):
-        assert page.text(f"extreme-{key}") == number(found[key])
+    for key, scale, unit, label in [
+        ("top_tension_max", 1e-3, "N", "largest top tension"),
+        ("top_tension_min", 1e-3, "N", "smallest top tension"),
+        ("reaction_B_max", 1e-3, "N", "largest reaction at B |F_B|"),
+        ("moment_max", 1e-3, "N m", "largest bending moment"),
+        ("strain_max", 100.0, "1", "largest strain"),
+        ("utilisation_max", 1.0, "1", "largest DNV-ST-F101 utilisation"),
+    ]:
+        assert page.text(f"extreme-{key}") == number(found[key] * scale)
         assert page.value(f"extreme-{key}") == found[key]
+        assert page.attributes[f"extreme-{key}"]["data-unit"] == unit
         assert page.value(f"extreme-{key}-time") == found[f"{key}_time"]
+        assert label in page.text("extremes")
+    assert "top_tension_max" not in page.text("extremes") and "lay_top_tension" not in page.text("extremes")
     assert page.text("extreme-strain_max-element") == str(found["strain_max_element"])
-    assert page.text("extreme-top_tension_max-element") == "—"  # a value at end B: no element
+    assert page.text("extreme-top_tension_max-element") == "—"  # a value at the top: no element
 
+    # The top tension is the lay summary's (the tension the vessel holds), not the reaction |F_B|.
     lay = results.lay_summary()
     assert lay is not None
+    reaction = np.linalg.norm(results.reaction("B")[:, :3], axis=1)
+    assert found["top_tension_max"] == float(np.nanmax(lay["top_tension"]))
+    assert found["reaction_B_max"] == float(reaction.max())
+    assert found["reaction_B_max"] > 1.02 * found["top_tension_max"]  # |F_B| also carries the shear
     assert page.value("lay-top_tension-max") == float(np.nanmax(lay["top_tension"]))
+    assert page.text("lay-top_tension-max") == number(float(np.nanmax(lay["top_tension"])) / 1e3)
     assert page.value("lay-layback-mean") == float(np.nanmean(lay["layback"]))
+    departure = float(np.nanmax(lay["departure_angle"]))
+    assert page.text("lay-departure_angle-max") == number(math.degrees(departure))
+    assert page.value("lay-departure_angle-max") == departure
+    assert page.attributes["lay-departure_angle-max"]["data-unit"] == "rad"
+    assert page.text("lay-overbend_strain-max") == number(100.0 * float(np.nanmax(lay["overbend_strain"])))
+    lay_rows = page.text("lay-summary")
+    assert all(
+        label in lay_rows for label in ("top tension", "departure angle", "lift-off roller", "kN", "°")
+    )
+    assert "top_tension" not in lay_rows and "departure_angle" not in lay_rows
     assert page.value("passivity-margin") == results.passivity_margin()
 
-    # The start-up left out: 10 % of 300 s (after the waves' 10 s ramp).
-    assert page.value("window", "data-start") == pytest.approx(30.0, rel=1e-12)
+    # The stationary part: the top tension passes the stationarity test from the end of the waves' 10 s
+    # build-up (the scenario's latest start), so the window starts at its first record there.
     time = results.time
-    inside = time >= 30.0 - 1e-6
-    assert int(page.attributes["window"]["data-records"]) == inside.sum() == 676
-    top = np.linalg.norm(results.reaction("B")[:, :3], axis=1)[inside]
+    inside = time >= 10.0 - 1e-6
+    top = lay["top_tension"][inside]
+    assert page.value("window", "data-start") == pytest.approx(10.0, rel=1e-9)
+    assert int(page.attributes["window"]["data-records"]) == inside.sum() == len(time) - 25
+    measured = stationarity(top, 0.4)
+    print(f"window from t = 10 s: {measured}")
+    assert "waves' build-up (sea.waves.ramp)" in page.text("window")
+    assert page.value("spectrum-top_tension-std") == pytest.approx(float(np.std(top)), rel=0.05)
     for method in METHODS:
         expected = most_probable_maximum(top, 0.4, 10800.0, method).value
         assert page.value(f"mpm-{method}") == pytest.approx(expected, rel=1e-12), method
-        assert page.text(f"mpm-{method}") == number(expected)
-    assert page.value("mpm-rayleigh") > top.max()  # 3 h against 270 s
+        assert page.text(f"mpm-{method}") == number(expected / 1e3)
+        assert page.attributes[f"mpm-{method}"]["data-unit"] == "N"
+    assert page.value("mpm-rayleigh") > top.max()  # 3 h against 290 s
 
     names = ["shape", "top_tension", "vessel_motion", "touchdown", "tension_and_bending", "energy", "spectra"]
     assert page.figures == names
@@ -214,13 +250,13 @@ def test_a_results_file_brings_its_scenario_and_bad_files_are_refused(
     page = parse(written, TITLE)
     assert "replay" not in page.attributes and not any("plotly" in script for script in page.scripts)
     assert str(file) in page.text("provenance")
-    assert "utilisation_max" in page.text("extremes")  # the stored model's section: DNV checks
+    assert "extreme-utilisation_max" in page.attributes  # the stored model's section: DNV checks
     assert not list((tmp_path / "sub").glob(".*"))  # no temporary left behind
 
     bare = tmp_path / "bare.nc"
     results.to_netcdf(bare)  # no scenario: no model, no strain, "not recorded"
     page = parse(run_report(bare, tmp_path / "bare.html", replay=False, title="bare"), "bare")
-    assert "not recorded" in page.text("provenance") and "strain_max" not in page.text("extremes")
+    assert "not recorded" in page.text("provenance") and "extreme-strain_max" not in page.attributes
 
     text_file = tmp_path / "notes.nc"
     text_file.write_text("not a results file")
@@ -230,6 +266,91 @@ def test_a_results_file_brings_its_scenario_and_bad_files_are_refused(
         pl.load(text_file)
     assert str(raised.value) == str(direct.value)
     assert not (tmp_path / "never.html").exists()
+
+
+# --- the stationary part, stages ---------------------------------------------------------------------------
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+def _example(name: str, t_end: float) -> tuple[Any, pl.Results]:
+    """examples/<name>.toml run to `t_end` (s) from its statics, as `pipelay run` runs it (kept in memory)."""
+    data = tomllib.loads((EXAMPLES / f"{name}.toml").read_text(encoding="utf-8"))
+    data["solver"]["t_end"] = t_end
+    data.pop("output", None)
+    scenario = parse_scenario(data, f"{name}.toml")
+    model = scenario.model
+    simulation = model.simulation(
+        state=model.static(scenario.static_steps, scenario.static_start), dt=scenario.dt
+    )
+    return scenario, simulation.run(t_end, record_every=scenario.record_every, progress=False)
+
+
+def test_a_calm_start_up_gets_no_spectra_or_maxima(tmp_path: Path) -> None:
+    """examples/s_lay.toml, 60 s in calm water (its current from t = 10 s, its controller from 5 s): the top
+    tension settles (it falls by tens of kN), so the page refuses the spectra and most probable maxima, says
+    why, and shows no storm maximum; the lay summary's lift-off roller is numbered from 1."""
+    scenario, results = _example("s_lay", 60.0)
+    page = parse(
+        run_report(results, tmp_path / "s_lay.html", scenario=scenario, replay=False),
+        scenario.source["title"],
+    )
+    text = page.text("series")
+    print(text[text.index("Response spectra") :])
+    assert "spectra and most probable maxima refused: results: the top tension from t = 10 s" in text
+    assert "(the current's start (sea.current.start))" in text and "has a trend" in text
+    assert "window" not in page.attributes and "mpm-gumbel" not in page.attributes and "storm" not in text
+    lay = results.lay_summary()
+    assert lay is not None and results.roller_reactions is not None
+    last = int(np.nanmax(lay["liftoff_roller"]))
+    rollers = results.roller_reactions.shape[1]
+    assert page.text("lay-liftoff_roller-max") == f"roller {last + 1} of {rollers}"
+    assert page.value("lay-liftoff_roller-max") == last  # the Python index, from 0
+    assert results.roller_reactions[np.nanargmax(lay["liftoff_roller"]), last] > 0.0  # it carries the pipe
+
+
+def test_a_pipelay_run_in_waves_is_stationary_after_its_ramp() -> None:
+    """examples/j_lay_waves.toml for 300 s (its waves built up over 30 s): the window starts at the end of
+    the build-up or later, within the first half of the rest, and the top tension there is stationary."""
+    scenario, results = _example("j_lay_waves", 300.0)
+    start, end, said = steady_window(results, scenario.model, scenario)
+    print(said)
+    assert scenario.model.sea.waves.ramp == 30.0
+    assert 30.0 - 1e-9 <= start <= 30.0 + 0.5 * (300.0 - 30.0) and end == pytest.approx(300.0)
+    assert "sea.waves.ramp" in said
+    inside = results.time >= start - 1e-9
+    found = stationarity(results.lay_summary()["top_tension"][inside], 0.2)
+    assert found.periods >= 30 and abs(found.trend) <= 0.25
+
+
+def test_the_stage_table_shows_labels_and_units(tmp_path: Path) -> None:
+    """A staged J-lay (tests/test_scenario_stages.py, 50 s): the stage table's columns are labelled, forces in
+    kN and strains in percent, each cell keeping the stage summary's SI value and unit; its first stage (20 s,
+    the spectra's window) is too short for spectra, which the page says."""
+    from test_scenario_stages import STAGED
+
+    scenario = parse_scenario(tomllib.loads(STAGED), "staged.toml")
+    simulation = scenario.model.simulation(
+        state=scenario.model.static(), dt=scenario.dt, stages=scenario.stages
+    )
+    results = simulation.run(scenario.t_end, progress=False)
+    page = parse(
+        run_report(results, tmp_path / "staged.html", scenario=scenario, replay=False),
+        scenario.source["title"],
+    )
+    summary = results.stage_summary(scenario.model)
+    table = page.text("stages")
+    assert "largest top tension (kN)" in table and "largest strain (%)" in table and "start (s)" in table
+    assert "top_tension_max" not in table
+    for k in range(3):
+        top = float(summary["top_tension_max"][k])
+        assert page.value(f"stage-{k}-top_tension_max") == top
+        assert page.text(f"stage-{k}-top_tension_max") == number(top / 1e3)
+        assert page.attributes[f"stage-{k}-top_tension_max"]["data-unit"] == "N"
+        assert page.text(f"stage-{k}-strain_max") == number(100.0 * float(summary["strain_max"][k]))
+    assert "spectra and most probable maxima refused: results: the top tension from t = 0 s" in page.text(
+        "series"
+    )
 
 
 # --- a sweep ---------------------------------------------------------------------------------------------
@@ -298,6 +419,12 @@ def test_sweep_report_ranks_links_replays_and_lists_failures(
         "case"
     ].values.ravel().tolist()
     assert page.value("case-0-top_tension_max") == summary["top_tension_max"].values[0, 0]
+    # Labelled, in the units people read; the SI value and unit in the cell's data.
+    assert page.text("case-0-top_tension_max") == number(summary["top_tension_max"].values[0, 0] / 1e3)
+    assert page.attributes["case-0-top_tension_max"]["data-unit"] == "N"
+    assert page.text("case-0-strain_max") == number(100.0 * summary["strain_max"].values[0, 0])
+    table = page.text("summary")
+    assert "largest top tension (kN)" in table and "largest strain (%)" in table and "(N)" not in table
 
 
 def test_a_one_key_sweep_has_lines_and_a_folder_without_summary_is_refused(

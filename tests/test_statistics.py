@@ -162,7 +162,81 @@ def test_gumbel_fit_of_exponential_block_maxima() -> None:
     assert float(mpm) == pytest.approx(math.log(1e6), rel=0.01)
 
 
-# --- 3. extremes of a run --------------------------------------------------------------------------------
+# --- 3. stationarity -------------------------------------------------------------------------------------
+
+
+def test_a_stationary_sea_is_accepted_and_gives_the_gaussian_mpm() -> None:
+    """A 1 h JONSWAP record (Hs 4 m: σ = 1 m, Tz = 8.00 s from the components) passes the stationarity test
+    (about 450 Tz, no trend, halves alike) and its 3 h Rayleigh MPM is within 3 % of the exact σ√(2 ln N),
+    N = 3 h/Tz, of the components."""
+    waves = _sea(0)
+    series = waves.elevation(np.arange(0.0, 3600.0, DT))
+    m0, m2, _ = _moments(waves)
+    tz = 2.0 * math.pi * math.sqrt(m0 / m2)
+    exact = math.sqrt(m0) * math.sqrt(2.0 * math.log(STORM / tz))
+    found = st.stationarity(series, DT)
+    mpm = st.most_probable_maximum(series, DT, STORM, "rayleigh")
+    print(f"{found}; Rayleigh MPM {float(mpm):.4f} m, exact {exact:.4f} m")
+    assert found.tz == pytest.approx(tz, rel=0.03)
+    assert found.periods == pytest.approx(3600.0 / tz, rel=0.03) and found.periods > st.MIN_PERIODS
+    assert abs(found.trend) < st.TREND_TOLERANCE
+    assert max(found.halves) / min(found.halves) < st.SPREAD_RATIO
+    assert float(mpm) == pytest.approx(exact, rel=0.03)
+
+
+def test_a_decaying_transient_is_refused() -> None:
+    """A free oscillation decaying over the record, 3 e^(−t/150 s) sin(2πt/8 s) for 600 s: its halves'
+    standard deviations differ by e^(300/150) = 7.4 > 2, so `stationarity` and `most_probable_maximum` refuse
+    it, naming `series` and saying why."""
+    time = np.arange(0.0, 600.0, 0.2)
+    series = 3.0 * np.exp(-time / 150.0) * np.sin(2.0 * math.pi * time / 8.0)
+    for call in (lambda: st.stationarity(series, 0.2), lambda: st.most_probable_maximum(series, 0.2)):
+        with pytest.raises(pl.InputError) as error:
+            call()
+        print(error.value)
+        assert str(error.value).startswith("series: ") and "is not stationary" in str(error.value)
+        assert f"a factor {math.exp(2.0):.3g}" in str(error.value)
+
+
+def test_a_settling_start_is_found_and_left_out() -> None:
+    """A sea (σ = 1 m) on a settling offset 10σ e^(−t/60 s), 2400 s: the whole record has a trend and is
+    refused; `stationary_part` finds the first start of those tried every 120 s that leaves a stationary
+    record, later than 0 and within the first half, where the offset is below 1.4σ; from there the 3 h
+    Rayleigh MPM is within 3 % of the sea's exact one."""
+    waves = _sea(1)
+    time = np.arange(0.0, 2400.0, DT)
+    offset = 10.0 * np.exp(-time / 60.0)
+    series = waves.elevation(time) + offset
+    with pytest.raises(pl.InputError, match="has a trend"):
+        st.stationarity(series, DT)
+    first, found = st.stationary_part(series, DT)
+    start = time[first]
+    m0, m2, _ = _moments(waves)
+    exact = math.sqrt(m0) * math.sqrt(2.0 * math.log(STORM / (2.0 * math.pi * math.sqrt(m0 / m2))))
+    mpm = float(st.most_probable_maximum(series[first:], DT, STORM, "rayleigh"))
+    print(
+        f"settled at t = {start:g} s (offset {offset[first]:.3f} σ): {found}; MPM {mpm:.4f}, exact {exact:.4f}"
+    )
+    assert 0.0 < start <= 1200.0 and start % 120.0 == 0.0
+    assert offset[first] < 1.4
+    with pytest.raises(pl.InputError):
+        st.stationarity(series[first - round(120.0 / DT) :], DT)  # the start tried before it
+    assert mpm == pytest.approx(exact, rel=0.03)
+    with pytest.raises(pl.InputError, match="nor does any later start"):
+        st.stationary_part(3.0 * np.exp(-time / 600.0) * np.sin(2.0 * math.pi * time / 8.0), DT)
+
+
+def test_a_short_record_is_refused() -> None:
+    """20 Tz of a stationary sea (160 s) is fewer than the 30 mean zero up-crossing periods asked for."""
+    series = _sea(1).elevation(np.arange(0.0, 160.0, DT))
+    for method in st.METHODS:
+        with pytest.raises(
+            pl.InputError, match=r"^series: a record of 160 s, .* is too short; allowed: at least 30"
+        ):
+            st.most_probable_maximum(series, DT, method=method)
+
+
+# --- 4. extremes of a run --------------------------------------------------------------------------------
 
 SECTION = pl.Section.pipe(0.3, 0.02, contents_density=0.0, drag=(0.1, 1.0), added_mass=(0.0, 1.0))
 
@@ -207,9 +281,20 @@ def test_extremes_of_a_pay_out_run_match_numpy(
     found = st.extremes(results, model=model, checks={"safety_class": "low"})
     print({key: round(value, 6) for key, value in found.items()})
 
-    top = np.linalg.norm(results.reaction("B")[:, :3], axis=1)
+    # No vessel: the top tension is the axial force of the element at end B, each record's last element (12
+    # at first, 13 at the end), not the reaction |F_B|, the largest of which has its own key.
+    last = np.array([np.flatnonzero(np.isfinite(row[:, 0]))[-1] for row in forces])
+    assert last[0] == 11 and last[-1] == 12
+    top = forces[np.arange(len(forces)), last, 0]
+    np.testing.assert_array_equal(st.top_tension(results), top)
     assert found["top_tension_max"] == top.max() and found["top_tension_max_time"] == time[np.argmax(top)]
     assert found["top_tension_min"] == top.min() and found["top_tension_min_time"] == time[np.argmin(top)]
+    reaction = np.linalg.norm(results.reaction("B")[:, :3], axis=1)
+    assert (
+        found["reaction_B_max"] == reaction.max()
+        and found["reaction_B_max_time"] == time[np.argmax(reaction)]
+    )
+    assert found["reaction_B_max"] != found["top_tension_max"]
     assert "lay_top_tension_max" not in found
     for key, values, largest in [
         ("tension_max", forces[:, :, 0], True),
@@ -266,8 +351,9 @@ def test_extremes_without_a_section_and_with_a_scalar_check(
     assert found["utilisation_max_element"] == -1
 
 
-def test_extremes_of_a_j_lay_run_include_the_lay_top_tension() -> None:
-    """A J-lay vessel in a JONSWAP sea under DP: the lay summary's top tension extremes are its nanmax/nanmin."""
+def test_extremes_of_a_j_lay_run_take_the_lay_top_tension() -> None:
+    """A J-lay vessel in a JONSWAP sea under DP: the top tension's extremes are the lay summary's top tension's
+    nanmax/nanmin (the tension at the tower), not those of the reaction |F_B| (``reaction_B_max``)."""
     rod = pl.Rod.straight((0.0, 0.0, 0.0), (300.0, 0.0, 0.0), 30, SECTION)
     sea = pl.Sea(50.0, seabed=pl.Seabed(stiffness=1e5), waves=pl.Waves.jonswap(2.0, 8.0, seed=3))
     model = pl.Model(rod, sea)
@@ -280,17 +366,20 @@ def test_extremes_of_a_j_lay_run_include_the_lay_top_tension() -> None:
     summary = results.lay_summary()
     assert summary is not None
     held = summary["top_tension"]
+    reaction = np.linalg.norm(results.reaction("B")[:, :3], axis=1)
     print(
-        f"J-lay: top tension {found['lay_top_tension_min']:.0f} … {found['lay_top_tension_max']:.0f} N "
-        f"(reaction at B {found['top_tension_min']:.0f} … {found['top_tension_max']:.0f} N), "
-        f"strain {found['strain_max']:.3e}"
+        f"J-lay: top tension {found['top_tension_min']:.0f} … {found['top_tension_max']:.0f} N "
+        f"(reaction at B up to {found['reaction_B_max']:.0f} N), strain {found['strain_max']:.3e}"
     )
-    assert found["lay_top_tension_max"] == np.nanmax(held)
-    assert found["lay_top_tension_min"] == np.nanmin(held)
-    assert found["lay_top_tension_max_time"] == results.time[np.nanargmax(held)]
+    np.testing.assert_array_equal(st.top_tension(results), held)
+    assert found["top_tension_max"] == np.nanmax(held)
+    assert found["top_tension_min"] == np.nanmin(held)
+    assert found["top_tension_max_time"] == results.time[np.nanargmax(held)]
+    assert found["reaction_B_max"] == reaction.max() > found["top_tension_max"]
+    assert "lay_top_tension_max" not in found
 
 
-# --- 4. bad input ----------------------------------------------------------------------------------------
+# --- 5. bad input ----------------------------------------------------------------------------------------
 
 _WAVE = np.sin(np.arange(0.0, 600.0, 0.5))  # 1200 samples, period 2π s
 

@@ -1,15 +1,25 @@
-"""The extremes of a run, and the utilisation of every element at every record.
+"""The top tension of a run, its extremes, and the utilisation of every element at every record.
 
-* `extremes(results, ...)`: the largest and smallest top tension, the largest strain, bending moment and
-  effective axial force and (optionally) the largest DNV-ST-F101 utilisation of a run, each with its time
-  (and element);
+* `top_tension(results)`: the top tension at every record, the one definition every figure, table, summary and
+  statistic of pipelay uses;
+* `extremes(results, ...)`: the largest and smallest top tension, the largest reaction at end B, the largest
+  strain, bending moment and effective axial force and (optionally) the largest DNV-ST-F101 utilisation of a
+  run, each with its time (and element);
 * `utilisation(results, ...)`: the DNV-ST-F101 (or a user check's) utilisation of every element at every
   record.
+
+The top tension is the effective tension that the tensioner, the J-lay tower, the A&R winch or the support at
+the top holds: the effective axial force N1 of the line's top element. With a vessel it is the lay summary's
+``top_tension`` (``results.lay_summary()["top_tension"]``, the element at the hold point); without one (a line
+hanging from a support or a driven end) the axial force of the element at end B (the last element each record
+has, with pay-out). It is not the magnitude |F_B| of the reaction at end B: that also carries the shear force
+and, at a stinger, the pull of the line's weight beyond the hold point, and is named "reaction at B |F_B|"
+where it is shown.
 
 Units: N, N·m, s; strains and utilisations are dimensionless. `pipelay.analysis.statistics` exposes both with
 the statistics of time series (``pl.statistics.extremes``).
 
-Imports of pipelay: `pipelay.analysis.checks`.
+Imports of pipelay: `pipelay.analysis.checks` and `pipelay.analysis.stages` (`top_elements`).
 """
 
 from __future__ import annotations
@@ -30,8 +40,9 @@ from pipelay.analysis.checks import (
     _records_utilisation,
     dnv_st_f101,
 )
+from pipelay.analysis.stages import top_elements
 
-__all__ = ["extremes", "utilisation"]
+__all__ = ["extremes", "record_state", "utilisation"]
 
 FloatArray = NDArray[np.float64]
 
@@ -52,10 +63,10 @@ def extremes(
 
     Keys (plain floats; ``*_element`` are ints):
 
-    * ``top_tension_max``, ``top_tension_min`` (N): the force of the rod on the support at end B,
-      |``results.reaction("B")[:, :3]``|, with ``*_time``;
-    * ``lay_top_tension_max``, ``lay_top_tension_min`` (N): the lay summary's ``top_tension`` (at the
-      tensioner or tower), only when ``results.lay_summary()`` is not None (and has values), with ``*_time``;
+    * ``top_tension_max``, ``top_tension_min`` (N): the top tension (`top_tension`: the effective tension at
+      the tensioner, tower or top support), with ``*_time``;
+    * ``reaction_B_max`` (N): the largest reaction at B |F_B| = |``results.reaction("B")[:, :3]``|, the
+      force of the line on what holds end B (the vessel's or the support's load), with ``*_time``;
     * ``tension_max``, ``tension_min`` (N): the effective axial force N1 over all elements (negative:
       compression), with ``*_time`` and ``*_element``;
     * ``moment_max`` (N·m): the bending moment |M| = √(M2² + M3²), with ``*_time`` and ``*_element``;
@@ -102,14 +113,11 @@ def extremes(
 
     found: dict[str, float] = {}
 
-    top = np.linalg.norm(np.asarray(results.reaction("B"), dtype=np.float64)[:, :3], axis=1)
+    top = top_tension(results)
     _put(found, "top_tension_max", top, time, largest=True)
     _put(found, "top_tension_min", top, time, largest=False)
-    summary = results.lay_summary()
-    held = None if summary is None else np.asarray(summary["top_tension"], dtype=np.float64)
-    if held is not None and np.isfinite(held).any():
-        _put(found, "lay_top_tension_max", held, time, largest=True)
-        _put(found, "lay_top_tension_min", held, time, largest=False)
+    reaction = np.linalg.norm(np.asarray(results.reaction("B"), dtype=np.float64)[:, :3], axis=1)
+    _put(found, "reaction_B_max", reaction, time, largest=True)
 
     forces = np.asarray(results.section_forces, dtype=np.float64)
     axial = forces[:, :, 0]
@@ -130,6 +138,40 @@ def extremes(
             _put(found, "load_controlled_max", load, time, largest=True)
             _put(found, "displacement_controlled_max", displacement, time, largest=True)
     return found
+
+
+def top_tension(results: Any) -> FloatArray:
+    """The top tension at every record (T,) (N): the effective tension the tensioner, the tower or the top
+    support holds, the effective axial force N1 of the line's top element (see the module's docstring).
+
+    With a vessel, the lay summary's ``top_tension`` (the element at the hold point); without one, the axial
+    force of the element at end B, the last element each record has (a run with pay-out pads the rest with
+    NaN).
+
+    Parameters
+    ----------
+    results : pipelay.Results, xarray.Dataset or Results-like
+        The run: a ``pipelay.Results`` (or anything with ``lay_summary()`` and ``section_forces`` (T, n, 6)),
+        or a results file opened with ``xarray.open_dataset`` (its ``top_tension`` variable, else its
+        ``section_forces``; only the axial forces are read).
+
+    Returns
+    -------
+    ndarray (T,)
+        A new array (N): positive in tension.
+    """
+    if callable(getattr(results, "lay_summary", None)):
+        summary = results.lay_summary()
+        if summary is not None:
+            return np.array(summary["top_tension"], dtype=np.float64)
+        axial = np.asarray(results.section_forces, dtype=np.float64)[:, :, 0]
+    elif "top_tension" in results:
+        return np.array(results["top_tension"].values, dtype=np.float64)
+    else:
+        axial = np.asarray(results["section_forces"].isel(dof=0).values, dtype=np.float64)
+    top = top_elements(axial)
+    result: FloatArray = axial[np.arange(len(top)), top]
+    return result
 
 
 def _strain(forces: FloatArray, ea: float, ei2: float, ei3: float, diameter: float) -> FloatArray:
@@ -164,6 +206,49 @@ def utilisation(
     stiffness = None if section is None else _section_stiffness(section)
     strain = None if stiffness is None else _strain(forces, *stiffness)
     return _utilisations(results, time, forces, strain, section, sea, checks)[0]
+
+
+def record_state(
+    results: Any, record: int, *, section: Any = None, sea: Any = None, model: Any = None
+) -> SimpleNamespace:
+    """Record `record` of a run as the checks (`pl.checks.dnv_st_f101`, `pl.checks.propagation_buckling`) read
+    a state: its time, section forces, tension (N), positions (m), strain (from the forces, as `extremes`),
+    section and sea (`section` and `sea`, or the model's). The elements and nodes the record has: a pay-out
+    run's rows end in NaN.
+
+    Raises
+    ------
+    pipelay.InputError
+        Without a section (or a model), or for a record out of range.
+    """
+    section, sea = _section_and_sea(section, sea, model)
+    if section is None:
+        raise _input_error("section", None, "a section or a model", "is missing")
+    count = len(results.time)
+    if isinstance(record, bool) or not isinstance(record, (int, np.integer)) or not -count <= record < count:
+        raise _input_error("record", record, f"an index of the {count} records")
+    forces = np.asarray(results.section_forces[record], dtype=np.float64)
+    positions = np.asarray(results.positions[record], dtype=np.float64)
+    strain = _strain(forces, *_section_stiffness(section))
+    return _record(float(results.time[record]), forces, positions, strain, section, sea)
+
+
+def _record(
+    time: float, forces: FloatArray, positions: FloatArray, strain: FloatArray | None, section: Any, sea: Any
+) -> SimpleNamespace:
+    """A record as a state the checks read, its missing (NaN) elements and nodes left out."""
+    valid = np.isfinite(forces).all(axis=1)
+    nodes = np.isfinite(positions).all(axis=1)
+    return SimpleNamespace(
+        time=time,
+        section_forces=forces[valid],
+        tension=forces[valid][:, 0],
+        positions=positions[nodes],
+        strain=None if strain is None else strain[valid],
+        section=section,
+        water_depth=None if sea is None else float(sea.depth),
+        water_density=None if sea is None else float(sea.density),
+    )
 
 
 def _section_and_sea(section: Any, sea: Any, model: Any) -> tuple[Any, Any]:
@@ -218,21 +303,11 @@ def _utilisations(
     load = np.full((count, elements), np.nan)
     displacement = np.full((count, elements), np.nan)
     scalar = False
-    depth = None if sea is None else float(sea.depth)
-    density = None if sea is None else float(sea.density)
     for k in range(count):
         valid = np.isfinite(forces[k]).all(axis=1)
-        nodes = np.isfinite(positions[k]).all(axis=1)
         n = int(valid.sum())
-        record = SimpleNamespace(
-            time=float(time[k]),
-            section_forces=forces[k][valid],
-            tension=forces[k][valid][:, 0],
-            positions=positions[k][nodes],
-            strain=None if strain is None else strain[k][valid],
-            section=section,
-            water_depth=depth,
-            water_density=density,
+        record = _record(
+            float(time[k]), forces[k], positions[k], None if strain is None else strain[k], section, sea
         )
         outcome = evaluate(record)
         if isinstance(outcome, Utilisation):

@@ -11,6 +11,7 @@ sweep_report("lay-sweep")              # lay-sweep/report.html: keys, failures, 
 * `pipelay.report.run`: `run_report`, the report of a run (a `Results` or its file);
 * `pipelay.report.sweep`: `sweep_report`, the report of a sweep's output folder (``summary.nc``, ``cases/``),
   with the replays of its worst cases written beside their results;
+* `pipelay.report.units`: how a quantity is shown (its label, the unit people read; the SI value kept);
 * `pipelay.report.html`: the page's frame (the template, tables, figures, escaping, the atomic write).
 
 Imports of pipelay: these modules (which import the engine, `pipelay.results`, `pipelay.analysis`,

@@ -16,8 +16,13 @@ against the key for a sweep over one key), ``worst`` (for each of ``utilisation_
 ``cases/<name>.html``, `pipelay.plots.replay.replay_html` of the case's results (a page of its own), linked
 relatively, so the folder can be moved whole.
 
+Statistics are shown by their labels, in the units people read (kN, kN·m, percent: `pipelay.report.units`);
+each cell keeps the statistic's SI value exactly in ``data-value`` and names its SI unit in ``data-unit``, and
+its ``id`` names the statistic (``case-<k>-<name>``, ``worst-<by>-<rank>-<name>``).
+
 Imports of pipelay: the engine (`pipelay._core`, its InputError), `pipelay.results` (`load`),
 `pipelay.analysis.sweep` (`STATISTICS`), `pipelay.plots` (`operability`), `pipelay.report.html`,
+`pipelay.report.units`,
 `pipelay.scenario` (`scenario_of_results`) and, when replays are written, `pipelay.plots.replay`.
 """
 
@@ -37,7 +42,8 @@ import numpy as np
 from pipelay._core import InputError
 from pipelay.analysis.sweep import STATISTICS
 from pipelay.report import html
-from pipelay.report.html import Cell, Markup, value_cell
+from pipelay.report.html import Cell, Markup
+from pipelay.report.units import Quantity, quantity
 from pipelay.results import load
 from pipelay.scenario import scenario_of_results
 
@@ -229,6 +235,8 @@ def _overview(summary: Any, keys: Sequence[str], cases: Sequence[_Case], directo
         ("folder", str(directory)),
         ("summary written", str(summary.attrs.get("created", "not recorded"))),
     ]
+    if "utilisation_max" in summary and summary["utilisation_max"].attrs.get("checks"):
+        facts.append(("utilisation's basis", str(summary["utilisation_max"].attrs["checks"])))
     counts = [
         ["cases", Cell(str(len(cases)), id="count-cases", numeric=True)],
         ["finished", Cell(str(finished), id="count-finished", numeric=True)],
@@ -276,12 +284,12 @@ def _operability(summary: Any, keys: Sequence[str], statistics: Sequence[str]) -
     for name in statistics:
         draw: Callable[[], Any]
         if len(keys) >= 2:
-            caption = f"{name} over {keys[0]} and {keys[1]}"
+            caption = f"{_statistic(summary, name).label} ({name}) over {keys[0]} and {keys[1]}"
 
             def draw(name: str = name) -> Any:
                 return plots.operability(summary, name, x=keys[0], y=keys[1])
         else:
-            caption = f"{name} against {keys[0]}"
+            caption = f"{_statistic(summary, name).label} ({name}) against {keys[0]}"
 
             def draw(name: str = name) -> Any:
                 return _line(summary, name, keys[0])
@@ -317,7 +325,8 @@ def _line(summary: Any, name: str, key: str) -> Any:
     numeric = coordinate.dtype.kind in "iuf"
     x = coordinate.astype(np.float64) if numeric else np.arange(len(coordinate), dtype=np.float64)
     order = np.argsort(x)
-    values = np.asarray(summary[name].values, dtype=np.float64)
+    shown = _statistic(summary, name)
+    values = np.asarray(summary[name].values, dtype=np.float64) * shown.scale
     axis.plot(x[order], values[order], "o-", color="k")
     if "failed" in summary:
         failed = np.asarray(summary["failed"].values).astype(bool)
@@ -337,11 +346,15 @@ def _line(summary: Any, name: str, key: str) -> Any:
         axis.set_xticks(x, [str(value) for value in coordinate], fontsize=8)
     unit = summary[key].attrs.get("units", "")
     axis.set_xlabel(f"{key} ({unit})" if unit else key)
-    units = summary[name].attrs.get("units", "")
-    axis.set_ylabel(f"{name} ({units})" if units else name)
-    axis.set_title(name, fontsize=10)
+    axis.set_ylabel(shown.heading)
+    axis.set_title(f"{shown.label} ({name})", fontsize=10)
     axis.grid(alpha=0.3)
     return chart
+
+
+def _statistic(summary: Any, name: str) -> Quantity:
+    """How the statistic `name` of the summary is shown (its SI unit from the summary's ``units``)."""
+    return quantity(name, str(summary[name].attrs.get("units", STATISTICS[name][0])))
 
 
 def _replay_cell(name: str, links: dict[str, str], id: str) -> Cell:
@@ -369,13 +382,14 @@ def _worst(
         for rank, case in enumerate(order[: max(SHOWN, replays)]):
             row: list[Any] = [Cell(str(rank + 1), numeric=True), *case.values]
             for other in criteria:
-                cell = value_cell(case.statistics[other], id=f"worst-{name}-{rank}-{other}")
-                row.append(cell)
+                shown = quantity(other, STATISTICS[other][0])
+                row.append(shown.cell(case.statistics[other], id=f"worst-{name}-{rank}-{other}"))
             row.append(Cell(case.name, id=f"worst-{name}-{rank}", data={"case": case.name}))
             row.append(_replay_cell(case.name, links, f"worst-{name}-{rank}-replay"))
             rows.append(row)
-        header = ["rank", *keys, *(f"{c} ({STATISTICS[c][0]})" for c in criteria), "case", "replay"]
-        parts.append(html.subsection(f"By {name}", html.table(header, rows, id=f"worst-{name}")))
+        header = ["rank", *keys, *(quantity(c, STATISTICS[c][0]).heading for c in criteria), "case", "replay"]
+        label = quantity(name, STATISTICS[name][0]).label
+        parts.append(html.subsection(f"By {label}", html.table(header, rows, id=f"worst-{name}")))
     return html.section("worst", "Worst cases", *parts)
 
 
@@ -390,14 +404,20 @@ def _all_cases(
     kinds: list[str | None] = []
     for k, case in enumerate(cases):
         row: list[Any] = [*case.values]
-        row.extend(value_cell(case.statistics[name], id=f"case-{k}-{name}") for name in statistics)
+        row.extend(
+            _statistic(summary, name).cell(case.statistics[name], id=f"case-{k}-{name}")
+            for name in statistics
+        )
         row.append("failed" if case.failed else "")
         row.append(Cell(case.name, id=f"case-{k}", data={"case": case.name}))
         row.append(_replay_cell(case.name, links, f"case-{k}-replay"))
         rows.append(row)
         kinds.append("failed" if case.failed else None)
-    header = [*keys, *(f"{name} ({summary[name].attrs.get('units', '')})" for name in statistics)]
+    header = [*keys, *(_statistic(summary, name).heading for name in statistics)]
     header += ["status", "case", "replay"]
     table = html.table(header, rows, id="summary", row_classes=kinds)
-    meanings = html.definitions([(name, STATISTICS[name][1]) for name in statistics], id="statistics")
+    meanings = html.definitions(
+        [(f"{_statistic(summary, name).label} ({name})", STATISTICS[name][1]) for name in statistics],
+        id="statistics",
+    )
     return html.section("cases", "All cases", table, html.details("what the statistics are", meanings))
