@@ -135,7 +135,7 @@ def test_cli_static_target(capsys: pytest.CaptureFixture[str]) -> None:
     """`pipelay static --target`: exit 0 with the position found; a bad quantity: exit 2 naming --target."""
     assert main(["static", str(EXAMPLE), "--target", "top_tension=1000"]) == 0
     out = capsys.readouterr().out
-    assert "lay position: vessel x = " in out and "lay: top tension" in out
+    assert "lay position: vessel x = " in out and "\ntop tension " in out
     x = float(out.split("vessel x = ")[1].split()[0])
     assert _build(x).static().lay_summary()["top_tension"] == pytest.approx(1.0e6, rel=1e-3)
     assert main(["static", str(EXAMPLE), "--target", "tension=1e6"]) == 2
@@ -154,7 +154,7 @@ def test_cli_run_writes_the_lay_summary(tmp_path: Path, capsys: pytest.CaptureFi
     output = tmp_path / "run.nc"
     assert main(["run", str(scenario), "-o", str(output), "--no-progress", "--plots", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "lay: top tension" in out
+    assert "\ntop tension " in out and "lay: departure angle" in out
     assert (tmp_path / "lay_summary.png").is_file()
     results = pl.load(output)
     assert results.roller_reactions.shape == (len(results.time), 15)
@@ -165,7 +165,8 @@ def test_cli_run_writes_the_lay_summary(tmp_path: Path, capsys: pytest.CaptureFi
 
 
 def test_lay_configuration_figure_draws_the_stinger(tmp_path: Path) -> None:
-    """The configuration figure draws every roller (loaded ones apart) at its place and the strain curve."""
+    """The configuration figure draws every roller (loaded ones apart) at its place, names the lift-off roller
+    and draws the strain curve."""
     from pipelay import plots
 
     state = load_scenario(EXAMPLE).model.static()
@@ -178,6 +179,9 @@ def test_lay_configuration_figure_draws_the_stinger(tmp_path: Path) -> None:
     assert len(loaded.get_xdata()) + len(free.get_xdata()) == 15
     drawn = np.sort(np.concatenate([loaded.get_xdata(), free.get_xdata()]))
     assert np.allclose(drawn, np.sort(state.roller_positions[:, 0]))
+    # The lift-off roller, the last loaded one, numbered from 1 as people read it.
+    last_loaded = int(np.flatnonzero(state.roller_reactions > 0)[-1]) + 1
+    assert figure.axes[1].get_title().endswith(f"at roller {last_loaded} of 15")
     strain = figure.axes[2].get_lines()[0].get_ydata()
     assert np.allclose(strain, 100 * state.strain)
 

@@ -274,5 +274,5 @@ def test_cli_target_beyond_reach_prints_the_closest_state(capsys: pytest.Capture
     assert main(["static", str(S_LAY), "--target", "top_tension=50", "--max-solves", "4"]) == 2
     captured = capsys.readouterr()
     assert "the closest state found: vessel x = 657.000 m" in captured.out
-    assert "lay: top tension" in captured.out
+    assert "\ntop tension " in captured.out and "lay: lift-off roller" in captured.out
     assert "4 static solves" in captured.err and "no vessel position reaches top_tension" in captured.err

@@ -5,6 +5,7 @@ times in the legends, the plotted data, and errors."""
 from __future__ import annotations
 
 import sys
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -103,6 +104,37 @@ def test_vessel_motion_needs_a_vessel(pipe_run, vessel_run) -> None:
         plots.vessel_motion(vessel_run[1], reference=[780.0, 0.0])
 
 
+def test_the_set_point_is_drawn_where_the_controller_holds_the_vessel(vessel_run) -> None:
+    """`pipelay run`'s vessel figure draws η_ref, labelled as the DP set-point, only in the degrees of freedom
+    K_p holds, in e as η: for examples/jensen2009.toml (kp = [5e5, 5e5, 0, 0, 0, 0]) at x = 780 m and y = 0,
+    and not z = 0 against the vessel's z = −800 m (heave is free, kp_z = 0). A 6×6 K_p holds the rows that are
+    not zero; a lay-tension loop moves the set-point in x and y, which are then not drawn."""
+    from pipelay.cli import _reference
+    from pipelay.scenario import load_scenario, parse_scenario
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    reference = _reference(load_scenario(examples / "jensen2009.toml"))
+    assert reference is not None
+    assert reference[:2] == [780.0, 0.0] and np.isnan(reference[2:]).all()
+    _, results = vessel_run
+    figure = plots.vessel_motion(results, reference=reference)
+    x, _, y, _, z, _ = figure.axes
+    for axis, value in ((x, 780.0), (y, 0.0)):
+        assert axis.lines[1].get_label() == "η_ref (DP set-point)"
+        np.testing.assert_array_equal(axis.lines[1].get_ydata(), np.full(len(results.time), value))
+    assert len(z.lines) == 1 and z.get_legend() is None
+    assert np.all(z.lines[0].get_ydata() < -799.0)  # the vessel's z, the only line there
+
+    data = tomllib.loads((examples / "s_lay.toml").read_text())
+    data["controller"]["kp"] = np.diag([2e5, 2e5, 0.0, 0.0, 0.0, 3.5e7]).tolist()
+    matrix = _reference(parse_scenario(data))
+    assert matrix is not None and matrix[:2] == [660.0, 0.0] and matrix[5] == 0.0
+    assert np.isnan(matrix[2:5]).all()
+    data["controller"]["tension"] = {"target": 1e6, "gain": 3e-7}
+    moving = _reference(parse_scenario(data))
+    assert moving is not None and np.isnan(moving[:5]).all() and moving[5] == 0.0
+
+
 def test_top_tension_on_the_vessel(vessel_run, tmp_path: Path) -> None:
     """At the vessel's end: the pipe's force on the vessel, χ turned into e (here β = 0, so by the end
     node's rotation), in kN."""
@@ -114,7 +146,10 @@ def test_top_tension_on_the_vessel(vessel_run, tmp_path: Path) -> None:
     assert "(kN)" in axis.get_ylabel() and "(s)" in axis.get_xlabel()
     assert "vessel" in axis.get_title()
     force = np.einsum("tij,tj->ti", results.rotations[:, -1], results.chi[:, :3]) / 1e3
-    magnitude, horizontal, vertical = (line.get_ydata() for line in axis.lines)
+    top, magnitude, horizontal, vertical = (line.get_ydata() for line in axis.lines)
+    # First the top tension, the effective tension of the top element (the lay summary's), below |F_B|.
+    np.testing.assert_array_equal(top, results.lay_summary()["top_tension"] / 1e3)
+    assert np.all(top < magnitude)
     np.testing.assert_allclose(magnitude, np.linalg.norm(force, axis=1))
     np.testing.assert_allclose(horizontal, np.hypot(force[:, 0], force[:, 1]), rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(vertical, force[:, 2], rtol=1e-9, atol=1e-9)

@@ -13,7 +13,15 @@
     pipelay view RESULTS.nc [-o RUN.html] [--video RUN.mp4] [--colour tension|moment|strain|utilisation]
         [--frames N] [--scenario SCENARIO]
     pipelay report RESULTS.nc|SWEEP_DIR [-o REPORT.html] [--scenario SCENARIO]
+    pipelay lay-table SCENARIO --depths FROM:TO:STEP|D1,D2,... --target QUANTITY=VALUE[UNIT] -o TABLE.csv
+        [--netcdf TABLE.nc] [--plot FILE] [--max-solves N] [--scheduler ADDRESS | --workers N]
 
+    pipelay --version
+
+--plots DIR makes DIR (and its parents) before anything is solved. `pipelay static` prints the top tension
+(the effective tension where the vessel holds the pipe), the reaction's magnitude at end B, the touchdown, the
+lay summary (over a stinger: the lift-off roller, overbend strain, tip clearance and roller reactions, rollers
+numbered from 1, the first on the stinger), the DNV-ST-F101 checks and the vessel's pose.
 `pipelay run` streams the records to RESULTS.nc as the run goes (RESULTS.nc.part until it ends; memory stays
 flat however long the run), then prints a summary read from the file; --plots reads the whole file back.
 `pipelay static --target` moves the vessel along e1 until a lay quantity reaches VALUE, in the unit `pipelay
@@ -35,6 +43,10 @@ segment's wall; DIR/fatigue.nc holds the damage along the pipe and DIR/damage.pn
 (pipelay.plots.replay), and with --video an mp4 (pipelay.plots.video); `pipelay report` writes the HTML report
 of a run or of a sweep's folder (pipelay.report). Both rebuild the model (rollers, seabed, waves, section) from
 the scenario the results file keeps (written by `pipelay run` and sweeps), or from --scenario.
+`pipelay lay-table` places the vessel at each water depth so that the --target is met, as `static --target`
+(pipelay.analysis.lay_table), and writes the table in kN, degrees and percent (TABLE.csv), in SI units
+(--netcdf) and its figure (--plot); a depth where the target is not met is a row without numbers, its reason
+printed, and exits 1.
 
 Exit codes: 0 success, 1 a failed solve (Newton did not converge; the results computed before the failure are
 still written; for a sweep: a case failed, the others are written), 2 bad input (the message names the
@@ -99,6 +111,7 @@ def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="pipelay", description="Offshore pipelay simulation from scenario files."
     )
+    parser.add_argument("--version", action="version", version=f"pipelay {pl.__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     run = commands.add_parser(
         "run",
@@ -118,9 +131,14 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--resume", type=Path, help="continue from a checkpoint instead of the static state")
     run.add_argument("--no-progress", action="store_true", help="no progress bar")
-    static = commands.add_parser("static", help="static equilibrium: prints tensions, reactions, vessel pose")
+    static = commands.add_parser(
+        "static",
+        help="static equilibrium: prints the top tension, reactions, lay summary, checks and vessel pose",
+    )
     static.add_argument("scenario", type=Path, help="scenario file (TOML)")
-    static.add_argument("--plots", type=Path, help="directory for the tension and bending figure")
+    static.add_argument(
+        "--plots", type=Path, help="directory for the tension and bending (and lay configuration) figures"
+    )
     static.add_argument(
         "--target",
         metavar="QUANTITY=VALUE[UNIT]",
@@ -186,6 +204,7 @@ def _parser() -> argparse.ArgumentParser:
     _cluster_arguments(sweeping)
     _fatigue_parser(commands)
     _view_parsers(commands)
+    _lay_table_parser(commands)
     capability = commands.add_parser(
         "capability",
         help="DP capability: the largest wind held at each heading, with the pipe's static pull",
@@ -215,11 +234,20 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _reference(scenario: Scenario) -> list[float] | None:
-    """The controller's η_ref, for the vessel figure."""
+    """The controller's fixed η_ref (m, rad, in e as η) for the vessel figure, NaN (not drawn) in the degrees of
+    freedom it leaves free (K_p's row zero), and in x and y when a lay-tension loop moves the set-point; None
+    without a fixed reference."""
     controller = scenario.source.get("controller")
-    return (
-        list(controller["reference"]) if isinstance(controller, dict) and "reference" in controller else None
-    )
+    if not isinstance(controller, dict) or "reference" not in controller:
+        return None
+    gains = np.asarray(controller["kp"], dtype=float)
+    held = np.any(gains != 0.0, axis=1) if gains.ndim == 2 else gains != 0.0
+    if "tension" in controller:
+        held[:2] = False
+    return [
+        float(value) if hold else float("nan")
+        for value, hold in zip(controller["reference"], held, strict=True)
+    ]
 
 
 def _depth(scenario: Scenario) -> float | None:
@@ -227,10 +255,22 @@ def _depth(scenario: Scenario) -> float | None:
     return sea.depth if sea is not None else None
 
 
-def _summary(state: pl.State) -> str:
-    """Top tension, end reactions and vessel pose of a state, one per line."""
+def _summary(state: pl.State, checks: dict[str, Any]) -> str:
+    """Top tension, end reactions, touchdown, lay summary, checks and vessel pose of a state, one per line.
+
+    The top tension is the effective tension where the vessel holds the pipe (the tensioner, tower or winch;
+    `lay_summary()["top_tension"]`), without a vessel the effective axial force of the element at end B; the
+    reaction at B is the magnitude of the force the pipe exerts there.
+    """
+    summary = state.lay_summary()
+    top, where = (
+        (state.tension[-1], "the element at end B")
+        if summary is None
+        else (summary["top_tension"], "at the vessel's hold point")
+    )
     lines = [
-        f"top tension |F_B|       {np.linalg.norm(state.reaction('B')[:3]) / 1e3:12.1f} kN",
+        f"top tension             {top / 1e3:12.1f} kN (effective, {where})",
+        f"reaction at B |F_B|     {np.linalg.norm(state.reaction('B')[:3]) / 1e3:12.1f} kN",
         f"largest axial force     {np.max(state.tension) / 1e3:12.1f} kN",
         f"reaction at A (force)   {np.array2string(state.reaction('A')[:3] / 1e3, precision=1)} kN",
     ]
@@ -250,12 +290,11 @@ def _summary(state: pl.State) -> str:
         )
         lines.append(f"touchdown               {where}")
         lines.append(f"laid length             {state.laid_length:12.2f} m")
-    summary = state.lay_summary()
     if summary is not None:
         lines.extend(_lay_lines(summary, state.roller_reactions))
     if state.section.wall_thickness is not None and len(state.tension):
-        lines.extend(_check_lines(state))
-    if state.eta is not None:
+        lines.extend(_check_lines(state, checks))
+    if state.eta is not None and state.tau is not None:
         lines.append(f"vessel η                {np.array2string(state.eta, precision=3)}")
         lines.append(
             f"thrust τ (surge, sway, yaw) {np.array2string(state.tau[[0, 1, 5]] / 1e3, precision=1)} kN, kN m"
@@ -263,59 +302,85 @@ def _summary(state: pl.State) -> str:
     return "\n".join(lines)
 
 
-def _check_lines(state: pl.State) -> list[str]:
-    """The largest DNV-ST-F101 utilisations of a state of a pipe (its section's grade, installation, safety
-    class low), each with its element and distance from end A."""
-    check = pl.checks.dnv_st_f101(state, safety_class="low")
+def _check_lines(state: pl.State, checks: dict[str, Any]) -> list[str]:
+    """The largest DNV-ST-F101 utilisations of a state of a pipe with the scenario's `[checks]` (else the
+    checks' defaults), each with its element and distance from end A, the basis they are taken on, and the
+    propagation buckling check with its arrestor advice."""
+    check = pl.checks.dnv_st_f101(state, **checks)
+    propagation = pl.checks.propagation_buckling(state, **checks)
     arcs = state.reference_arc_length
-    lines = []
+    lines = [f"checks: {check.basis}"]
     for name, values in (
         ("load-controlled", check.load_controlled),
         ("displacement-controlled", check.displacement_controlled),
+        ("propagation buckling", propagation.utilisation),
     ):
         worst = int(np.argmax(values))
         middle = 0.5 * (arcs[worst] + arcs[worst + 1])
-        lines.append(
-            f"DNV-ST-F101 {name:<24s}{values[worst]:8.3f} (element {worst}, {middle:.1f} m from A; "
-            f"{check.grade}, installation, safety class low)"
-        )
+        lines.append(f"DNV-ST-F101 {name:<24s}{values[worst]:8.3f} (element {worst}, {middle:.1f} m from A)")
+    if propagation.arrestors is not None:
+        lines.append(f"DNV-ST-F101 propagation buckling: {propagation.arrestors}")
     return lines
 
 
 def _lay_lines(summary: dict[str, Any], rollers: np.ndarray | None) -> list[str]:
-    """The lay summary of a static state, one quantity per line."""
-    liftoff = summary["liftoff_roller"]
-    lines = [
-        f"lay: top tension        {summary['top_tension'] / 1e3:12.1f} kN (at the tensioner or tower)",
-        f"lay: departure angle    {np.degrees(summary['departure_angle']):12.2f}° below horizontal",
-        "lay: lift-off roller    "
-        + (
-            f"{liftoff:12d} of {len(rollers)}"
-            if liftoff is not None and rollers is not None
-            else "        none"
-        ),
-        f"lay: layback            {summary['layback']:12.2f} m",
-        f"lay: overbend strain    {100 * summary['overbend_strain']:12.4f} %",
+    """The lay summary of a static state, one quantity per line: departure angle, layback and sagbend for every
+    lay, and over a stinger (`rollers`: its rollers' reactions, N) the lift-off roller, overbend strain, tip
+    clearance and the rollers' reactions. Rollers are numbered from 1, the first on the stinger, to its tip
+    (`summary["liftoff_roller"]` is the 0-based index into `rollers`); without a stinger (a J-lay's tower, a
+    pipe clamped at the vessel) there is no overbend."""
+    layback = summary["layback"]
+    lines = [f"lay: departure angle    {np.degrees(summary['departure_angle']):12.2f}° below horizontal"]
+    if rollers is not None:
+        liftoff = summary["liftoff_roller"]
+        lines.append(
+            "lay: lift-off roller    "
+            + (
+                f"{liftoff + 1:12d} of {len(rollers)}"
+                if liftoff is not None
+                else "        none: the pipe touches no roller"
+            )
+        )
+    lines.append(
+        "lay: layback            "
+        + (f"{layback:12.2f} m" if np.isfinite(layback) else "        none: no touchdown")
+    )
+    if rollers is not None:
+        lines.append(f"lay: overbend strain    {100 * summary['overbend_strain']:12.4f} %")
+    lines += [
         f"lay: sagbend strain     {100 * summary['sagbend_strain']:12.4f} %",
         f"lay: sagbend moment     {summary['sagbend_moment'] / 1e3:12.1f} kN m",
     ]
     if rollers is not None:
-        lines.append(f"lay: roller reactions   {np.array2string(rollers / 1e3, precision=1)} kN")
+        lines.append(
+            f"lay: tip clearance      {summary['tip_clearance']:12.3f} m at roller {len(rollers)}, the stinger's tip "
+            "(≤ 0: the pipe rests on it)"
+        )
+        lines.append(
+            f"lay: roller reactions (kN), rollers 1 (the first on the stinger) to {len(rollers)} (its tip):"
+        )
+        cells = [f"{k + 1:5d}: {force / 1e3:6.1f}" for k, force in enumerate(rollers)]
+        lines += ["    " + "".join(cells[i : i + 8]) for i in range(0, len(cells), 8)]
     return lines
 
 
 def _run_summary(path: Path) -> str:
     """The records, time span and extremes of a run, read from its results file a slice of records at a time:
-    top tension, largest bending moment, lay summary, touchdown range."""
+    top tension (`pl.statistics.top_tension`: at the tensioner, tower or top support), the reaction at B
+    |F_B|, largest bending moment, lay summary (the overbend strain with a stinger's rollers only), touchdown
+    range."""
     import xarray as xr
 
     lines = []
     with xr.open_dataset(path, engine="h5netcdf") as data:
         time = data["time"].values
         lines.append(f"results: {path} ({len(time)} records, t = {time[0]:g} … {time[-1]:g} s)")
+        if "top_tension" in data or ("section_forces" in data and data.sizes["element"] > 0):
+            top = pl.statistics.top_tension(data) / 1e3
+            lines.append(f"top tension             {np.nanmin(top):10.1f} … {np.nanmax(top):.1f} kN")
         if "reaction_B" in data:
-            top = np.linalg.norm(data["reaction_B"].values[:, :3], axis=1)
-            lines.append(f"top tension |F_B|       {top.min() / 1e3:10.1f} … {top.max() / 1e3:.1f} kN")
+            reaction = np.linalg.norm(data["reaction_B"].values[:, :3], axis=1) / 1e3
+            lines.append(f"reaction at B |F_B|     {reaction.min():10.1f} … {reaction.max():.1f} kN")
         if "section_forces" in data and data.sizes["element"] > 0:
             forces = data["section_forces"]
             rows = max(1, 2**22 // (forces.shape[1] * forces.shape[2]))  # 32 MB at a time
@@ -326,12 +391,11 @@ def _run_summary(path: Path) -> str:
                 f"largest bending moment  {moment.max() / 1e3:10.1f} kN m (t = {time[np.argmax(moment)]:g} s)"
             )
         for key, label, scale, unit in (
-            ("top_tension", "lay: top tension       ", 1e-3, "kN"),
             ("departure_angle", "lay: departure angle   ", 180 / np.pi, "°"),
             ("overbend_strain", "lay: overbend strain   ", 100.0, "%"),
             ("sagbend_strain", "lay: sagbend strain    ", 100.0, "%"),
         ):
-            if key in data:
+            if key in data and (key != "overbend_strain" or "roller_reactions" in data):
                 series = data[key].values * scale
                 if np.any(np.isfinite(series)):
                     lines.append(f"{label} {np.nanmin(series):10.4g} … {np.nanmax(series):.4g} {unit}")
@@ -359,6 +423,7 @@ def _write(args: argparse.Namespace, scenario: Scenario) -> None:
 
 def _run(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
+    print(f"scenario: {scenario.source.get('title', args.scenario)}")
     status = 0
     with worst_of_each_kind() as suspects:
         simulation = start_simulation(scenario, args.resume)
@@ -480,14 +545,16 @@ def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
         return f"{si / units[unit]:.6g}" + ("" if unit in ("°", "") else " ") + unit
 
     try:
-        found = find_lay_position(build, quantity, value, bracket, start=x0, max_solves=args.max_solves)
+        found = find_lay_position(
+            build, quantity, value, bracket, start=x0, max_solves=args.max_solves, **scenario.checks
+        )
     except TargetNotReached as missed:
         if missed.closest is not None:
             print(
                 f"lay position: not reached; the closest state found: vessel x = {missed.closest.x:.3f} m "
                 f"gives {quantity} = {shown(missed.closest.value)}"
             )
-            print(_summary(missed.closest.state))
+            print(_summary(missed.closest.state, scenario.checks))
         raise
     print(
         f"lay position: vessel x = {found.x:.3f} m gives {quantity} = {shown(found.value)} "
@@ -503,13 +570,14 @@ def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
 
 def _static(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
+    print(f"scenario: {scenario.source.get('title', args.scenario)}")
     with worst_of_each_kind() as suspects:
         if args.target:
             state = _target(args, scenario)
         else:
             state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
     print(f"static equilibrium: {state.iterations} Newton iterations in {state.steps} load step(s)")
-    print(_summary(state))
+    print(_summary(state, scenario.checks))
     _print_suspects(suspects)
     if args.plots:
         path = Path(args.plots) / "tension_bending.png"
@@ -517,7 +585,7 @@ def _static(args: argparse.Namespace) -> int:
         print(f"figure: {path}")
         if state.lay_summary() is not None:
             path = Path(args.plots) / "lay_configuration.png"
-            plots.lay_configuration(state, path=path)
+            plots.lay_configuration(state, path=path, **scenario.checks)
             print(f"figure: {path}")
     return 0
 
@@ -690,10 +758,11 @@ def _view(args: argparse.Namespace) -> int:
     scenario = _scenario_of(args.results, args.scenario)
     model = None if scenario is None else scenario.model
     output = args.output or args.results.with_suffix(".html")
-    replay(results, model, colour=args.colour, max_frames=args.frames, path=output)
+    checks = None if scenario is None else scenario.checks
+    replay(results, model, colour=args.colour, max_frames=args.frames, path=output, checks=checks)
     print(f"replay: {output}")
     if args.video is not None:
-        video(results, args.video, model, colour=args.colour)
+        video(results, args.video, model, colour=args.colour, checks=checks)
         print(f"video: {args.video}")
     return 0
 
@@ -803,6 +872,123 @@ def _fatigue(args: argparse.Namespace) -> int:
     return 1 if found.failures else 0
 
 
+def _lay_table_parser(commands: Any) -> None:
+    """The arguments of `pipelay lay-table`."""
+    table = commands.add_parser(
+        "lay-table", help="the lay table: the vessel placed to meet a target at each water depth, as CSV"
+    )
+    table.add_argument("scenario", type=Path, help="scenario file (TOML) with a [sea] and a [vessel]")
+    table.add_argument(
+        "--depths",
+        required=True,
+        metavar="FROM:TO:STEP|D1,D2,...",
+        help="the water depths (m): FROM to TO (included when on the grid) in steps of STEP, or a list",
+    )
+    table.add_argument(
+        "--target",
+        required=True,
+        metavar="QUANTITY=VALUE[UNIT]",
+        help="the lay quantity the vessel's position meets at each depth, as `pipelay static --target`: "
+        + "; ".join(f"{q}={_TARGET_UNITS[q][2]}" for q in TARGETS).replace("%", "%%"),
+    )
+    table.add_argument(
+        "-o", "--output", type=Path, required=True, help="the table (CSV, kN, degrees, percent)"
+    )
+    table.add_argument("--netcdf", type=Path, help="also write the table here (netCDF, SI units)")
+    table.add_argument(
+        "--plot", type=Path, metavar="FILE", help="the figure of the table against depth (PNG)"
+    )
+    table.add_argument(
+        "--max-solves",
+        type=int,
+        default=MAX_SOLVES,
+        metavar="N",
+        help=f"the most static solves each depth's search spends (default: {MAX_SOLVES})",
+    )
+    _cluster_arguments(table)
+
+
+def _depth_values(text: str) -> list[float]:
+    """`--depths`: FROM:TO:STEP (m; TO included when on the grid, to 1e-9 of STEP) or D1,D2,... as numbers."""
+    parts = text.split(":")
+    try:
+        numbers = [float(part) for part in (parts if len(parts) == 3 else text.split(","))]
+    except ValueError:
+        numbers = []
+    if not numbers or not all(math.isfinite(n) for n in numbers) or len(parts) not in (1, 3):
+        raise pl.InputError(f"--depths: {text!r} must be FROM:TO:STEP or D1,D2,... (m), e.g. 100:1000:50")
+    if len(parts) == 1:
+        return numbers
+    first, last, step = numbers
+    if not (step > 0 and last >= first):
+        raise pl.InputError(
+            f"--depths: {text!r}: FROM:TO:STEP needs STEP > 0 and TO ≥ FROM, e.g. 100:1000:50"
+        )
+    count = math.floor((last - first) / step + 1e-9) + 1
+    return [round(first + k * step, 9) for k in range(count)]
+
+
+def _lay_table(args: argparse.Namespace) -> int:
+    """`pipelay lay-table SCENARIO --depths ... --target ... -o TABLE.csv`: the table printed in people's
+    units, written as CSV (and netCDF, and its figure); a depth where the target is not met printed with its
+    reason on standard error (exit 1)."""
+    from pipelay.analysis.lay_table import write_csv
+
+    quantity, value = _target_value(str(args.target))
+    table = pl.lay_table(
+        args.scenario,
+        _depth_values(str(args.depths)),
+        {quantity: value},
+        client=args.scheduler,
+        workers=args.workers,
+        max_solves=args.max_solves,
+        progress=not args.no_progress,
+    )
+    unit, units, _ = _TARGET_UNITS[quantity]
+    space = "" if unit in ("°", "") else " "
+    print(f"lay table: {args.scenario}, vessel placed for {quantity} = {value / units[unit]:g}{space}{unit}")
+    columns = (
+        ("depth m", "depth", 1.0, ".1f"),
+        ("vessel x m", "vessel_x", 1.0, ".2f"),
+        ("top T kN", "top_tension", 1e-3, ".1f"),
+        ("depart. °", "departure_angle", 180.0 / math.pi, ".2f"),
+        ("layback m", "layback", 1.0, ".1f"),
+        ("overbend %", "overbend_strain", 100.0, ".4f"),
+        ("sagbend %", "sagbend_strain", 100.0, ".4f"),
+        ("tip gap m", "tip_clearance", 1.0, ".3f"),
+        ("roller kN", "roller_reaction_max", 1e-3, ".1f"),
+        ("lift-off", "liftoff_roller", 1.0, ".0f"),
+        ("LC util.", "load_controlled_max", 1.0, ".3f"),
+        ("DC util.", "displacement_controlled_max", 1.0, ".3f"),
+    )
+    print(" ".join(f"{title:>11}" for title, *_ in columns))
+    for k in range(table.sizes["depth"]):
+        cells = []
+        for _, name, scale, form in columns:
+            number = float(table[name].values[k]) * scale
+            cells.append(f"{number:11{form}}" if math.isfinite(number) else f"{'–':>11}")
+        print(" ".join(cells))
+    print("lift-off: the last roller in contact, numbered from 1 at the stinger's vessel end")
+    basis = next((str(text) for text in table["utilisation_basis"].values if text), "")
+    if basis:
+        print(f"utilisations (LC load-, DC displacement-controlled): {basis}")
+    depths = table["depth"].values
+    for depth, text in zip(depths, table["warning"].values, strict=True):
+        if text:
+            print(f"warning: depth {depth:g} m: {text}", file=sys.stderr)
+    failed = [(depth, text) for depth, text in zip(depths, table["failure"].values, strict=True) if text]
+    for depth, text in failed:
+        print(f"pipelay: depth {depth:g} m: target not met: {text}", file=sys.stderr)
+    print(f"table: {write_csv(table, args.output)}")
+    if args.netcdf:
+        table.to_netcdf(args.netcdf, engine="h5netcdf")
+        print(f"table (netCDF, SI units): {args.netcdf}")
+    if args.plot:
+        plots.lay_table(table, path=args.plot)
+        print(f"figure: {args.plot}")
+    return 1 if failed else 0
+
+
 def _capability(args: argparse.Namespace) -> int:
     """`pipelay capability SCENARIO`: the DP capability envelope with the pipe's static load, as a table of
     heading (deg, environment from) and wind speed (m/s); --plot saves the polar plot."""
@@ -861,8 +1047,12 @@ def main(argv: list[str] | None = None) -> int:
         "fatigue": _fatigue,
         "view": _view,
         "report": _report,
+        "lay-table": _lay_table,
     }[args.command]
     try:
+        if getattr(args, "plots", None) is not None:
+            # Made before solving: an unwritable place fails at once, not after a long solve.
+            args.plots.mkdir(parents=True, exist_ok=True)
         return command(args)
     except pl.InputError as error:
         print(f"pipelay: error: {error}", file=sys.stderr)

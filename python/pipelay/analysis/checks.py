@@ -8,13 +8,20 @@ Sec.5 [5.4.6] "Local buckling – combined loading criteria" and returns a `Util
 * the **displacement-controlled condition** (longitudinal strain and pressure), as the strain demand over
   the allowable strain.
 
+`propagation_buckling(state, ...)` evaluates Sec.5 [5.4.5] "Propagation buckling" with the same parameters and
+returns a `Propagation`: p_e − p_min ≤ p_pr/(γ_m γ_SC) with p_pr = 35 f_y α_fab (t₂/D)^2.5 (valid for
+15 < D/t₂ < 45), its utilisation γ_m γ_SC (p_e − p_min)/p_pr per element, and where buckle arrestors are needed.
+Both take their defaults from `DEFAULTS`, and pressures as below.
+
 Units and frame
 ---------------
 SI throughout: m, N, N·m, Pa. The state is in the model's inertial frame e: origin at the pipe's seabed end,
-e3 pointing down, the sea surface the plane z = −water_depth. The water depth of a point is therefore
-``water_depth + z`` and the external (hydrostatic) pressure ``p_e = ρ_w g max(water_depth + z, 0)`` with
-g = 9.81 m/s²; points above the surface (on the vessel) see no pressure. Forces are evaluated at element
-midpoints, so p_e uses the midpoint depth.
+e3 pointing down, the sea surface the plane z = −water_depth. The depth of a point below the surface is
+therefore h = max(water_depth + z, 0), the external (hydrostatic) pressure ``p_e = ρ_w g h`` with g = 9.81 m/s²
+(points above the surface, on the vessel, see no pressure), and the internal pressure by default that of the
+contents open to the surface, ``p_i = ρ_c g h`` (`contents_pressure`; ρ_c the section's ``contents_density``,
+0 for an empty pipe), or one pressure given for the whole pipe. Forces are evaluated at element midpoints, so
+the pressures use the midpoint depth.
 
 Effective axial force
 ---------------------
@@ -100,6 +107,7 @@ attributes, so it also loads from its file without the engine).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
@@ -112,6 +120,7 @@ __all__ = [
     "Propagation",
     "Utilisation",
     "contents_pressure",
+    "describe_parameters",
     "dnv_st_f101",
     "propagation_buckling",
 ]
@@ -589,6 +598,36 @@ def _arrestor_advice(
         f"than {shallowest:.1f} m): there p_e − p_min exceeds p_pr/(γ_m γ_SC) = "
         f"{float(np.nanmin(design_pressure[failing])) / 1e6:.3g} MPa, so a local buckle started there would run "
         "along the pipe; arrestors along that stretch stop it (DNV-ST-F101 [5.4.5])"
+    )
+
+
+def describe_parameters(parameters: Mapping[str, Any] | None = None) -> str:
+    """The parameters of the checks in one line, those not in `parameters` at their `DEFAULTS` (where no state
+    is at hand to name its grade and pressures, as `Utilisation.basis` does), e.g. "DNV-ST-F101, the section's
+    grade, safety class medium, seamless, installation, p_i of the contents"."""
+    options = _options(**dict(parameters or {}))
+    grade = options.grade or f"the section's grade (else {DEFAULT_GRADE})"
+    inside = (
+        "p_i of the contents"
+        if options.internal_pressure is None
+        else f"p_i {options.internal_pressure / 1e6:.4g} MPa given"
+    )
+    extra = [
+        f"corrosion allowance {options.corrosion_allowance:g} m" * (options.corrosion_allowance > 0),
+        f"ovality {options.ovality:g}" * (options.ovality != DEFAULTS["ovality"]),
+        f"de-rating {options.temperature_derating / 1e6:g} MPa" * (options.temperature_derating > 0),
+        "" if options.strain_limit is None else f"strain limit {options.strain_limit:g}",
+    ]
+    return ", ".join(
+        [
+            "DNV-ST-F101",
+            grade,
+            f"safety class {options.safety_class}",
+            options.fabrication,
+            options.condition,
+            inside,
+            *(part for part in extra if part),
+        ]
     )
 
 

@@ -71,6 +71,7 @@ from typing import Any
 import numpy as np
 
 from pipelay._core import ConvergenceError, InputError, Model, Results, Simulation
+from pipelay.analysis.checks import describe_parameters
 from pipelay.analysis.extremes import extremes
 from pipelay.results import resume
 from pipelay.results.atomic import _atomic_write
@@ -100,10 +101,9 @@ Factory = Callable[[dict[str, Any]], "Scenario | dict[str, Any]"]
 """Builds a case's scenario from the case {dotted key: value}."""
 
 STATISTICS: dict[str, tuple[str, str]] = {
-    "top_tension_max": ("N", "largest top tension |F_B|, the force of the pipe on what holds end B"),
-    "top_tension_min": ("N", "smallest top tension |F_B|"),
-    "lay_top_tension_max": ("N", "largest effective tension at the tensioner or tower"),
-    "lay_top_tension_min": ("N", "smallest effective tension at the tensioner or tower"),
+    "top_tension_max": ("N", "largest top tension: effective tension at the tensioner, tower or support"),
+    "top_tension_min": ("N", "smallest top tension: effective tension at the tensioner, tower or support"),
+    "reaction_B_max": ("N", "largest reaction at B |F_B|, the force of the line on what holds end B"),
     "tension_max": ("N", "largest effective axial force along the pipe"),
     "tension_min": ("N", "smallest effective axial force along the pipe (negative: compression)"),
     "moment_max": ("N m", "largest bending moment along the pipe"),
@@ -187,8 +187,9 @@ def run(
 def case_statistics(
     results: Results, model: Model, checks: Mapping[str, Any] | None = None
 ) -> dict[str, float]:
-    """The statistics of a run (`STATISTICS`, SI units): `statistics.extremes` (top tension, axial force,
-    moment, strain and, for a pipe with a wall thickness, DNV-ST-F101 utilisation with `checks`, keyword
+    """The statistics of a run (`STATISTICS`, SI units): `statistics.extremes` (the top tension, the effective
+    tension the tensioner, tower or top support holds, `statistics.top_tension`; the reaction at B |F_B|; axial
+    force, moment, strain and, for a pipe with a wall thickness, DNV-ST-F101 utilisation with `checks`, keyword
     arguments of `checks.dnv_st_f101`, default its defaults), the vessel's largest offset from its starting
     position (m) and horizontal thrust (N), the touchdown point's excursion (m) and the passivity margin
     (J)."""
@@ -213,7 +214,7 @@ def run_case(
 ) -> dict[str, float]:
     """One run of a scenario, as a sweep runs each case: statics, the simulation to ``solver.t_end`` written
     to the netCDF file `path` atomically (only a finished run is there), then its `case_statistics` (read back
-    from the file).
+    from the file) with `checks`, else the scenario's ``[checks]``.
 
     Raises InputError (no ``solver.t_end``), ConvergenceError (the file is then not written) or
     KeyboardInterrupt (Ctrl-C; nor is it).
@@ -225,7 +226,8 @@ def run_case(
             raise KeyboardInterrupt
 
     _atomic_write(Path(path), write)
-    return case_statistics(_Recorded.read(path), scenario.model, checks)  # type: ignore[arg-type]
+    chosen = scenario.checks if checks is None else checks
+    return case_statistics(_Recorded.read(path), scenario.model, chosen)  # type: ignore[arg-type]
 
 
 class _Recorded:
@@ -317,7 +319,9 @@ def _task(case: _Case, directory: Path) -> dict[str, Any]:
     os.environ.setdefault("RAYON_NUM_THREADS", "1")
     record: dict[str, Any] = {"name": case.name, "case": case.settings}
     try:
-        record["statistics"] = run_case(case.scenario(), directory / "cases" / f"{case.name}.nc", case.checks)
+        scenario = case.scenario()
+        record["statistics"] = run_case(scenario, directory / "cases" / f"{case.name}.nc", case.checks)
+        record["checks"] = describe_parameters(scenario.checks if case.checks is None else case.checks)
     except (InputError, ConvergenceError) as error:
         record["error"] = f"{type(error).__name__}: {error}"
     text = json.dumps(record, indent=1, default=str)
@@ -536,7 +540,8 @@ def sweep(
             `distributed.LocalCluster` of `workers` single-threaded processes for the sweep's duration.
         output: the folder for ``cases/`` and ``summary.nc``; finished cases found there are not run again.
         workers: processes of the local cluster (default: one a core, at most one a case to run).
-        checks: keyword arguments of `checks.dnv_st_f101` for the utilisation (default: its defaults).
+        checks: keyword arguments of `checks.dnv_st_f101` for the utilisation (default: each case's
+            scenario's ``[checks]``, else the checks' defaults).
         progress: show a progress bar over the cases.
 
     Raises:
@@ -805,6 +810,11 @@ def _write_summary(
         name: (dims, array, {"units": STATISTICS[name][0], "long_name": STATISTICS[name][1]})
         for name, array in arrays.items()
     }
+    if "utilisation_max" in variables:
+        bases = sorted(
+            {str(record.get("checks", "")) for record in records.values() if "statistics" in record}
+        )
+        variables["utilisation_max"][2]["checks"] = "; ".join(basis for basis in bases if basis)
     variables["failed"] = (dims, failed, {"units": "1", "long_name": "1: the case failed (see error)"})
     variables["error"] = (dims, error, {"long_name": "the failed case's error message"})
     variables["case"] = (dims, files, {"long_name": "name of the case's files in cases/ (.nc, .json)"})

@@ -9,6 +9,7 @@ a lay configuration is drawn.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from textwrap import fill
 from typing import Any
 
 import numpy as np
@@ -104,11 +105,12 @@ def lay_deviation(
 
 
 def _top_tension_series(results: Results) -> npt.NDArray[np.float64]:
-    """Top tension (T,) (N): the lay summary's with lay equipment or a vessel, else |force| at end B."""
-    summary = results.lay_summary()
-    if summary is not None:
-        return np.asarray(summary["top_tension"], dtype=float)
-    return np.linalg.norm(results.reaction("B")[:, :3], axis=1)
+    """Top tension (T,) (N): the effective tension the tensioner, the tower or the top support holds, as
+    everywhere in pipelay (`pipelay.analysis.extremes.top_tension`: the lay summary's with a vessel, else the
+    axial force of the element at end B)."""
+    from pipelay.analysis.extremes import top_tension
+
+    return top_tension(results)
 
 
 def _moving_average(
@@ -292,8 +294,8 @@ def tension_comparison(
     """Top tension against time for several runs (e.g. with and without the lay-tension loop): each run's
     series thin and its trailing mean over `window` seconds thick.
 
-    The top tension is the lay summary's (at the tensioner or tower) for a run with a vessel, else the force at
-    end B.
+    The top tension is the lay summary's (at the tensioner or tower) for a run with a vessel, else the axial
+    force of the element at end B (`pipelay.analysis.extremes.top_tension`).
 
     Args:
         runs: label → run, in legend order.
@@ -341,8 +343,10 @@ def lay_configuration(state: State, path: _PathLike | None = None, **check: Any)
     Args:
         state: a static or simulated state of a model held by a vessel.
         path: where to save the figure, if anywhere.
-        check: arguments of ``pl.checks.dnv_st_f101`` (e.g. grade="X65"); the utilisation panel is left out
-            when the check cannot run (a section without a wall thickness).
+        check: arguments of ``pl.checks.dnv_st_f101`` and ``pl.checks.propagation_buckling`` (a scenario's
+            ``Scenario.checks``; e.g. grade="X65"); the utilisation panel (each check's largest value and
+            element in the legend, the basis below) says why it is empty when the check cannot run (a section
+            without a wall thickness).
 
     Returns:
         The figure: side view, detail at the vessel, strain, utilisation.
@@ -383,7 +387,9 @@ def lay_configuration(state: State, path: _PathLike | None = None, **check: Any)
     )
     detail.set_xlim(x[near].min() - 5.0, x[near].max() + 5.0)
     detail.set_ylim(elevation[near].min() - 5.0, elevation[near].max() + 5.0)
-    detail.set_title(f"At the vessel: departure {np.degrees(summary['departure_angle']):.1f}°")
+    liftoff = summary["liftoff_roller"]  # 0-based; rollers are numbered from 1 for people
+    at = f" at roller {liftoff + 1} of {len(rollers)}" if liftoff is not None and rollers is not None else ""
+    detail.set_title(f"At the vessel: departure {np.degrees(summary['departure_angle']):.1f}°{at}")
     detail.set_xlabel("x (m)")
     arc = state.reference_arc_length
     middle = 0.5 * (arc[:-1] + arc[1:])
@@ -393,13 +399,23 @@ def lay_configuration(state: State, path: _PathLike | None = None, **check: Any)
     strain_axis.set_title("Strain (axial + bending at the outer fibre)")
     try:
         utilisation = pl.checks.dnv_st_f101(state, **check)
+        propagation = pl.checks.propagation_buckling(state, **check)
     except (pl.InputError, ValueError) as error:
         utilisation_axis.text(0.5, 0.5, f"no DNV check: {error}", ha="center", va="center", wrap=True)
     else:
-        utilisation_axis.plot(middle, utilisation.load_controlled, label="load-controlled")
-        utilisation_axis.plot(middle, utilisation.displacement_controlled, label="displacement-controlled")
+        for name, values in (
+            ("load-controlled", utilisation.load_controlled),
+            ("displacement-controlled", utilisation.displacement_controlled),
+            ("propagation buckling", propagation.utilisation),
+        ):
+            worst = int(np.argmax(values))
+            utilisation_axis.plot(middle, values, label=f"{name}: {values[worst]:.3f} (element {worst})")
         utilisation_axis.axhline(1.0, color="tab:red", linewidth=0.8)
         utilisation_axis.legend(fontsize=8, loc="best")
+        basis = utilisation.basis.removeprefix("DNV-ST-F101, ")
+        utilisation_axis.text(
+            0.0, -0.28, fill(basis, 90), transform=utilisation_axis.transAxes, fontsize=7, va="top"
+        )
     utilisation_axis.set_xlabel("arc length from end A (m)")
     utilisation_axis.set_ylabel("utilisation (1 = limit)")
     utilisation_axis.set_title("DNV-ST-F101 utilisation")

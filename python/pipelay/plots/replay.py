@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -170,9 +171,11 @@ def _check_max_frames(max_frames: object) -> int:
     return int(max_frames)
 
 
-def _element_values(results: Results, model: Model | None, colour: str) -> tuple[_FloatArray, str, str]:
+def _element_values(
+    results: Results, model: Model | None, colour: str, checks: Mapping[str, Any] | None
+) -> tuple[_FloatArray, str, str]:
     """The colour's values (T, n) at the elements (in its unit; NaN where a record had no such element), its
-    label and unit."""
+    label and unit; `checks`: the parameters of the utilisation (None: the checks' defaults)."""
     if colour not in COLOURS:
         raise _input_error("colour", colour, ", ".join(COLOURS))
     label, unit, scale = _COLOUR_LABELS[colour]
@@ -200,7 +203,7 @@ def _element_values(results: Results, model: Model | None, colour: str) -> tuple
             "(Section.pipe)",
             "needs a pipe's wall",
         )
-    values = _utilisation(results, model=model, checks={})
+    values = _utilisation(results, model=model, checks=dict(checks or {}))
     return scale * np.asarray(values, dtype=np.float64), label, unit
 
 
@@ -288,8 +291,15 @@ def _bounds(
     return x, (centre - half, centre + half)
 
 
-def prepare(results: Results, model: Model | None, colour: str, max_frames: int) -> Scene:
-    """What the replay and the video draw of `results` (see `Scene`).
+def prepare(
+    results: Results,
+    model: Model | None,
+    colour: str,
+    max_frames: int,
+    checks: Mapping[str, Any] | None = None,
+) -> Scene:
+    """What the replay and the video draw of `results` (see `Scene`); `checks`: the parameters of the
+    "utilisation" colour (keyword arguments of `pl.checks.dnv_st_f101`; None: its defaults).
 
     Raises:
         pipelay.InputError: `colour` unknown or not computable from the inputs, `max_frames` < 2, or results
@@ -301,7 +311,7 @@ def prepare(results: Results, model: Model | None, colour: str, max_frames: int)
     time = np.asarray(results.time, dtype=np.float64)
     if len(time) == 0:
         raise _input_error("results", _Described("results of 0 records"), "a run with records", "has")
-    elements, label, unit = _element_values(results, model, colour)
+    elements, label, unit = _element_values(results, model, colour, checks)
     nodes_all = _on_nodes(elements)
     records = _frames(len(time), max_frames)
     positions = np.asarray(results.positions, dtype=np.float64)
@@ -651,6 +661,7 @@ def replay(
     max_frames: int = 300,
     title: str | None = None,
     path: _PathLike | None = None,
+    checks: Mapping[str, Any] | None = None,
 ) -> go.Figure:
     """The 3-D replay of a run: a plotly figure with a frame per record (at most `max_frames`).
 
@@ -665,10 +676,12 @@ def replay(
         results: a run (in memory or `pipelay.load`).
         model: the run's model, for what the results do not say (see the module); None: without it.
         colour: one of `COLOURS`: "tension" (N₁, kN), "moment" (|M|, kN·m), "strain" (%, needs `model`),
-            "utilisation" (DNV-ST-F101 with its default parameters, needs `model` with a Section.pipe).
+            "utilisation" (DNV-ST-F101 with `checks`, needs `model` with a Section.pipe).
         max_frames: the most frames (≥ 2): the records are decimated evenly, the first and last kept.
         title: the title's first part (default "Pipelay replay"); the run's time span and the colour follow.
         path: also write the figure there as one self-contained HTML file (`replay_html`), atomically.
+        checks: keyword arguments of `pl.checks.dnv_st_f101` for the "utilisation" colour (a scenario's
+            ``Scenario.checks``); None: its defaults.
 
     Returns:
         The figure (`figure.show()`, or displayed by Jupyter). Its numbers are sent with limited precision:
@@ -677,7 +690,7 @@ def replay(
     Raises:
         pipelay.InputError: an unknown `colour` or one the inputs cannot give, `max_frames` < 2.
     """
-    figure = _figure(prepare(results, model, colour, max_frames), title)
+    figure = _figure(prepare(results, model, colour, max_frames, checks), title)
     if path is not None:
         text = _html(figure, full_html=True)
 
@@ -699,6 +712,7 @@ def replay_html(
     colour: str = "tension",
     max_frames: int = 300,
     title: str | None = None,
+    checks: Mapping[str, Any] | None = None,
 ) -> str:
     """The replay (`replay`) as HTML.
 
@@ -708,7 +722,7 @@ def replay_html(
     ``</script>`` in its head (the plotly.js that comes with the installed plotly) — several replays on one page
     share it.
     """
-    figure = _figure(prepare(results, model, colour, max_frames), title)
+    figure = _figure(prepare(results, model, colour, max_frames, checks), title)
     return _html(figure, full_html=full_html)
 
 

@@ -1,8 +1,8 @@
 """The figures of any run: the pipe's shape, the vessel's motion, the top tension, tension and bending along the
 pipe, the energy balance; and `all_figures`, which writes every figure that applies to a run.
 
-Imports of pipelay: the engine (`pipelay._core`), `pipelay.plots.canvas`, `pipelay.plots.lay` and
-`pipelay.plots.stages`.
+Imports of pipelay: the engine (`pipelay._core`), `pipelay.analysis.extremes` (`top_tension`),
+`pipelay.plots.canvas`, `pipelay.plots.lay` and `pipelay.plots.stages`.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ import numpy.typing as npt
 from matplotlib.figure import Figure
 
 from pipelay._core import Results, State
+from pipelay.analysis import extremes
 from pipelay.plots.canvas import (
     _End,
     _figure,
@@ -105,8 +106,9 @@ def vessel_motion(
 
     Args:
         results: a run with a vessel.
-        reference: η_ref (6,) or (T, 6) in m and rad, drawn dotted; NaN entries are not drawn (give NaN for
-            the degrees of freedom the controller leaves free).
+        reference: the DP set-point η_ref (6,) or (T, 6) in m and rad, in e as η is, drawn dotted and labelled
+            "η_ref (DP set-point)"; NaN entries are not drawn: give NaN for the degrees of freedom the
+            controller leaves free (K_p = 0), whose set-point is not a place the vessel is held at.
         path: where to save the figure, if anywhere.
 
     Returns:
@@ -135,7 +137,14 @@ def vessel_motion(
         scale = 1.0 if k < 3 else 180.0 / np.pi
         axis.plot(time, scale * eta[:, k], color="k", label="η")
         if target is not None and np.any(np.isfinite(target[:, k])):
-            axis.plot(time, scale * target[:, k], color="tab:blue", linestyle=":", linewidth=2, label="η_ref")
+            axis.plot(
+                time,
+                scale * target[:, k],
+                color="tab:blue",
+                linestyle=":",
+                linewidth=2,
+                label="η_ref (DP set-point)",
+            )
             axis.legend(fontsize=8, loc="best")
         axis.set_ylabel(labels[k])
     for axis in axes[-2:]:
@@ -145,10 +154,14 @@ def vessel_motion(
 
 
 def top_tension(results: Results, end: _End = "B", path: _PathLike | None = None) -> Figure:
-    """The force of the pipe at an end against time (kN): magnitude, horizontal and vertical components.
+    """The top tension and the reaction at an end against time (kN).
 
-    At the end attached to a vessel this is the pipe's force on the vessel, elsewhere the reaction on the
-    support (both `results.reaction(end)`).
+    At end B the first curve is the top tension (`pipelay.analysis.statistics.top_tension`): the effective
+    tension the tensioner, the tower or the support at the top holds, the axial force of the top element (the
+    lay summary's ``top_tension`` with a vessel). Then the reaction at the end, `results.reaction(end)`: the
+    force of the pipe on the vessel (at the end attached to one) or on the support, its magnitude |F| and its
+    horizontal and vertical components. The reaction also carries the shear force, so |F_B| differs from the
+    top tension. At end A only the reaction is drawn.
 
     Args:
         results: a run.
@@ -162,12 +175,23 @@ def top_tension(results: Results, end: _End = "B", path: _PathLike | None = None
     time = results.time
     figure, axes = _figure(9.0, 4.5, 1, 1)
     (axis,) = axes
-    axis.plot(time, np.linalg.norm(force, axis=1) / 1e3, color="k", linewidth=2, label="magnitude |F|")
-    axis.plot(time, np.hypot(force[:, 0], force[:, 1]) / 1e3, "--", label="horizontal |(F₁, F₂)|")
-    axis.plot(time, force[:, 2] / 1e3, "-.", label="vertical F₃ (down positive)")
+    if end == "B":
+        axis.plot(
+            time, extremes.top_tension(results) / 1e3, color="tab:blue", linewidth=2.5, label="top tension"
+        )
+    axis.plot(
+        time,
+        np.linalg.norm(force, axis=1) / 1e3,
+        color="k",
+        linewidth=1.2,
+        label=f"reaction at {end} |F_{end}|",
+    )
+    axis.plot(time, np.hypot(force[:, 0], force[:, 1]) / 1e3, "--", label="its horizontal part |(F₁, F₂)|")
+    axis.plot(time, force[:, 2] / 1e3, "-.", label="its vertical part F₃ (down positive)")
     axis.set_xlabel("time t (s)")
-    axis.set_ylabel("force F (kN)")
-    axis.set_title(f"Force of the pipe on the {holder} at end {end}")
+    axis.set_ylabel("force (kN)")
+    reaction = f"the pipe's force on the {holder} at end {end}"
+    axis.set_title(f"Top tension and reaction ({reaction})" if end == "B" else f"Reaction: {reaction}")
     axis.legend(fontsize=8, loc="best")
     return _finish(figure, axes, path)
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -133,6 +134,7 @@ def video(
     max_frames: int = 600,
     dpi: float = 100,
     view: str = "side",
+    checks: Mapping[str, Any] | None = None,
 ) -> Path:
     """Writes the video of a run: a frame per record (at most `max_frames`, evenly decimated, the first and
     last kept), 1280 × 720 pixels at dpi 100.
@@ -148,6 +150,7 @@ def video(
         max_frames: the most frames (≥ 2).
         dpi: resolution (the figure is 12.8 × 7.2 inches).
         view: "side" (x against elevation −z, true scale), "plan" (x against y) or "both".
+        checks: keyword arguments of `pl.checks.dnv_st_f101` for the "utilisation" colour; None: its defaults.
 
     Returns:
         The path written.
@@ -164,7 +167,7 @@ def video(
         raise _input_error("view", view, ", ".join(VIEWS))
     fps = _positive("fps", fps)
     dpi = _positive("dpi", dpi)
-    scene = prepare(results, model, colour, max_frames)
+    scene = prepare(results, model, colour, max_frames, checks)
 
     figure = Figure(figsize=(_even(12.8, dpi), _even(7.2, dpi)), dpi=dpi, layout="constrained")
     FigureCanvasAgg(figure)

@@ -14,14 +14,18 @@ numbers), ``run`` (time span, records, stages, passivity margin and energy balan
 summary's minimum, mean and maximum; the extremes of `pipelay.analysis.extremes.extremes`, with their times
 and elements, and the DNV-ST-F101 utilisation for a pipe with a wall thickness), ``series`` (the figures of
 `pipelay.plots`, the response spectra of the top tension and of the hang-off bending moment and the most
-probable maxima of the top tension over a storm), ``replay`` (`pipelay.plots.replay.replay_html`, with
-plotly.js included once in the page's head). Every number in a table is in a cell whose ``id`` names it and
-whose ``data-value`` holds it exactly (``repr``), for a reader or a test to find.
+probable maxima of the top tension over a storm, on the stationary part of the run: `steady_window`),
+``replay`` (`pipelay.plots.replay.replay_html`, with plotly.js included once in the page's head).
+
+The tables show each quantity by its label, in the unit people read (kN, kN·m, degrees, percent; rollers
+numbered from 1: `pipelay.report.units`). Every number in a table is in a cell whose ``id`` names it, whose
+``data-value`` holds its SI value exactly (``repr``; a roller's Python index, from 0) and whose ``data-unit``
+names that SI unit, for a reader or a test to find.
 
 Imports of pipelay: the engine (`pipelay._core`), `pipelay.results` (`load`), `pipelay.analysis.extremes`,
 `pipelay.analysis.statistics`, `pipelay.analysis.stages`, `pipelay.analysis.sweep` (`STATISTICS`, the units),
-`pipelay.plots`, `pipelay.report.html`, `pipelay.scenario` (`scenario_of_results`) and, when a replay is asked
-for, `pipelay.plots.replay` (which imports plotly).
+`pipelay.plots`, `pipelay.report.html`, `pipelay.report.units`, `pipelay.scenario` (`scenario_of_results`) and,
+when a replay is asked for, `pipelay.plots.replay` (which imports plotly).
 """
 
 from __future__ import annotations
@@ -39,37 +43,29 @@ import numpy as np
 import numpy.typing as npt
 
 from pipelay._core import InputError, Model, Results
-from pipelay.analysis.extremes import extremes
+from pipelay.analysis.checks import dnv_st_f101, propagation_buckling
+from pipelay.analysis.extremes import extremes, record_state
 from pipelay.analysis.stages import top_elements
-from pipelay.analysis.statistics import METHODS, MIN_SAMPLES, most_probable_maximum, response_spectrum
+from pipelay.analysis.statistics import (
+    METHODS,
+    MIN_SAMPLES,
+    SETTLING_STEPS,
+    most_probable_maximum,
+    response_spectrum,
+    stationarity,
+    stationary_part,
+    top_tension,
+)
 from pipelay.analysis.sweep import STATISTICS
 from pipelay.report import html
 from pipelay.report.html import Cell, Markup, value_cell
+from pipelay.report.units import quantity, roller_cell
 from pipelay.results import load
 from pipelay.scenario import scenario_of_results
 
-__all__ = ["LAY_SUMMARY_UNITS", "START_FRACTION", "run_report", "steady_window", "toml_text"]
+__all__ = ["run_report", "steady_window", "toml_text"]
 
 FloatArray = npt.NDArray[np.float64]
-
-START_FRACTION = 0.1
-"""The start-up left out of the spectra and most probable maxima: this fraction of the record (or of the first
-stage)."""
-
-LAY_SUMMARY_UNITS: dict[str, str] = {
-    "top_tension": "N",
-    "departure_angle": "rad",
-    "liftoff_roller": "1",
-    "liftoff_arc_length": "m",
-    "inflection_arc_length": "m",
-    "layback": "m",
-    "touchdown_arc_length": "m",
-    "overbend_strain": "1",
-    "sagbend_strain": "1",
-    "sagbend_moment": "N m",
-    "tip_clearance": "m",
-}
-"""The units of the lay summary's series (``Results.lay_summary()``)."""
 
 NOT_RECORDED = "not recorded"
 
@@ -107,8 +103,9 @@ def run_report(
     replay : bool
         Include the 3-D replay (`pipelay.plots.replay.replay_html`, with plotly.js: about 5 MB).
     checks : mapping or None
-        Keyword arguments of ``pipelay.checks.dnv_st_f101`` (e.g. ``{"grade": "X65"}``) for the utilisation;
-        None: its defaults. Used only for a pipe section with a wall thickness.
+        Keyword arguments of ``pipelay.checks.dnv_st_f101`` and ``propagation_buckling`` (e.g.
+        ``{"safety_class": "low"}``) for the utilisations; None: the scenario's ``[checks]`` (``Scenario.checks``),
+        else the checks' defaults. Used only for a pipe section with a wall thickness.
 
     Returns
     -------
@@ -141,8 +138,8 @@ def run_report(
     body = [
         _inputs(results, model, scenario, file, stored),
         _the_run(results, model),
-        _checks(results, model, checks),
-        _series(results, model, storm),
+        _checks(results, model, checks if checks is not None else getattr(scenario, "checks", None)),
+        _series(results, model, scenario, storm),
     ]
     if replay:
         part, head = _replay(results, model, heading)
@@ -276,13 +273,9 @@ def _stages(results: Results, model: Model | None) -> Markup:
             if column == "name":
                 row.append(Cell(str(record[column]), header=True))
             else:
-                row.append(value_cell(record[column], id=f"stage-{k}-{column}"))
+                row.append(quantity(column).cell(record[column], id=f"stage-{k}-{column}"))
         rows.append(row)
-    units = {"start": "s", "end": "s", "head_x": "m", "head_z": "m", "head_height_min": "m"}
-    units |= {name: "N" for name in ("wire_tension_max", "wire_tension_min", "pipe_force_min")}
-    units |= {name: "m" for name in ("touchdown_min", "touchdown_max", "tip_clearance_min")}
-    units |= {"roller_reaction_max": "N", "top_tension_max": "N", "top_tension_min": "N"}
-    header = [column if column not in units else f"{column} ({units[column]})" for column in columns]
+    header = ["stage" if column == "name" else quantity(column).heading for column in columns]
     return html.table(header, rows, id="stages")
 
 
@@ -316,29 +309,7 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
     if summary is None:
         parts.append(html.subsection("Lay summary", html.note("no lay summary: the model has no vessel")))
     else:
-        rows = []
-        for key, series in summary.items():
-            values = np.asarray(series, dtype=np.float64)
-            finite = values[np.isfinite(values)]
-            low, mean, high = (
-                (float(finite.min()), float(finite.mean()), float(finite.max()))
-                if finite.size
-                else (None,) * 3
-            )
-            rows.append(
-                [
-                    Cell(key, header=True),
-                    value_cell(low, id=f"lay-{key}-min"),
-                    value_cell(mean, id=f"lay-{key}-mean"),
-                    value_cell(high, id=f"lay-{key}-max"),
-                    LAY_SUMMARY_UNITS.get(key, ""),
-                ]
-            )
-        parts.append(
-            html.subsection(
-                "Lay summary", html.table(["series", "min", "mean", "max", "unit"], rows, id="lay-summary")
-            )
-        )
+        parts.append(html.subsection("Lay summary", _lay_summary(results, summary)))
     section = model.rod.section if model is not None else None
     dnv = dict(checks or {}) if section is not None and section.wall_thickness is not None else None
     try:
@@ -351,11 +322,12 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
         if key.endswith(("_time", "_element")):
             continue
         element = found.get(f"{key}_element")
+        shown = quantity(key, STATISTICS[key][0] if key in STATISTICS else "")
         rows.append(
             [
-                Cell(key, header=True),
-                value_cell(value, id=f"extreme-{key}"),
-                STATISTICS[key][0] if key in STATISTICS else "",
+                Cell(shown.label, header=True),
+                shown.cell(value, id=f"extreme-{key}"),
+                shown.shown or "—",
                 value_cell(found.get(f"{key}_time"), id=f"extreme-{key}-time"),
                 Cell(html.number(element), id=f"extreme-{key}-element", numeric=True),
                 STATISTICS[key][1] if key in STATISTICS else "",
@@ -367,9 +339,7 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
     elif dnv is None:
         said.append("the section has no wall thickness: no DNV-ST-F101 utilisation")
     else:
-        said.append(
-            f"DNV-ST-F101 local buckling with {json.dumps(dnv, default=str) if dnv else 'its default parameters'}"
-        )
+        said.append("the DNV-ST-F101 utilisation on the basis of the code checks below")
     parts.append(
         html.subsection(
             "Extremes",
@@ -377,35 +347,209 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
             html.table(["quantity", "value", "unit", "time (s)", "element", "meaning"], rows, id="extremes"),
         )
     )
+    if model is not None and dnv is not None:
+        parts.append(_code_checks(results, model, dnv))
     return html.section("checks", "Lay summary and code checks", *parts)
+
+
+def _lay_summary(results: Results, summary: Mapping[str, Any]) -> Markup:
+    """The lay summary's minimum, mean and maximum over the run, each quantity in the unit people read; the
+    lift-off roller numbered from 1 (no mean: it names a roller)."""
+    rollers = results.roller_reactions
+    count = None if rollers is None else int(np.asarray(rollers).shape[1])
+    rows = []
+    for key, series in summary.items():
+        values = np.asarray(series, dtype=np.float64)
+        finite = values[np.isfinite(values)]
+        low, mean, high = (
+            (float(finite.min()), float(finite.mean()), float(finite.max())) if finite.size else (None,) * 3
+        )
+        shown = quantity(key)
+        if key == "liftoff_roller":
+            cells = [
+                roller_cell(low, count, id=f"lay-{key}-min"),
+                Cell("—", id=f"lay-{key}-mean"),
+                roller_cell(high, count, id=f"lay-{key}-max"),
+                "numbered from 1 in the stinger's order",
+            ]
+        else:
+            cells = [
+                shown.cell(low, id=f"lay-{key}-min"),
+                shown.cell(mean, id=f"lay-{key}-mean"),
+                shown.cell(high, id=f"lay-{key}-max"),
+                shown.shown or "—",
+            ]
+        rows.append([Cell(shown.label, header=True), *cells])
+    return html.table(["quantity", "min", "mean", "max", "unit"], rows, id="lay-summary")
+
+
+def _code_checks(results: Results, model: Model, checks: Mapping[str, Any]) -> Markup:
+    """The DNV-ST-F101 checks of the run's first record (the static state it starts from), on the basis they
+    are taken on, with the governing elements and the propagation buckling advice."""
+    state = record_state(results, 0, model=model)
+    check = dnv_st_f101(state, **checks)
+    propagation = propagation_buckling(state, **checks)
+    nodes = np.asarray(model.rod.nodes, dtype=np.float64)
+    arcs = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(nodes, axis=0), axis=1))])
+    rows = []
+    for key, label, values in (
+        ("load_controlled", "load-controlled (local buckling)", check.load_controlled),
+        (
+            "displacement_controlled",
+            "displacement-controlled (local buckling)",
+            check.displacement_controlled,
+        ),
+        ("propagation", "propagation buckling", propagation.utilisation),
+    ):
+        worst = int(np.argmax(values))
+        middle = 0.5 * (arcs[worst] + arcs[worst + 1]) if worst + 1 < len(arcs) else math.nan
+        rows.append(
+            [
+                Cell(label, header=True),
+                value_cell(float(values[worst]), id=f"check-{key}"),
+                Cell(html.number(worst), id=f"check-{key}-element", numeric=True),
+                value_cell(middle, id=f"check-{key}-arc"),
+            ]
+        )
+    parts = [
+        html.paragraph(
+            f"At t = {state.time:g} s (the first record: the static state the run starts from), on the basis "
+            f"{check.basis}. Elements are numbered from 0 at end A; the arc length is along the reference."
+        ),
+        html.table(["check", "utilisation", "element", "arc length from A (m)"], rows, id="code-checks"),
+    ]
+    advice = propagation.arrestors or "no buckle arrestors needed: the propagation check holds along the pipe"
+    parts.append(html.paragraph(f"Propagation buckling: {advice}."))
+    parts.extend(html.note(note) for note in (*check.notes, *propagation.notes))
+    return html.subsection("Code checks", *parts)
 
 
 # --- time series and spectra -----------------------------------------------------------------------------
 
 
-def steady_window(results: Results, model: Model | None = None) -> tuple[float, float, str]:
-    """The records the spectra and most probable maxima are taken over: (start, end) (s) and a sentence that
-    says which. The start-up left out is `START_FRACTION` of the first stage (a staged run) or of the record,
-    and at least the waves' build-up (``model.sea.waves.ramp``, from t = 0) when the model has waves.
+def steady_window(
+    results: Results, model: Model | None = None, scenario: Any = None
+) -> tuple[float, float, str]:
+    """The stationary part of a run, over which the report takes its spectra and most probable maxima: the
+    start and end (s) and a sentence that says how they were found.
+
+    The end is the last record, or the end of the first stage of a run through stages. The start is found in
+    two steps:
+
+    1. the latest of the known starts of what loads the run: its first record (the first stage's start), the
+       end of the waves' build-up (``model.sea.waves.ramp``, from t = 0), the current's start
+       (``model.sea.current.start``) and, in the scenario, the controller's (``controller.start``), its
+       tension loop's (``controller.tension.start``), its route's (``controller.route.start_time``) and each
+       environmental force's (``environment[k].start``);
+    2. the start-up transient, measured: the first of the starts tried every 1/20 of the records left, over
+       their first half, from which the top tension (`pipelay.analysis.statistics.top_tension`) is a
+       stationary record (`pipelay.analysis.statistics.stationary_part`: at least 30 of its mean zero
+       up-crossing periods Tz, a trend of at most 0.25 σ, its halves' standard deviations within a factor 2).
+
+    Parameters
+    ----------
+    results : pipelay.Results
+        The run.
+    model : pipelay.Model or None
+        Its model (the sea's waves and current); None: only the records and the scenario say.
+    scenario : pipelay.scenario.Scenario or None
+        Its scenario (``scenario.source``: the controller's and environmental forces' starts); None: none.
+
+    Returns
+    -------
+    tuple of float, float, str
+        The window's first and last record's times (s), and how the window was found.
+
+    Raises
+    ------
+    pipelay.InputError
+        Naming `results`, when the records after the known starts are not evenly spaced or too few, or no
+        start leaves a stationary top tension (with the stationarity test's reason: too short, a trend, a
+        changing spread).
     """
     time = np.asarray(results.time, dtype=np.float64)
+    known = [("the first record", float(time[0]))]
+    end, until = float(time[-1]), "the last record"
     starts, names = results.stage_starts, results.stage_names
     if starts is not None and names and len(starts) >= 2:
-        begin, end = float(starts[0]), float(starts[1])
-        said = f"the first stage ({names[0]}) from its {START_FRACTION:.0%} mark"
-    else:
-        begin, end = float(time[0]), float(time[-1])
-        said = f"the record from its {START_FRACTION:.0%} mark"
-    start = begin + START_FRACTION * (end - begin)
+        known.append((f"the first stage's start ({names[0]})", float(starts[0])))
+        end, until = float(starts[1]), f"the end of the first stage ({names[0]})"
+    known.extend(_known_starts(model, scenario))
+    after, begin = max(known, key=lambda item: item[1])
+    inside = _between(time, begin, end)
+    window = time[inside]
+    if window.size < MIN_SAMPLES:
+        raise InputError(
+            f"results: {window.size} records from t = {begin:g} s ({after}) to t = {end:g} s ({until}); "
+            f"allowed: at least {MIN_SAMPLES}"
+        )
+    steps = np.diff(window)
+    dt = float(np.median(steps))
+    if np.ptp(steps) > 1e-6 * dt:
+        raise InputError(
+            f"results: records from t = {begin:g} s to {end:g} s at uneven intervals ({steps.min():g} to "
+            f"{steps.max():g} s); allowed: a constant record interval"
+        )
+    try:
+        first, found = stationary_part(top_tension(results)[inside], dt)
+    except InputError as error:
+        raise InputError(
+            f"results: the top tension from t = {begin:g} s ({after}) to t = {end:g} s ({until}) is not a "
+            f"stationary record: {str(error).removeprefix('series: ')}"
+        ) from None
+    start = float(window[first])
+    settled = (
+        "stationary from there"
+        if first == 0
+        else f"then the start-up transient, settled by t = {start:g} s (the first of the starts tried every "
+        f"1/{SETTLING_STEPS} of the records that leaves a stationary top tension)"
+    )
+    ratio = max(found.halves) / min(found.halves)
+    said = (
+        f"t = {start:g} s to {end:g} s ({until}): after {after} at t = {begin:g} s, {settled}; "
+        f"{found.periods:.0f} periods Tz = {found.tz:.3g} s of the top tension, its trend {found.trend:+.2f} σ, "
+        f"its halves' standard deviations a factor {ratio:.2f} apart"
+    )
+    return start, end, said
+
+
+def _known_starts(model: Model | None, scenario: Any) -> list[tuple[str, float]]:
+    """What starts loading the run and when (s): the waves' build-up's end and the current's start (the
+    model's sea), the controller's, its tension loop's and route's and the environmental forces' starts (the
+    scenario's data)."""
+    found: list[tuple[str, float]] = []
     sea = model.sea if model is not None else None
-    waves = sea.waves if sea is not None else None
-    if waves is not None and waves.ramp > start:
-        start = float(waves.ramp)
-        said += f", moved to the end of the waves' build-up at t = {start:g} s"
-    return start, end, f"{said}: t = {start:g} s to {end:g} s"
+    if sea is not None and sea.waves is not None:
+        found.append(("the waves' build-up (sea.waves.ramp)", float(sea.waves.ramp)))
+    if sea is not None and sea.current is not None:
+        found.append(("the current's start (sea.current.start)", float(sea.current.start)))
+    source = getattr(scenario, "source", None) or {}
+    controller = source.get("controller")
+    controller = controller if isinstance(controller, Mapping) else {}
+    tables = {
+        "controller.start": (controller, "start"),
+        "controller.tension.start": (controller.get("tension"), "start"),
+        "controller.route.start_time": (controller.get("route"), "start_time"),
+    }
+    forces = source.get("environment")
+    for k, force in enumerate(forces if isinstance(forces, list) else []):
+        tables[f"environment[{k}].start"] = (force, "start")
+    for name, (table, key) in tables.items():
+        value = table.get(key) if isinstance(table, Mapping) else None
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            found.append((f"its start ({name})", float(value)))
+    return found
 
 
-def _series(results: Results, model: Model | None, storm: float) -> Markup:
+def _between(time: FloatArray, start: float, end: float) -> npt.NDArray[np.bool_]:
+    """Which records lie from `start` to `end` (s), with a relative margin of 1e-9 for round-off."""
+    inside: npt.NDArray[np.bool_] = (time >= start - 1e-9 * max(1.0, abs(start))) & (
+        time <= end + 1e-9 * max(1.0, abs(end))
+    )
+    return inside
+
+
+def _series(results: Results, model: Model | None, scenario: Any, storm: float) -> Markup:
     from pipelay import plots
 
     depth = model.sea.depth if model is not None and model.sea is not None else None
@@ -417,7 +561,7 @@ def _series(results: Results, model: Model | None, storm: float) -> Markup:
             "The pipe's shape: first, middle and last records",
             lambda: plots.shape(results, depth=depth),
         ),
-        ("top_tension", "The force of the pipe at end B", lambda: plots.top_tension(results)),
+        ("top_tension", "The top tension and the reaction at end B", lambda: plots.top_tension(results)),
     ]
     if results.eta is not None:
         drawn.append(("vessel_motion", "The vessel's pose η(t)", lambda: plots.vessel_motion(results)))
@@ -453,15 +597,8 @@ def _series(results: Results, model: Model | None, storm: float) -> Markup:
             )
             continue
         parts.append(html.figure(chart, name=name, caption=caption))
-    parts.append(_spectra(results, model, storm))
+    parts.append(_spectra(results, model, scenario, storm))
     return html.section("series", "Time series and spectra", *parts)
-
-
-def _top_tension(results: Results) -> FloatArray:
-    """|F_B| (T,) (N): the force of the pipe on what holds end B."""
-    force = np.asarray(results.reaction("B"), dtype=np.float64)[:, :3]
-    top: FloatArray = np.linalg.norm(force, axis=1)
-    return top
 
 
 def _hang_off_moment(results: Results) -> FloatArray:
@@ -473,69 +610,52 @@ def _hang_off_moment(results: Results) -> FloatArray:
     return moment
 
 
-def _spectra(results: Results, model: Model | None, storm: float) -> Markup:
-    """The response spectra of the top tension and the hang-off moment, and the top tension's MPMs."""
-    time = np.asarray(results.time, dtype=np.float64)
-    start, end, said = steady_window(results, model)
-    inside = (time >= start - 1e-9 * max(1.0, abs(start))) & (time <= end + 1e-9 * max(1.0, abs(end)))
-    window = time[inside]
+def _spectra(results: Results, model: Model | None, scenario: Any, storm: float) -> Markup:
+    """The response spectra of the top tension and the hang-off moment, and the top tension's MPMs, over the
+    stationary part of the run (`steady_window`); refused, with the reason, without one."""
     heading = "Response spectra and most probable maxima"
+    try:
+        start, end, said = steady_window(results, model, scenario)
+    except InputError as error:
+        text = f"spectra and most probable maxima refused: {error}"
+        return html.subsection(heading, html.note(text, kind="refused"))
+    time = np.asarray(results.time, dtype=np.float64)
+    inside = _between(time, start, end)
+    window = time[inside]
+    dt = float(np.median(np.diff(window)))
     where = Markup(
         f'<p id="window" data-start="{start!r}" data-end="{end!r}" data-records="{window.size}">'
-        f"{html.escape(f'Taken over {said} ({window.size} records), the start-up left out.')}</p>"
+        f"{html.escape(f'Taken over the stationary part of the run, {said} ({window.size} records).')}</p>"
     )
     series = {
-        "top_tension": _top_tension(results)[inside],
+        "top_tension": top_tension(results)[inside],
         "hang_off_moment": _hang_off_moment(results)[inside],
-    }
-    top = series["top_tension"]
-    if window.size < MIN_SAMPLES or not np.all(np.isfinite(top)) or np.ptp(top) <= 0.0:
-        reason = (
-            f"{window.size} records, fewer than {MIN_SAMPLES}"
-            if window.size < MIN_SAMPLES
-            else "the top tension does not vary"
-        )
-        return html.subsection(heading, where, html.note(f"spectra skipped: {reason}", kind="skipped"))
-    steps = np.diff(window)
-    dt = float(np.median(steps))
-    if np.ptp(steps) > 1e-6 * dt:
-        return html.subsection(
-            heading, where, html.note("spectra skipped: the records are not evenly spaced", kind="skipped")
-        )
-    labels = {
-        "top_tension": ("top tension |F_B|", "N", 1e3, "kN"),
-        "hang_off_moment": ("bending moment of the top element (hang-off)", "N m", 1e3, "kN·m"),
     }
     spectra = {}
     notes: list[str] = []
     for key, values in series.items():
-        if not np.all(np.isfinite(values)) or np.ptp(values) <= 1e-9 * max(
-            1.0, float(np.max(np.abs(values)))
-        ):
-            notes.append(html.note(f"no spectrum of the {labels[key][0]}: it does not vary", kind="skipped"))
-            continue
         try:
+            stationarity(values, dt)
             spectra[key] = response_spectrum(values, dt)
         except InputError as error:
-            notes.append(html.note(f"no spectrum of the {labels[key][0]}: {error}", kind="skipped"))
+            notes.append(html.note(f"no spectrum of the {quantity(key).label}: {error}", kind="refused"))
     rows = []
     for key, spectrum in spectra.items():
+        shown = quantity(key)
         rows.append(
             [
-                Cell(labels[key][0], header=True),
-                value_cell(spectrum.mean, id=f"spectrum-{key}-mean"),
-                value_cell(spectrum.std, id=f"spectrum-{key}-std"),
+                Cell(shown.label, header=True),
+                shown.cell(spectrum.mean, id=f"spectrum-{key}-mean"),
+                shown.cell(spectrum.std, id=f"spectrum-{key}-std"),
                 value_cell(spectrum.tz, id=f"spectrum-{key}-tz"),
                 value_cell(spectrum.bandwidth, id=f"spectrum-{key}-bandwidth"),
                 value_cell(spectrum.segment, id=f"spectrum-{key}-segment"),
-                labels[key][1],
+                shown.shown,
             ]
         )
     parts: list[str] = [where, *notes]
     if spectra:
-        parts.append(
-            html.figure(_spectrum_figure(spectra, labels), name="spectra", caption="Response spectra")
-        )
+        parts.append(html.figure(_spectrum_figure(spectra), name="spectra", caption="Response spectra"))
         parts.append(
             html.table(
                 ["series", "mean", "σ", "Tz (s)", "bandwidth ε", "Welch segment (s)", "unit"],
@@ -543,12 +663,12 @@ def _spectra(results: Results, model: Model | None, storm: float) -> Markup:
                 id="spectra",
             )
         )
-    parts.append(_maxima(top, dt, storm))
+    parts.append(_maxima(series["top_tension"], dt, storm))
     return html.subsection(heading, *parts)
 
 
-def _spectrum_figure(spectra: Mapping[str, Any], labels: Mapping[str, tuple[str, str, float, str]]) -> Any:
-    """The spectra, one panel each, on an Agg canvas (pyplot is not used)."""
+def _spectrum_figure(spectra: Mapping[str, Any]) -> Any:
+    """The spectra, one panel each, in the units people read, on an Agg canvas (pyplot is not used)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -556,12 +676,13 @@ def _spectrum_figure(spectra: Mapping[str, Any], labels: Mapping[str, tuple[str,
     FigureCanvasAgg(chart)
     axes = chart.subplots(len(spectra), 1, squeeze=False).ravel()
     for axis, (key, spectrum) in zip(axes, spectra.items(), strict=True):
-        name, _, scale, unit = labels[key]
-        axis.plot(spectrum.frequency, spectrum.density / scale**2, color="k")
+        shown = quantity(key)
+        axis.plot(spectrum.frequency, spectrum.density * shown.scale**2, color="k")
         axis.set_xlabel("frequency f (Hz)")
-        axis.set_ylabel(f"S(f) ({unit}²/Hz)")
+        axis.set_ylabel(f"S(f) ({shown.shown}²/Hz)")
         axis.set_title(
-            f"{name}: σ = {spectrum.std / scale:.4g} {unit}, Tz = {spectrum.tz:.3g} s", fontsize=10
+            f"{shown.label}: σ = {spectrum.std * shown.scale:.4g} {shown.shown}, Tz = {spectrum.tz:.3g} s",
+            fontsize=10,
         )
         axis.grid(alpha=0.3)
         # Up to where the spectrum has all but 0.1 % of its variance, with room to spare.
@@ -575,6 +696,7 @@ def _spectrum_figure(spectra: Mapping[str, Any], labels: Mapping[str, tuple[str,
 
 def _maxima(top: FloatArray, dt: float, storm: float) -> Markup:
     """The table of the top tension's most probable maxima over `storm` by the three methods."""
+    shown = quantity("top_tension")
     rows = []
     for method in METHODS:
         try:
@@ -583,18 +705,21 @@ def _maxima(top: FloatArray, dt: float, storm: float) -> Markup:
             rows.append(
                 [
                     Cell(method, header=True),
-                    Cell("not computed", id=f"mpm-{method}", data={"value": "nan"}),
-                    "N",
+                    Cell("not computed", id=f"mpm-{method}", data={"value": "nan", "unit": shown.unit}),
+                    shown.shown,
                     f"{error}",
                 ]
             )
             continue
         fit = ", ".join(f"{key} {html.number(value, 4)}" for key, value in found.parameters.items())
-        rows.append([Cell(method, header=True), value_cell(found.value, id=f"mpm-{method}"), "N", fit])
+        rows.append(
+            [Cell(method, header=True), shown.cell(found.value, id=f"mpm-{method}"), shown.shown, fit]
+        )
     intro = html.paragraph(
-        f"Most probable maxima of the top tension |F_B| over a storm of {storm:g} s ({storm / 3600:.3g} h), from "
-        f"{top.size} records of {dt:g} s (largest in the record {html.number(float(top.max()))} N). Each method "
-        "assumes a stationary record (see pipelay.analysis.statistics)."
+        f"Most probable maxima of the top tension over a storm of {storm:g} s ({storm / 3600:.3g} h), from the "
+        f"{top.size} records of {dt:g} s above (largest in the record {html.number(float(top.max()) * shown.scale)} "
+        f"{shown.shown}). Each method assumes the record is a sample of the storm's stationary process (see "
+        "pipelay.analysis.statistics); the fits' parameters are in SI units (N, s)."
     )
     return Markup(
         intro + html.table(["method", "most probable maximum", "unit", "fit"], rows, id="mpm", caption="MPM")
