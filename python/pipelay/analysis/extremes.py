@@ -19,7 +19,7 @@ where it is shown.
 Units: N, N·m, s; strains and utilisations are dimensionless. `pipelay.analysis.statistics` exposes both with
 the statistics of time series (``pl.statistics.extremes``).
 
-Imports of pipelay: `pipelay.analysis.checks` and `pipelay.analysis.stages` (`top_elements`).
+Imports of pipelay: `pipelay.analysis.checks`.
 """
 
 from __future__ import annotations
@@ -40,9 +40,8 @@ from pipelay.analysis.checks import (
     _records_utilisation,
     dnv_st_f101,
 )
-from pipelay.analysis.stages import top_elements
 
-__all__ = ["extremes", "record_state", "utilisation"]
+__all__ = ["extremes", "record_state", "top_elements", "top_tension", "utilisation"]
 
 FloatArray = NDArray[np.float64]
 
@@ -138,6 +137,13 @@ def extremes(
             _put(found, "load_controlled_max", load, time, largest=True)
             _put(found, "displacement_controlled_max", displacement, time, largest=True)
     return found
+
+
+def top_elements(segment: FloatArray) -> NDArray[np.int64]:
+    """The last element each record has (T,), of `segment` (T, n) (the rest is NaN padding of a run with
+    pay-out)."""
+    finite = np.isfinite(segment)
+    return segment.shape[1] - 1 - np.argmax(finite[:, ::-1], axis=1)
 
 
 def top_tension(results: Any) -> FloatArray:

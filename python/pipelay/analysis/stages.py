@@ -21,8 +21,9 @@ import numpy as np
 import numpy.typing as npt
 
 from pipelay._core import InputError, Model, Results
+from pipelay.analysis.extremes import top_elements, utilisation
 
-__all__ = ["head_positions", "stage_summary", "staged", "top_elements", "wire_elements", "wire_segments"]
+__all__ = ["head_positions", "stage_summary", "staged", "wire_elements", "wire_segments"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -38,13 +39,6 @@ def staged(results: Results, caller: str) -> tuple[npt.NDArray[np.int64], list[s
     if stage is None or names is None or starts is None:
         raise InputError(f"results: results of a run through pl.Stages ({caller}), got a run without stages")
     return np.asarray(stage, dtype=np.int64), list(names), np.asarray(starts, dtype=np.float64)
-
-
-def top_elements(segment: FloatArray) -> npt.NDArray[np.int64]:
-    """The last element each record has (T,), of `segment` (T, n) (the rest is NaN padding of a run with
-    pay-out)."""
-    finite = np.isfinite(segment)
-    return segment.shape[1] - 1 - np.argmax(finite[:, ::-1], axis=1)
 
 
 def wire_segments(results: Results, model: Model | None = None) -> set[int]:
@@ -158,7 +152,6 @@ def _pipe_utilisation(
     results: Results, model: Model | None, checks: Mapping[str, Any], is_pipe: npt.NDArray[np.bool_]
 ) -> FloatArray:
     """The DNV-ST-F101 utilisation of the pipe's elements at every record (T, n), NaN on the wire's."""
-    from pipelay.analysis.extremes import utilisation
 
     if model is None:
         raise InputError("model: the model run, for the checks of stage_summary (its pipe section), got None")

@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from pipelay.analysis.checks import DEFAULT_GRADE, DEFAULT_YOUNGS_MODULUS, GRADES
-from pipelay.analysis.stages import top_elements
+from pipelay.analysis.extremes import top_elements
 
 __all__ = [
     "HEEL_LIMIT",

@@ -22,8 +22,8 @@ numbered from 1: `pipelay.report.units`). Every number in a table is in a cell w
 ``data-value`` holds its SI value exactly (``repr``; a roller's Python index, from 0) and whose ``data-unit``
 names that SI unit, for a reader or a test to find.
 
-Imports of pipelay: the engine (`pipelay._core`), `pipelay.results` (`load`), `pipelay.analysis.extremes`,
-`pipelay.analysis.statistics`, `pipelay.analysis.stages`, `pipelay.analysis.sweep` (`STATISTICS`, the units),
+Imports of pipelay: the engine (`pipelay._core`), `pipelay.results` (`load`), `pipelay.analysis.checks`,
+`pipelay.analysis.extremes`, `pipelay.analysis.statistics`, `pipelay.analysis.sweep` (`STATISTICS`, the units),
 `pipelay.plots`, `pipelay.report.html`, `pipelay.report.units`, `pipelay.scenario` (`scenario_of_results`) and,
 when a replay is asked for, `pipelay.plots.replay` (which imports plotly).
 """
@@ -44,8 +44,7 @@ import numpy.typing as npt
 
 from pipelay._core import InputError, Model, Results
 from pipelay.analysis.checks import dnv_st_f101, propagation_buckling
-from pipelay.analysis.extremes import extremes, record_state
-from pipelay.analysis.stages import top_elements
+from pipelay.analysis.extremes import extremes, record_state, top_elements
 from pipelay.analysis.statistics import (
     METHODS,
     MIN_SAMPLES,
