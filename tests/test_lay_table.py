@@ -80,6 +80,7 @@ def assert_row_is(table: xr.Dataset, depth: float) -> None:
         "liftoff_roller": summary["liftoff_roller"] + 1,
         "load_controlled_max": np.max(check.load_controlled),
         "displacement_controlled_max": np.max(check.displacement_controlled),
+        "propagation_max": pl.checks.propagation_buckling(state, **scenario.checks).max(),
         "pipe_length": length,
     }
     for name, value in expected.items():

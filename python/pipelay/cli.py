@@ -960,6 +960,7 @@ def _lay_table(args: argparse.Namespace) -> int:
         ("lift-off", "liftoff_roller", 1.0, ".0f"),
         ("LC util.", "load_controlled_max", 1.0, ".3f"),
         ("DC util.", "displacement_controlled_max", 1.0, ".3f"),
+        ("PB util.", "propagation_max", 1.0, ".3f"),
     )
     print(" ".join(f"{title:>11}" for title, *_ in columns))
     for k in range(table.sizes["depth"]):
@@ -971,7 +972,7 @@ def _lay_table(args: argparse.Namespace) -> int:
     print("lift-off: the last roller in contact, numbered from 1 at the stinger's vessel end")
     basis = next((str(text) for text in table["utilisation_basis"].values if text), "")
     if basis:
-        print(f"utilisations (LC load-, DC displacement-controlled): {basis}")
+        print(f"utilisations (LC load-, DC displacement-controlled, PB propagation buckling): {basis}")
     depths = table["depth"].values
     for depth, text in zip(depths, table["warning"].values, strict=True):
         if text:

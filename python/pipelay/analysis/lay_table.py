@@ -147,6 +147,11 @@ COLUMNS: dict[str, Column] = {
         "largest DNV-ST-F101 displacement-controlled utilisation along the pipe",
         "displacement_controlled_max",
     ),
+    "propagation_max": Column(
+        "1",
+        "largest DNV-ST-F101 propagation buckling utilisation along the pipe (> 1: buckle arrestors needed)",
+        "propagation_max",
+    ),
     "pipe_length": Column(
         "m", "the pipe's reference length at this depth (lengthened with depth)", "pipe_length_m"
     ),
@@ -377,6 +382,7 @@ def _row(state: pl.State, x: float, length: float, solves: int, checks: Mapping[
         "liftoff_roller": math.nan if liftoff is None else float(liftoff + 1),
         "load_controlled_max": math.nan,
         "displacement_controlled_max": math.nan,
+        "propagation_max": math.nan,
         "pipe_length": length,
         "solves": float(solves),
         "utilisation_basis": "",
@@ -387,6 +393,7 @@ def _row(state: pl.State, x: float, length: float, solves: int, checks: Mapping[
         check = pl.checks.dnv_st_f101(state, **checks)
         row["load_controlled_max"] = float(np.max(check.load_controlled))
         row["displacement_controlled_max"] = float(np.max(check.displacement_controlled))
+        row["propagation_max"] = pl.checks.propagation_buckling(state, **checks).max()
         row["utilisation_basis"] = check.basis
     return row
 

@@ -24,7 +24,11 @@ _PANELS: tuple[tuple[str, tuple[str, ...], str], ...] = (
     ("strain", ("overbend_strain", "sagbend_strain"), "%"),
     ("tip clearance", ("tip_clearance",), "m"),
     ("largest roller load (lift-off roller)", ("roller_reaction_max",), "kN"),
-    ("DNV-ST-F101 utilisation", ("load_controlled_max", "displacement_controlled_max"), "–"),
+    (
+        "DNV-ST-F101 utilisation",
+        ("load_controlled_max", "displacement_controlled_max", "propagation_max"),
+        "–",
+    ),
 )
 """The panels: title, the table's variables drawn in it, their unit (the CSV's)."""
 
@@ -33,10 +37,11 @@ _LABELS = {
     "sagbend_strain": "sagbend",
     "load_controlled_max": "load-controlled",
     "displacement_controlled_max": "displacement-controlled",
+    "propagation_max": "propagation buckling",
     "vessel_x": "vessel η x",
     "pipe_length": "pipe's length",
 }
-"""Legend labels of the panels with two variables."""
+"""Legend labels of the panels with more than one variable."""
 
 
 def lay_table(table: Any, path: _PathLike | None = None) -> Figure:
