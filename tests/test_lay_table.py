@@ -283,3 +283,19 @@ def test_bad_input_is_refused_before_any_solve(
         del data["vessel"]["lay"]["stinger"]
     with pytest.raises(pl.InputError, match=named.replace("(", r"\(")):
         pl.lay_table(parse_scenario(data), depths=depths, target=target)
+
+
+def test_a_j_lay_table_has_no_stinger_columns() -> None:
+    """examples/j_lay_dp.toml (a tower, no stinger) at 800 and 1000 m for 700 kN: the overbend strain, tip
+    clearance and roller columns are empty, as the summaries print them, while the sagbend and the checks are
+    those of a standalone solve; the lay summary's data still hold the strain below the tower."""
+    scenario = S_LAY.parent / "j_lay_dp.toml"
+    table = pl.lay_table(scenario, depths=[800.0, 1000.0], target={"top_tension": 7e5})
+    for name in ("overbend_strain", "tip_clearance", "roller_reaction_max", "liftoff_roller"):
+        assert np.all(np.isnan(table[name].values)), name
+    assert np.all(np.isfinite(table["sagbend_strain"].values))
+    deep = scenario_at(scenario, 1000.0, float(table["vessel_x"].values[1]))
+    state = deep.model.static(steps=deep.static_steps, start=deep.static_start)
+    summary = state.lay_summary()
+    assert float(table["sagbend_strain"].values[1]) == pytest.approx(summary["sagbend_strain"], rel=1e-9)
+    assert summary["overbend_strain"] > 0.0  # the bend below the tower, in the data, not named an overbend

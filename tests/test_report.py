@@ -341,6 +341,10 @@ def test_the_stage_table_shows_labels_and_units(tmp_path: Path) -> None:
     summary = results.stage_summary(scenario.model)
     table = page.text("stages")
     assert "largest top tension (kN)" in table and "largest strain (%)" in table and "start (s)" in table
+    # a J-lay tower has no stinger: its lay summary has no overbend, lift-off roller or tip clearance
+    lay = page.text("lay-summary")
+    assert "departure angle" in lay and "sagbend strain" in lay
+    assert "overbend" not in lay and "lift-off roller" not in lay and "tip clearance" not in lay
     assert "top_tension_max" not in table
     for k in range(3):
         top = float(summary["top_tension_max"][k])

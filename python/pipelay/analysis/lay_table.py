@@ -375,7 +375,8 @@ def _row(state: pl.State, x: float, length: float, solves: int, checks: Mapping[
         "top_tension": float(summary["top_tension"]),
         "departure_angle": float(summary["departure_angle"]),
         "layback": float(summary["layback"]),
-        "overbend_strain": float(summary["overbend_strain"]),
+        # A lay without a stinger (a J-lay tower) has no overbend, as the summaries say.
+        "overbend_strain": math.nan if rollers is None else float(summary["overbend_strain"]),
         "sagbend_strain": float(summary["sagbend_strain"]),
         "tip_clearance": float(summary["tip_clearance"]),
         "roller_reaction_max": float(np.max(rollers)) if rollers is not None and len(rollers) else math.nan,

@@ -351,13 +351,20 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
     return html.section("checks", "Lay summary and code checks", *parts)
 
 
+STINGER_ONLY = ("liftoff_roller", "overbend_strain", "tip_clearance")
+"""The lay summary's quantities that only a stinger has: a lay without rollers (a J-lay tower) leaves them out."""
+
+
 def _lay_summary(results: Results, summary: Mapping[str, Any]) -> Markup:
     """The lay summary's minimum, mean and maximum over the run, each quantity in the unit people read; the
-    lift-off roller numbered from 1 (no mean: it names a roller)."""
+    lift-off roller numbered from 1 (no mean: it names a roller); without rollers, only what a lay without a
+    stinger has (`STINGER_ONLY` left out)."""
     rollers = results.roller_reactions
     count = None if rollers is None else int(np.asarray(rollers).shape[1])
     rows = []
     for key, series in summary.items():
+        if rollers is None and key in STINGER_ONLY:
+            continue
         values = np.asarray(series, dtype=np.float64)
         finite = values[np.isfinite(values)]
         low, mean, high = (
