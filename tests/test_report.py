@@ -186,12 +186,16 @@ def test_run_report_prints_the_numbers_of_the_analysis(
     assert page.text("lay-departure_angle-max") == number(math.degrees(departure))
     assert page.value("lay-departure_angle-max") == departure
     assert page.attributes["lay-departure_angle-max"]["data-unit"] == "rad"
-    assert page.text("lay-overbend_strain-max") == number(100.0 * float(np.nanmax(lay["overbend_strain"])))
+    assert page.text("lay-sagbend_strain-max") == number(100.0 * float(np.nanmax(lay["sagbend_strain"])))
     lay_rows = page.text("lay-summary")
-    assert all(
-        label in lay_rows for label in ("top tension", "departure angle", "lift-off roller", "kN", "°")
-    )
+    assert all(label in lay_rows for label in ("top tension", "departure angle", "sagbend strain", "kN", "°"))
     assert "top_tension" not in lay_rows and "departure_angle" not in lay_rows
+    # a J-lay tower, no stinger: no overbend, lift-off roller or tip clearance rows
+    assert results.roller_reactions is None
+    assert (
+        "overbend" not in lay_rows and "lift-off roller" not in lay_rows and "tip clearance" not in lay_rows
+    )
+    assert "lay-overbend_strain-max" not in page.attributes
     assert page.value("passivity-margin") == results.passivity_margin()
 
     # The stationary part: the top tension passes the stationarity test from the end of the waves' 10 s
