@@ -253,6 +253,12 @@ def test_a_j_lay_tower_runs_up_the_pipes_end(j_lay) -> None:
     utilisation = extremes.utilisation(results, model=model, checks={})
     line = figure.data[trace(figure, "pipe")].line
     assert line.cmax == pytest.approx(np.nanmax(utilisation), rel=1e-3)
+    assert "safety class medium" in figure.layout.title.text  # the basis under the title
+    # the parameters given are those coloured by, and said so
+    low = replay(results, model, max_frames=5, colour="utilisation", checks={"safety_class": "low"})
+    lower = extremes.utilisation(results, model=model, checks={"safety_class": "low"})
+    assert low.data[trace(low, "pipe")].line.cmax == pytest.approx(np.nanmax(lower), rel=1e-3)
+    assert np.nanmax(lower) < np.nanmax(utilisation) and "safety class low" in low.layout.title.text
 
 
 def test_without_a_model_the_results_alone_are_drawn(dp) -> None:

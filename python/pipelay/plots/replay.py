@@ -41,7 +41,7 @@ import numpy.typing as npt
 import plotly.graph_objects as go
 
 from pipelay._core import Model, Results
-from pipelay.analysis.checks import _Described, _input_error
+from pipelay.analysis.checks import _Described, _input_error, describe_parameters
 from pipelay.analysis.extremes import _section_stiffness, _strain
 from pipelay.analysis.extremes import utilisation as _utilisation
 from pipelay.results.atomic import _atomic_write
@@ -102,6 +102,7 @@ class Scene:
         waves: whether the sea surface moves (the model has waves).
         bounds: the plotted box ((x0, x1), (y0, y1), (z0, z1)) (m).
         along: the pipe's horizontal direction from end A to end B (2,), unit, at the first frame.
+        basis: what the "utilisation" colour assumes (`pl.checks.describe_parameters`), "" for the others.
     """
 
     records: npt.NDArray[np.int64]
@@ -124,6 +125,7 @@ class Scene:
     waves: bool
     bounds: tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
     along: _FloatArray
+    basis: str = ""
 
 
 def rotation(eta: npt.ArrayLike) -> _FloatArray:
@@ -402,6 +404,7 @@ def prepare(
         waves=waves is not None,
         bounds=bounds,
         along=along,
+        basis=describe_parameters(checks) if colour == "utilisation" else "",
     )
 
 
@@ -559,6 +562,8 @@ def _figure(scene: Scene, title: str | None) -> go.Figure:
     t0, t1 = float(scene.time[0]), float(scene.time[-1])
     heading = title if title is not None else "Pipelay replay"
     text = f"{heading}: t = {t0:g} to {t1:g} s, the pipe coloured by {scene.label} ({scene.unit})"
+    if scene.basis:
+        text += f"<br><sub>{scene.basis}</sub>"
     steps = [
         {"method": "animate", "label": f"{t:g}", "args": animate([name], 0)}
         for name, t in zip(names, scene.time, strict=True)
