@@ -5,7 +5,7 @@ with sea water (submerged weight 1845.7 N/m), pinned at A = (0, 0, 0) and at B =
 water, solved two ways: from Irvine's elastic catenary (``start="auto"``, the default) and from the straight
 horizontal stress-free reference with load stepping (``start="reference"``). Only ``model.static()`` is timed
 (the model is built afresh before each run). Prints a Markdown table: elements, start, wall time (s; best of 3
-runs, 1 run for 10 000), Newton iterations, accepted load steps and top tension |F_B| (kN).
+runs, 1 run for 10 000), Newton iterations, accepted load steps and the reaction at B |F_B| (kN).
 
 Usage::
 
@@ -61,7 +61,7 @@ def main(argv: list[str] | None = None) -> int:
         f"{platform.machine()}"
     )
     print()
-    print("| n | start | wall time (s) | Newton iterations | load steps | top tension (kN) |")
+    print("| n | start | wall time (s) | Newton iterations | load steps | reaction at B \\|F_B\\| (kN) |")
     print("| ---: | --- | ---: | ---: | ---: | ---: |")
     for n in sizes:
         for start in ("auto", "reference"):

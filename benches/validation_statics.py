@@ -78,8 +78,8 @@ def rows() -> list[tuple[str, str, str]]:
         out.append(
             (
                 f"1200 m line, pinned, {label}, n = 100",
-                f"Irvine: top tension {ref.tension_b / 1e3:.1f} kN",
-                f"{top / 1e3:.1f} kN ({100 * (top / ref.tension_b - 1):+.3f} %)",
+                f"Irvine: tension at B {ref.tension_b / 1e3:.1f} kN",
+                f"\\|F_B\\| {top / 1e3:.1f} kN ({100 * (top / ref.tension_b - 1):+.3f} %)",
             )
         )
     return out

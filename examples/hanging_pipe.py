@@ -8,8 +8,10 @@ is the plane z = −800 m. It is flooded (contents: sea water, 1025 kg/m³), so 
 The rod's stress-free reference is straight and horizontal, along e1; the solver starts Newton from Irvine's
 elastic catenary through A and B (``model.static()``'s default for a line held at both ends).
 
-Prints the top tension |F_B| (kN), the horizontal tension (kN) and the touchdown angle (deg, of the pipe axis
-at A above the seabed), and writes a side view to ``hanging_pipe.png`` in the directory given by ``--out``.
+Prints the top tension (kN: the effective tension of the top element, as `pipelay static` prints it), the
+reaction at B |F_B| (kN: the pull on the top support, Irvine's cable tension at B), the horizontal tension (kN)
+and the touchdown angle (deg, of the pipe axis at A above the seabed), and writes a side view to
+``hanging_pipe.png`` in the directory given by ``--out``.
 
 Usage::
 
@@ -47,13 +49,15 @@ def solve(elements: int = 100) -> pl.State:
 
 
 def summary(state: pl.State) -> dict[str, float]:
-    """Top tension (kN), horizontal tension (kN) and touchdown angle (deg) of a solved state."""
+    """Top tension (kN, the top element's effective tension), reaction at B |F_B| (kN), horizontal tension (kN)
+    and touchdown angle (deg) of a solved state."""
     force_a = state.reaction("A")[:3]
     force_b = state.reaction("B")[:3]
     axis_a = state.rotations[0][:, 0]  # t1 at A, in e
     touchdown = math.degrees(math.atan2(-axis_a[2], math.hypot(axis_a[0], axis_a[1])))  # above the seabed
     return {
-        "top_tension_kN": float(np.linalg.norm(force_b)) / 1e3,
+        "top_tension_kN": float(state.tension[-1]) / 1e3,
+        "reaction_B_kN": float(np.linalg.norm(force_b)) / 1e3,
         "horizontal_tension_kN": float(math.hypot(force_a[0], force_a[1])) / 1e3,
         "touchdown_angle_deg": touchdown,
     }
@@ -95,7 +99,8 @@ def main(argv: list[str] | None = None) -> int:
     results = summary(state)
     print(f"elements                {args.elements}")
     print(f"Newton iterations       {state.iterations} in {state.steps} load step(s)")
-    print(f"top tension             {results['top_tension_kN']:.1f} kN")
+    print(f"top tension             {results['top_tension_kN']:.1f} kN (effective, the top element)")
+    print(f"reaction at B |F_B|     {results['reaction_B_kN']:.1f} kN")
     print(f"horizontal tension      {results['horizontal_tension_kN']:.1f} kN")
     print(f"touchdown angle         {results['touchdown_angle_deg']:.2f} deg")
 
