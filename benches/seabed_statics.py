@@ -4,7 +4,7 @@ Not a test. A flooded 0.6 m × 15 mm steel pipe (submerged weight 1846 N/m) of l
 the seabed (k = 1e5 Pa/m) at A and pinned at B, `depth` above A at the sea surface, where the catenary with a
 laid part would have the horizontal tension H = w·depth (shallower: H = 0.3 w depth when that leaves too
 little pipe on the seabed) — so that about the same share of pipe lies on the seabed in every case. Prints a
-Markdown table: L, depth, n, friction, wall time, Newton iterations, top tension, touchdown.
+Markdown table: L, depth, n, friction, wall time, Newton iterations, reaction at B |F_B|, touchdown.
 
 Usage::
 
@@ -45,7 +45,7 @@ def main(argv: list[str] | None = None) -> int:
     sizes = [100, 1000] if args.quick else [100, 1000, 10000]
     cases = [(1000, 100), (1000, 500), (2000, 100), (2000, 1000), (3000, 100), (3000, 1500), (3000, 2500)]
     print(
-        "| L (m) | depth (m) | n | friction | statics (s) | Newton iterations | top tension (kN) | touchdown (m from A) |"
+        "| L (m) | depth (m) | n | friction | statics (s) | Newton iterations | reaction at B \\|F_B\\| (kN) | touchdown (m from A) |"
     )
     print("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for length, depth in cases:

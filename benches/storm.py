@@ -3,7 +3,7 @@ the accuracy of its time step against a run at half the step.
 
 Not a test. The example (140 elements in 800 m, seabed, DP, the OSV's RAOs, Hs 2.5 m, Tp 9 s, 200 components)
 run for 3 h (10 800 s) of storm after its 90 s start, at Δt = `--dt` and at Δt/2, each recorded every 0.2 s.
-Prints the speed of each over real time, and for the top tension (the pipe's pull on the tower) and the
+Prints the speed of each over real time, and for the reaction at B |F_B| (the pipe's pull on the tower) and the
 hang-off bending moment (the top element's |M|): the largest (and for the tension the smallest) value, the
 standard deviation and the response spectrum's peak and m0, at both steps and their difference.
 
@@ -31,7 +31,7 @@ RECORD = 0.2  # s between records
 
 def storm(dt: float, seconds: float) -> tuple[float, dict[str, np.ndarray]]:
     """The run at step `dt` (s) for `seconds` of storm after START: its wall time (s, statics included) and the
-    recorded top tension (N) and hang-off moment (N·m) after START."""
+    recorded reaction at B |F_B| (kN) and hang-off moment (kN·m) after START."""
     data = tomllib.loads((EXAMPLES / "j_lay_waves.toml").read_text())
     model = parse_scenario(data, folder=EXAMPLES).model
     began = time.perf_counter()
@@ -42,7 +42,7 @@ def storm(dt: float, seconds: float) -> tuple[float, dict[str, np.ndarray]]:
     keep = results.time >= START - 1e-9
     forces = results.section_forces[keep]
     series = {
-        "top tension (kN)": np.linalg.norm(results.reaction("B")[keep, :3], axis=1) / 1e3,
+        "reaction at B \\|F_B\\| (kN)": np.linalg.norm(results.reaction("B")[keep, :3], axis=1) / 1e3,
         "hang-off moment (kN m)": np.hypot(forces[:, -1, 4], forces[:, -1, 5]) / 1e3,
     }
     return wall, series
