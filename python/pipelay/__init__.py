@@ -59,6 +59,7 @@ from pipelay.analysis import stages as _stages  # noqa: F401 (attaches Results.s
 from pipelay.analysis.capability import Capability, dp_capability
 from pipelay.analysis.lay import find_lay_position
 from pipelay.analysis.lay_table import lay_table
+from pipelay.analysis.stinger_design import StingerDesign, design_stinger
 from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep
 from pipelay.results import load, resume, streaming
@@ -162,6 +163,7 @@ __all__ = [
     "Stages",
     "State",
     "Stinger",
+    "StingerDesign",
     "TensionControl",
     "Thruster",
     "Touchdown",
@@ -170,6 +172,7 @@ __all__ = [
     "Winch",
     "Wind",
     "checks",
+    "design_stinger",
     "dp_capability",
     "fatigue",
     "find_lay_position",
