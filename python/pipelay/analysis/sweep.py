@@ -732,6 +732,9 @@ def _outcome(future: Any, case: _Case, directory: Path, client: Any, address: st
             return _read(directory, case)
         message = f"{type(error).__name__}: {error}"
     except Exception as error:  # noqa: BLE001 - recorded as the case's failure
+        # A task that failed because its scheduler went away (its comm closed as the cluster shut down) did
+        # not finish: raise _Lost rather than record its failure.
+        _probe(client, address)
         message = f"{type(error).__name__}: {error}"
     return {"name": case.name, "error": message}
 
