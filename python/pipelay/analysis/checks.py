@@ -527,12 +527,7 @@ def propagation_buckling(
             notes.append(
                 f"{prefix}: D/t2 = {d_over_t:.3g} is outside 15 < D/t2 < 45, the criterion's validity"
             )
-        basis = basis or (
-            f"DNV-ST-F101 [5.4.5], {steel.grade}, safety class {options.safety_class} "
-            f"(γ_SC {GAMMA_SC[options.safety_class]:.2f}), {options.fabrication} (α_fab "
-            f"{ALPHA_FAB[options.fabrication]:.2f}), {options.condition}, "
-            f"{_pressure_basis(section, water, options.internal_pressure)}"
-        )
+        basis = basis or _basis("DNV-ST-F101 [5.4.5]", steel.grade, options, section, water)
     steel_elements = np.isfinite(p_pr)
     utilisation = np.zeros(n)
     utilisation[steel_elements] = np.clip(
@@ -560,12 +555,7 @@ def _steel_parts(state: Any, n: int) -> list[tuple[Any, str, NDArray[np.bool_]]]
     if segment_of is None or sections is None or len(sections) <= 1:
         return [(_attribute(state, "section", "state"), "state.section", np.ones(n, dtype=bool))]
     indices = np.asarray(segment_of)
-    if indices.shape != (n,) or np.any(indices < 0) or np.any(indices >= len(sections)):
-        raise _input_error(
-            "state.segment_of",
-            _Described(f"an array of shape {indices.shape}"),
-            f"({n},) segment indices in 0..{len(sections) - 1}",
-        )
+    _check_segment_indices(indices, n, len(sections))
     parts = [
         (section, f"state.sections[{k}]", indices == k)
         for k, section in enumerate(sections)
@@ -576,6 +566,16 @@ def _steel_parts(state: Any, n: int) -> list[tuple[Any, str, NDArray[np.bool_]]]
             "state.sections", _Described(f"{len(sections)} cable segments"), "at least one steel pipe segment"
         )
     return parts
+
+
+def _check_segment_indices(segment_of: NDArray[Any], n: int, count: int) -> None:
+    """An input error unless `segment_of` holds (n,) indices of `count` segments."""
+    if segment_of.shape != (n,) or np.any(segment_of < 0) or np.any(segment_of >= count):
+        raise _input_error(
+            "state.segment_of",
+            _Described(f"an array of shape {segment_of.shape}"),
+            f"({n},) segment indices in 0..{count - 1}",
+        )
 
 
 def _arrestor_advice(
@@ -688,8 +688,7 @@ def _records_utilisation(
         if sea is None:
             water = _Water(np.zeros(size), 0.0)
         else:
-            z_mid = 0.5 * (positions[rows, :-1, 2] + positions[rows, 1:, 2])
-            water = _Water(np.clip(depth + z_mid, 0.0, None).reshape(size), density)
+            water = _Water(_below_surface(positions[rows], depth).reshape(size), density)
         flat = forces[rows].reshape(size, 6)
         checked = _check_section(
             section, "state.section", flat, flat[:, 0], np.abs(strain[rows].reshape(size)), water, options
@@ -726,12 +725,7 @@ def _check_segments(
 ) -> Utilisation:
     """The checks of a line of segments: each steel segment with its own section, joined element by element."""
     n = forces.shape[0]
-    if segment_of.shape != (n,) or np.any(segment_of < 0) or np.any(segment_of >= len(sections)):
-        raise _input_error(
-            "state.segment_of",
-            _Described(f"an array of shape {segment_of.shape}"),
-            f"({n},) segment indices in 0..{len(sections) - 1}",
-        )
+    _check_segment_indices(segment_of, n, len(sections))
     parts: list[Utilisation | None] = []
     for k, section in enumerate(sections):
         elements = segment_of == k
@@ -984,10 +978,7 @@ def _check_section(
         safety_class=safety,
         fabrication=fab,
         condition=cond,
-        basis=(
-            f"DNV-ST-F101, {grade_key}, safety class {safety} (γ_SC {gamma_sc:.2f}), {fab} (α_fab "
-            f"{alpha_fab:.2f}), {cond}, {_pressure_basis(section, water, options.internal_pressure)}"
-        ),
+        basis=_basis("DNV-ST-F101", grade_key, options, section, water),
         notes=notes,
     )
 
@@ -1097,8 +1088,15 @@ def _water(state: Any, positions: FloatArray) -> _Water:
         return _Water(np.zeros(n), 0.0)
     depth = _number("state.water_depth", water_depth, positive=True)
     density = _number("state.water_density", _attribute(state, "water_density"), positive=True)
-    z_mid = 0.5 * (positions[:-1, 2] + positions[1:, 2])
-    return _Water(np.clip(depth + z_mid, 0.0, None), density)
+    return _Water(_below_surface(positions, depth), density)
+
+
+def _below_surface(positions: FloatArray, depth: float) -> FloatArray:
+    """Each element midpoint's depth below the surface, max(depth + z_mid, 0) (m), of node positions
+    (..., n + 1, 3) (frame e, e3 down): (..., n)."""
+    z_mid = 0.5 * (positions[..., :-1, 2] + positions[..., 1:, 2])
+    below: FloatArray = np.clip(depth + z_mid, 0.0, None)
+    return below
 
 
 def contents_pressure(contents_density: float, below_surface: FloatArray) -> FloatArray:
@@ -1114,6 +1112,16 @@ def _internal_pressure(section: Any, prefix: str, water: _Water, given: float | 
         return np.full(water.below_surface.shape, given)
     density = _optional_number(section, "contents_density", 0.0, prefix, minimum=0.0)
     return contents_pressure(density, water.below_surface)
+
+
+def _basis(code: str, grade: str, options: _Options, section: Any, water: _Water) -> str:
+    """What a check of `code` assumes, in one line: the grade, the safety class with γ_SC, the fabrication with
+    α_fab, the condition and the pressures (`Utilisation.basis`, `Propagation.basis`)."""
+    return (
+        f"{code}, {grade}, safety class {options.safety_class} (γ_SC {GAMMA_SC[options.safety_class]:.2f}), "
+        f"{options.fabrication} (α_fab {ALPHA_FAB[options.fabrication]:.2f}), {options.condition}, "
+        f"{_pressure_basis(section, water, options.internal_pressure)}"
+    )
 
 
 def _pressure_basis(section: Any, water: _Water, given: float | None) -> str:
