@@ -26,8 +26,9 @@ straightens into the catenary. Three searches nest, each on a quantity that move
 The rollers, `rollers` of them spread evenly over the arc (about `roller_spacing` apart), have their tops on
 the arc by construction: `roller_heights` are the heights the roller supports are set to.
 
-Units: SI (m, N, rad; strains as fractions). Imports of pipelay: the package (the engine's classes) and
-`pipelay.analysis.lay` (`find_lay_position`).
+Units: SI (m, N, rad; strains as fractions). Imports of pipelay: the package (the engine's classes),
+`pipelay.analysis.checks` (`_number`, the wording of input errors) and `pipelay.analysis.lay`
+(`find_lay_position`).
 """
 
 from __future__ import annotations
@@ -42,6 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 import pipelay as pl
+from pipelay.analysis.checks import _number
 from pipelay.analysis.lay import MAX_SOLVES, TargetNotReached, find_lay_position
 
 __all__ = ["StingerDesign", "design_stinger"]
@@ -117,18 +119,6 @@ class _Solved:
     strain: float
 
 
-def _positive(name: str, value: object) -> float:
-    """`value` as a finite float > 0, else an InputError naming `name`."""
-    if (
-        isinstance(value, bool)
-        or not isinstance(value, (int, float))
-        or not math.isfinite(value)
-        or value <= 0
-    ):
-        raise pl.InputError(f"{name}: a finite number > 0, got {value!r}")
-    return float(value)
-
-
 def _point(name: str, value: Sequence[float]) -> tuple[float, float, float]:
     """`value` as a finite 3-vector, else an InputError naming `name`."""
     array = np.asarray(value, dtype=np.float64)
@@ -178,14 +168,14 @@ def design_stinger(
         pipelay.InputError: a bad argument, or a target no stinger meets (an overbend strain at or below the
             axial strain T/EA; a clearance that needs more than a quarter circle of stinger).
     """
-    depth = _positive("depth", depth)
-    tension = _positive("top_tension", top_tension)
-    target = _positive("overbend_strain", overbend_strain)
-    clearance = _positive("tip_clearance", tip_clearance)
-    spacing = _positive("roller_spacing", roller_spacing)
-    element = _positive("element_length", element_length)
-    strain_tolerance = _positive("strain_tolerance", strain_tolerance)
-    clearance_tolerance = _positive("clearance_tolerance", clearance_tolerance)
+    depth = _number("depth", depth, positive=True)
+    tension = _number("top_tension", top_tension, positive=True)
+    target = _number("overbend_strain", overbend_strain, positive=True)
+    clearance = _number("tip_clearance", tip_clearance, positive=True)
+    spacing = _number("roller_spacing", roller_spacing, positive=True)
+    element = _number("element_length", element_length, positive=True)
+    strain_tolerance = _number("strain_tolerance", strain_tolerance, positive=True)
+    clearance_tolerance = _number("clearance_tolerance", clearance_tolerance, positive=True)
     tensioner_point = _point("tensioner", tensioner)
     origin_point = _point("origin", origin)
     diameter = float(section.outer_diameter)
@@ -243,10 +233,14 @@ def design_stinger(
             float(summary["overbend_strain"]),
         )
 
+    def rollers_over(length: float) -> int:
+        """The rollers spread over a stinger of `length`, about `roller_spacing` apart (3 at least)."""
+        return max(3, round(length / spacing) + 1)
+
     def _attempt(radius: float, length: float) -> _Solved | None:
         """The stinger of `radius` and `length` solved, or None where statics fail on it."""
         try:
-            return solve(radius, length, max(3, round(length / spacing) + 1))
+            return solve(radius, length, rollers_over(length))
         except (pl.ConvergenceError, TargetNotReached):
             return None
 
@@ -284,7 +278,7 @@ def design_stinger(
             else:
                 high = trial
         # Illinois on the clearance's miss, the roller count kept: the rollers spread over the length found.
-        rollers = max(3, round(high.length / spacing) + 1)
+        rollers = rollers_over(high.length)
         low, high = solve(radius, low.length, rollers), solve(radius, high.length, rollers)
         best = min((low, high), key=lambda s: abs(s.clearance - clearance))
         low_length, low_miss = low.length, low.clearance - clearance
