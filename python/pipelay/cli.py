@@ -932,7 +932,7 @@ def _lay_table(args: argparse.Namespace) -> int:
     """`pipelay lay-table SCENARIO --depths ... --target ... -o TABLE.csv`: the table printed in people's
     units, written as CSV (and netCDF, and its figure); a depth where the target is not met printed with its
     reason on standard error (exit 1)."""
-    from pipelay.analysis.lay_table import write_csv
+    from pipelay.analysis.lay_table import COLUMNS, utilisation_basis, write_csv
 
     quantity, value = _target_value(str(args.target))
     table = pl.lay_table(
@@ -947,30 +947,31 @@ def _lay_table(args: argparse.Namespace) -> int:
     unit, units, _ = _TARGET_UNITS[quantity]
     space = "" if unit in ("°", "") else " "
     print(f"lay table: {args.scenario}, vessel placed for {quantity} = {value / units[unit]:g}{space}{unit}")
-    columns = (
-        ("depth m", "depth", 1.0, ".1f"),
-        ("vessel x m", "vessel_x", 1.0, ".2f"),
-        ("top T kN", "top_tension", 1e-3, ".1f"),
-        ("depart. °", "departure_angle", 180.0 / math.pi, ".2f"),
-        ("layback m", "layback", 1.0, ".1f"),
-        ("overbend %", "overbend_strain", 100.0, ".4f"),
-        ("sagbend %", "sagbend_strain", 100.0, ".4f"),
-        ("tip gap m", "tip_clearance", 1.0, ".3f"),
-        ("roller kN", "roller_reaction_max", 1e-3, ".1f"),
-        ("lift-off", "liftoff_roller", 1.0, ".0f"),
-        ("LC util.", "load_controlled_max", 1.0, ".3f"),
-        ("DC util.", "displacement_controlled_max", 1.0, ".3f"),
-        ("PB util.", "propagation_max", 1.0, ".3f"),
+    columns = (  # in the CSV's units (`COLUMNS`)
+        ("depth m", "depth", ".1f"),
+        ("vessel x m", "vessel_x", ".2f"),
+        ("top T kN", "top_tension", ".1f"),
+        ("depart. °", "departure_angle", ".2f"),
+        ("layback m", "layback", ".1f"),
+        ("overbend %", "overbend_strain", ".4f"),
+        ("sagbend %", "sagbend_strain", ".4f"),
+        ("tip gap m", "tip_clearance", ".3f"),
+        ("roller kN", "roller_reaction_max", ".1f"),
+        ("lift-off", "liftoff_roller", ".0f"),
+        ("LC util.", "load_controlled_max", ".3f"),
+        ("DC util.", "displacement_controlled_max", ".3f"),
+        ("PB util.", "propagation_max", ".3f"),
     )
     print(" ".join(f"{title:>11}" for title, *_ in columns))
     for k in range(table.sizes["depth"]):
         cells = []
-        for _, name, scale, form in columns:
+        for _, name, form in columns:
+            scale = COLUMNS[name].scale if name in COLUMNS else 1.0
             number = float(table[name].values[k]) * scale
             cells.append(f"{number:11{form}}" if math.isfinite(number) else f"{'–':>11}")
         print(" ".join(cells))
     print("lift-off: the last roller in contact, numbered from 1 at the stinger's vessel end")
-    basis = next((str(text) for text in table["utilisation_basis"].values if text), "")
+    basis = utilisation_basis(table)
     if basis:
         print(f"utilisations (LC load-, DC displacement-controlled, PB propagation buckling): {basis}")
     depths = table["depth"].values

@@ -83,6 +83,7 @@ __all__ = [
     "lay_table",
     "pipe_length",
     "scenario_at",
+    "utilisation_basis",
     "write_csv",
 ]
 
@@ -671,6 +672,12 @@ def _dataset(job: _Job, depths: list[float], rows: list[dict[str, Any]]) -> Any:
             "pipe lengthened at its top beyond the scenario's depth, in proportion to the depth",
         },
     )
+
+
+def utilisation_basis(table: Any) -> str:
+    """What a lay table's utilisations assume (its rows' ``utilisation_basis``, the first solved row's; "" when
+    no row was solved)."""
+    return next((str(text) for text in table["utilisation_basis"].values if text), "")
 
 
 def write_csv(table: Any, path: str | os.PathLike[str]) -> Path:

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from pipelay.analysis.lay_table import COLUMNS
+from pipelay.analysis.lay_table import COLUMNS, utilisation_basis
 from pipelay.plots.canvas import _figure, _finish, _PathLike
 
 __all__ = ["lay_table"]
@@ -91,7 +91,7 @@ def lay_table(table: Any, path: _PathLike | None = None) -> Figure:
     axes[7].axhline(1.0, color="0.3", linestyle=":", linewidth=1.0)
     for axis in axes[4:]:
         axis.set_xlabel("water depth (m)")
-    basis = next((str(text) for text in table["utilisation_basis"].values if text), "")
+    basis = utilisation_basis(table)
     failures = (
         f"; dotted red: target not met at {', '.join(f'{d:g}' for d in failed)} m" if len(failed) else ""
     )
