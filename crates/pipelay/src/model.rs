@@ -1026,7 +1026,12 @@ mod tests {
     }
 
     fn attach(model: &mut Model, z: f64) -> Result<()> {
-        let eta = Vector6::new(200.0, 0.0, z, 0.0, 0.0, 0.0);
+        attach_at(model, 200.0, z)
+    }
+
+    /// The OSV attached at end B with η = (x, 0, z, 0, 0, 0).
+    fn attach_at(model: &mut Model, x: f64, z: f64) -> Result<()> {
+        let eta = Vector6::new(x, 0.0, z, 0.0, 0.0, 0.0);
         model.attach_vessel(
             "B",
             Vessel::osv(),
@@ -1078,18 +1083,8 @@ mod tests {
         let bathymetry = Bathymetry::plane(0.0, nalgebra::Vector2::new(-0.05, 0.0)).expect("plane");
         let seabed = Seabed::new(2e5, 0.0, [0.5, 0.8], 0.02, bathymetry).expect("seabed");
         let mut m = model(20.0, Some(seabed));
-        let eta = Vector6::new(250.0, 0.0, -12.0, 0.0, 0.0, 0.0);
-        let result = m.attach_vessel(
-            "B",
-            Vessel::osv(),
-            eta,
-            Vector3::zeros(),
-            None,
-            vec![],
-            None,
-        );
         assert_eq!(
-            refused(result),
+            refused(attach_at(&mut m, 250.0, -12.0)),
             ("eta".into(), "z = -12 m at (x, y) = (250, 0) m".into())
         );
         attach(&mut m, -15.0).expect("above the seabed at x = 200 m, z = −10 m");
