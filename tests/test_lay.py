@@ -472,7 +472,7 @@ def _attach_with_angle() -> None:
 @pytest.mark.parametrize(
     ("build", "argument"),
     [
-        (lambda: pl.SLay(tensioner=TENSIONER, stinger=_stinger(), friction=0.1), "friction"),
+        (lambda: pl.SLay(tensioner=TENSIONER, stinger=_stinger(), friction=-0.1), "friction"),
         (lambda: pl.Stinger(100.0, 80.0, 0), "rollers"),
         (lambda: pl.Stinger(10.0, 80.0, 5), "stinger length"),
         (lambda: pl.JLay((0.0, 0.0, 0.0), angle=2.0), "angle"),

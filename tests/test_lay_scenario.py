@@ -74,7 +74,7 @@ def test_j_lay_scenario() -> None:
         (lambda d: d["vessel"]["lay"].pop("kind"), "vessel.lay.kind"),
         (lambda d: d["vessel"]["lay"].update(position=[0, 0, 0]), "vessel.lay.position"),
         (lambda d: d["vessel"].update(angle=[0, 0.1, 0]), "vessel.angle"),
-        (lambda d: d["vessel"]["lay"].update(friction=0.2), "vessel.lay.friction"),
+        (lambda d: d["vessel"]["lay"].update(friction=-0.2), "vessel.lay.friction"),
         (lambda d: d["vessel"]["lay"]["stinger"].update(positions=[[0, 0, 0]]), "vessel.lay.stinger"),
         (lambda d: d["vessel"]["lay"]["stinger"].update(rollers=0), "vessel.lay.stinger.rollers"),
         (lambda d: d["vessel"]["lay"]["stinger"].update(length=1000.0), "vessel.lay.stinger.length"),

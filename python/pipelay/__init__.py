@@ -35,6 +35,7 @@ from pipelay._core import (
     Raos,
     Results,
     Rod,
+    RollerBox,
     Route,
     Sea,
     Seabed,
@@ -54,12 +55,13 @@ from pipelay._core import (
     Winch,
     Wind,
 )
-from pipelay.analysis import checks, fatigue, lay, statistics, suspect
+from pipelay.analysis import checks, curve_lay, fatigue, lay, statistics, suspect
 from pipelay.analysis import stages as _stages  # noqa: F401 (attaches Results.stage_summary)
 from pipelay.analysis.capability import Capability, dp_capability
 from pipelay.analysis.lay import find_lay_position
 from pipelay.analysis.lay_table import lay_table
 from pipelay.analysis.stinger_design import StingerDesign, design_stinger
+from pipelay.analysis.supports import SupportLoads, support_loads
 from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep
 from pipelay.results import load, resume, streaming
@@ -152,6 +154,7 @@ __all__ = [
     "Raos",
     "Results",
     "Rod",
+    "RollerBox",
     "Route",
     "SLay",
     "Sea",
@@ -164,6 +167,7 @@ __all__ = [
     "State",
     "Stinger",
     "StingerDesign",
+    "SupportLoads",
     "TensionControl",
     "Thruster",
     "Touchdown",
@@ -172,6 +176,7 @@ __all__ = [
     "Winch",
     "Wind",
     "checks",
+    "curve_lay",
     "design_stinger",
     "dp_capability",
     "fatigue",
@@ -182,6 +187,7 @@ __all__ = [
     "resume",
     "statistics",
     "streaming",
+    "support_loads",
     "sweep",
 ]
 __version__: str = metadata.version("pipelay")

@@ -31,6 +31,7 @@ __all__ = [
     "Raos",
     "Results",
     "Rod",
+    "RollerBox",
     "Route",
     "SLay",
     "Sea",
@@ -476,11 +477,21 @@ class State:
     @property
     def roller_reactions(self) -> _FloatArray | None:
         """Normal force of each roller (k,) (N, ≥ 0; 0: lifted off); None without rollers."""
+    @property
+    def roller_reaction_vectors(self) -> _FloatArray | None:
+        """Each roller's force on the pipe (k, 3), body frame (forward, starboard, down; N); None without
+        rollers."""
+    @property
+    def roller_offsets(self) -> _FloatArray | None:
+        """Each roller's contact along it from its centre (k,) (m; NaN out of contact); None without rollers."""
+    @property
+    def roller_supports(self) -> list[int]:
+        """The support (lone roller or box, 0-based) of each roller (k,)."""
     def lay_summary(self) -> dict[str, Any] | None:
         """Top tension, departure angle, lift-off roller, layback, touchdown, overbend and sagbend strain,
-        sagbend moment and tip clearance (SI units, rad); None without a vessel. `liftoff_roller` is the 0-based
-        index into `roller_reactions` of the last roller in contact (None: none), where people read the rollers
-        numbered from 1."""
+        sagbend moment, tip clearance, tip offset and boxes left (SI units, rad); None without a vessel.
+        `liftoff_roller` is the 0-based index of the last support in contact (a lone roller or a box, as in
+        `roller_supports`; None: none), where people read the rollers numbered from 1."""
     @property
     def roller_positions(self) -> _FloatArray | None:
         """The rollers' top points (k, 3) in e (m) in this state; None without rollers."""
@@ -510,7 +521,8 @@ class State:
 @final
 class Stinger:
     """Rollers over a circular arc (body frame, m): `rollers` rollers on an arc of `radius` and `length` from
-    `origin`, starting at the slope `angle` (rad below horizontal), running aft and bending down."""
+    `origin`, starting at the slope `angle` (rad below horizontal), running aft and bending down; with
+    `boxes`, a roller box at each roller's place (or at the box's own arc length) instead."""
 
     def __new__(
         cls,
@@ -521,6 +533,7 @@ class Stinger:
         origin: _ArrayLike | None = None,
         angle: float = 0.0,
         roller_radius: float = ...,
+        boxes: Sequence[RollerBox] | None = None,
     ) -> Stinger: ...
     @staticmethod
     def from_rollers(
@@ -530,7 +543,58 @@ class Stinger:
     @property
     def positions(self) -> _FloatArray:
         """The rollers' top points (k, 3), body frame (m)."""
+    @property
+    def stations(self) -> _FloatArray:
+        """Each support's station on the stinger's top line (m, 3), body frame (m)."""
+    @property
+    def supports(self) -> list[int]:
+        """The support (lone roller or box, 0-based) of each roller (k,)."""
+    @property
+    def axes(self) -> _FloatArray:
+        """Each roller's axis (k, 3), unit, body frame."""
+    @property
+    def lengths(self) -> list[float]:
+        """Each roller's length (k,) (m; inf for lone rollers)."""
     def __len__(self) -> int: ...
+
+@final
+class RollerBox:
+    """A roller box: a V of two rollers at ±`half_angle` (rad) from the lateral, with an optional bottom
+    roller and side rollers, or a U (bottom and sides), every roller `roller_length` (m) long, at
+    `arc_length` (m) along the stinger (None: the place of the roller it replaces). Its rollers turn against
+    `rolling_resistance` (along the pipe) and resist sliding along them with Coulomb `friction`; `locked`
+    rollers resist with `friction` every way."""
+
+    def __new__(
+        cls,
+        arc_length: float | None = None,
+        kind: str = "v",
+        half_angle: float = ...,
+        roller_length: float = 1.2,
+        bottom: bool = False,
+        sides: bool = False,
+        friction: float = 0.0,
+        rolling_resistance: float = 0.0,
+        locked: bool = False,
+    ) -> RollerBox: ...
+    @property
+    def arc_length(self) -> float | None: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def half_angle(self) -> float: ...
+    @property
+    def roller_length(self) -> float: ...
+    @property
+    def bottom(self) -> bool: ...
+    @property
+    def sides(self) -> bool: ...
+    @property
+    def friction(self) -> float: ...
+    @property
+    def rolling_resistance(self) -> float: ...
+    @property
+    def locked(self) -> bool: ...
 
 @final
 class SLay:

@@ -291,7 +291,7 @@ def _summary(state: pl.State, checks: dict[str, Any]) -> str:
         lines.append(f"touchdown               {where}")
         lines.append(f"laid length             {state.laid_length:12.2f} m")
     if summary is not None:
-        lines.extend(_lay_lines(summary, state.roller_reactions))
+        lines.extend(_lay_lines(summary, state.roller_reactions, pl.support_loads(state)))
     if state.section.wall_thickness is not None and len(state.tension):
         lines.extend(_check_lines(state, checks))
     if state.eta is not None and state.tau is not None:
@@ -323,20 +323,25 @@ def _check_lines(state: pl.State, checks: dict[str, Any]) -> list[str]:
     return lines
 
 
-def _lay_lines(summary: dict[str, Any], rollers: np.ndarray | None) -> list[str]:
+def _lay_lines(
+    summary: dict[str, Any], rollers: np.ndarray | None, supports: pl.SupportLoads | None = None
+) -> list[str]:
     """The lay summary of a static state, one quantity per line: departure angle, layback and sagbend for every
-    lay, and over a stinger (`rollers`: its rollers' reactions, N) the lift-off roller, overbend strain, tip
-    clearance and the rollers' reactions. Rollers are numbered from 1, the first on the stinger, to its tip
-    (`summary["liftoff_roller"]` is the 0-based index into `rollers`); without a stinger (a J-lay's tower, a
-    pipe clamped at the vessel) there is no overbend."""
+    lay, and over a stinger (`rollers`: its rollers' reactions, N; `supports`: its supports' loads) the
+    lift-off roller, overbend strain, tip clearance and offset, the rollers' reactions, and on roller boxes
+    each box's vertical and lateral load and whether the pipe stays in its boxes. Rollers (boxes) are numbered
+    from 1, the first on the stinger, to its tip (`summary["liftoff_roller"]` is the 0-based index of the
+    support); without a stinger (a J-lay's tower, a pipe clamped at the vessel) there is no overbend."""
     layback = summary["layback"]
     lines = [f"lay: departure angle    {np.degrees(summary['departure_angle']):12.2f}° below horizontal"]
+    count = len(supports.vertical) if supports is not None else 0 if rollers is None else len(rollers)
+    support = "box" if supports is not None and supports.boxes else "roller"
     if rollers is not None:
         liftoff = summary["liftoff_roller"]
         lines.append(
-            "lay: lift-off roller    "
+            f"lay: lift-off {support:<10s}"
             + (
-                f"{liftoff + 1:12d} of {len(rollers)}"
+                f"{liftoff + 1:12d} of {count}"
                 if liftoff is not None
                 else "        none: the pipe touches no roller"
             )
@@ -353,22 +358,44 @@ def _lay_lines(summary: dict[str, Any], rollers: np.ndarray | None) -> list[str]
     ]
     if rollers is not None:
         lines.append(
-            f"lay: tip clearance      {summary['tip_clearance']:12.3f} m at roller {len(rollers)}, the stinger's tip "
+            f"lay: tip clearance      {summary['tip_clearance']:12.3f} m at {support} {count}, the stinger's tip "
             "(≤ 0: the pipe rests on it)"
         )
         lines.append(
-            f"lay: roller reactions (kN), rollers 1 (the first on the stinger) to {len(rollers)} (its tip):"
+            f"lay: tip offset         {summary['tip_offset']:12.3f} m to starboard of the tip's centre"
         )
-        cells = [f"{k + 1:5d}: {force / 1e3:6.1f}" for k, force in enumerate(rollers)]
-        lines += ["    " + "".join(cells[i : i + 8]) for i in range(0, len(cells), 8)]
+        if supports is not None and supports.boxes:
+            lines += _box_lines(supports)
+        else:
+            lines.append(
+                f"lay: roller reactions (kN), rollers 1 (the first on the stinger) to {count} (its tip):"
+            )
+            cells = [f"{k + 1:5d}: {force / 1e3:6.1f}" for k, force in enumerate(rollers)]
+            lines += ["    " + "".join(cells[i : i + 8]) for i in range(0, len(cells), 8)]
     return lines
+
+
+def _box_lines(supports: pl.SupportLoads) -> list[str]:
+    """Each roller box's loads on the pipe, vertical (up) and lateral (to starboard) in kN, and whether the pipe
+    stays in its boxes."""
+    stays = "yes" if supports.stays_in_boxes else f"no: it is leaving {supports.boxes_left} of them"
+    count = len(supports.vertical)
+    lines = [
+        f"lay: pipe in its boxes  {stays}",
+        f"lay: roller box loads on the pipe (kN, vertical up / lateral to starboard), boxes 1 to {count}:",
+    ]
+    cells = [
+        f"{b + 1:5d}: {up / 1e3:6.1f} /{side / 1e3:6.1f}"
+        for b, (up, side) in enumerate(zip(supports.vertical, supports.lateral, strict=True))
+    ]
+    return lines + ["    " + "".join(cells[i : i + 5]) for i in range(0, len(cells), 5)]
 
 
 def _run_summary(path: Path) -> str:
     """The records, time span and extremes of a run, read from its results file a slice of records at a time:
     top tension (`pl.statistics.top_tension`: at the tensioner, tower or top support), the reaction at B
-    |F_B|, largest bending moment, lay summary (the overbend strain with a stinger's rollers only), touchdown
-    range."""
+    |F_B|, largest bending moment, lay summary (the overbend strain and tip offset with a stinger's rollers
+    only, and when the pipe leaves its roller boxes), touchdown range."""
     import xarray as xr
 
     lines = []
@@ -394,11 +421,18 @@ def _run_summary(path: Path) -> str:
             ("departure_angle", "lay: departure angle   ", 180 / np.pi, "°"),
             ("overbend_strain", "lay: overbend strain   ", 100.0, "%"),
             ("sagbend_strain", "lay: sagbend strain    ", 100.0, "%"),
+            ("tip_offset", "lay: tip offset        ", 1.0, "m to starboard"),
         ):
-            if key in data and (key != "overbend_strain" or "roller_reactions" in data):
+            if key in data and (key not in ("overbend_strain", "tip_offset") or "roller_reactions" in data):
                 series = data[key].values * scale
                 if np.any(np.isfinite(series)):
                     lines.append(f"{label} {np.nanmin(series):10.4g} … {np.nanmax(series):.4g} {unit}")
+        if "boxes_left" in data and np.nanmax(data["boxes_left"].values, initial=0.0) > 0:
+            left = data["boxes_left"].values
+            first = time[np.argmax(left > 0)]
+            lines.append(
+                f"lay: pipe leaving boxes  up to {int(np.nanmax(left))} of them, first at t = {first:g} s"
+            )
         if "touchdown_arc_length" in data:
             arc = data["touchdown_arc_length"].values
             if np.any(np.isfinite(arc)):

@@ -3,7 +3,8 @@
 use crate::convert::{points, vector3};
 use crate::errors::{input, to_py};
 use numpy::PyArray2;
-use pipelay::vessel::lay::{self, LayEquipment, Roller};
+use pipelay::vessel::lay::{self, LayEquipment, Roller, RollerFriction};
+use pipelay::vessel::roller_box;
 use pyo3::prelude::*;
 
 /// A stinger: `rollers` rollers spread evenly over a circular arc of `radius` and `length` (m), the rollers'
@@ -17,7 +18,7 @@ pub struct Stinger(pub Vec<Roller>);
 #[pymethods]
 impl Stinger {
     #[new]
-    #[pyo3(signature = (radius, length, rollers, *, origin=None, angle=0.0, roller_radius=lay::ROLLER_RADIUS))]
+    #[pyo3(signature = (radius, length, rollers, *, origin=None, angle=0.0, roller_radius=lay::ROLLER_RADIUS, boxes=None))]
     fn new(
         radius: f64,
         length: f64,
@@ -25,6 +26,7 @@ impl Stinger {
         origin: Option<&Bound<'_, PyAny>>,
         angle: f64,
         roller_radius: f64,
+        boxes: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let count = usize::try_from(rollers)
             .ok()
@@ -35,7 +37,42 @@ impl Stinger {
             .map(|o| vector3(o, "origin"))
             .transpose()?
             .unwrap_or_else(nalgebra::Vector3::zeros);
-        lay::stinger_rollers(radius, length, count, origin, angle, roller_radius)
+        let Some(boxes) = boxes else {
+            return lay::stinger_rollers(radius, length, count, origin, angle, roller_radius)
+                .map(Stinger)
+                .map_err(to_py);
+        };
+        let boxes = boxes
+            .try_iter()
+            .and_then(|items| {
+                items
+                    .map(|item| Ok(item?.cast::<RollerBox>()?.get().clone()))
+                    .collect::<PyResult<Vec<RollerBox>>>()
+            })
+            .map_err(|_| input("boxes", "the given value", "must be a list of pl.RollerBox"))?;
+        // A box without its own arc length stands at the place of the roller it replaces.
+        if boxes.iter().any(|b| b.arc_length.is_none()) && boxes.len() != count {
+            return Err(input(
+                "boxes",
+                format!("{} boxes", boxes.len()),
+                &format!(
+                    "must hold one box per roller place ({count}), or give each box its arc_length"
+                ),
+            ));
+        }
+        let place = |k: usize| {
+            if count == 1 {
+                0.0
+            } else {
+                length * k as f64 / (count - 1) as f64
+            }
+        };
+        let placed: Vec<_> = boxes
+            .iter()
+            .enumerate()
+            .map(|(k, b)| (b.arc_length.unwrap_or_else(|| place(k)), b.shape))
+            .collect();
+        lay::stinger_boxes(radius, length, origin, angle, roller_radius, &placed)
             .map(Stinger)
             .map_err(to_py)
     }
@@ -85,18 +122,156 @@ impl Stinger {
         crate::convert::points_to_numpy(py, &tops)
     }
 
+    /// Each support's station on the stinger's top line (m, 3), body frame (m): a lone roller's top, a box's
+    /// station (where the surfaces of its V meet, or its bottom roller's top).
+    #[getter]
+    fn stations<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let stations: Vec<_> = lay::supports(&self.0).into_iter().map(|s| s.0).collect();
+        crate::convert::points_to_numpy(py, &stations)
+    }
+
+    /// The support (lone roller or box, 0-based) of each roller (k,).
+    #[getter]
+    fn supports(&self) -> Vec<usize> {
+        self.0.iter().map(|r| r.support).collect()
+    }
+
+    /// Each roller's axis (k, 3), unit, body frame.
+    #[getter]
+    fn axes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let axes: Vec<_> = self.0.iter().map(|r| r.axis).collect();
+        crate::convert::points_to_numpy(py, &axes)
+    }
+
+    /// Each roller's length (k,) (m; inf for the long cylinders of a stinger of lone rollers).
+    #[getter]
+    fn lengths(&self) -> Vec<f64> {
+        self.0.iter().map(|r| r.length).collect()
+    }
+
     fn __len__(&self) -> usize {
         self.0.len()
     }
 
     fn __repr__(&self) -> String {
-        format!("Stinger({} rollers)", self.0.len())
+        let supports = self.0.last().map_or(0, |r| r.support + 1);
+        if supports == self.0.len() {
+            format!("Stinger({} rollers)", self.0.len())
+        } else {
+            format!("Stinger({supports} boxes, {} rollers)", self.0.len())
+        }
+    }
+}
+
+/// A roller box: rollers of finite length set across the pipe at a place of the stinger. `kind` "v": two
+/// rollers rising outward at ±`half_angle` (rad) from the lateral, whose surfaces meet at the stinger's top
+/// line (with `bottom`, a bottom roller between them); `sides`: vertical side rollers at the V's upper ends.
+/// `kind` "u": a bottom roller between two vertical side rollers. Every roller `roller_length` (m) long.
+/// `arc_length` (m along the stinger from its start; None: the place of the roller the box replaces).
+/// Its rollers turn freely against `rolling_resistance` (force per normal force, along the pipe) and resist
+/// the pipe sliding along them with Coulomb `friction` μ; `locked` rollers (braked) resist with μ in every
+/// direction.
+#[pyclass(module = "pipelay", name = "RollerBox", frozen)]
+#[derive(Clone)]
+pub struct RollerBox {
+    arc_length: Option<f64>,
+    shape: roller_box::RollerBox,
+}
+
+#[pymethods]
+impl RollerBox {
+    #[new]
+    #[pyo3(signature = (arc_length=None, kind="v", half_angle=std::f64::consts::FRAC_PI_6, roller_length=1.2, bottom=false, sides=false, friction=0.0, rolling_resistance=0.0, locked=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        arc_length: Option<f64>,
+        kind: &str,
+        half_angle: f64,
+        roller_length: f64,
+        bottom: bool,
+        sides: bool,
+        friction: f64,
+        rolling_resistance: f64,
+        locked: bool,
+    ) -> PyResult<Self> {
+        let shape = match kind {
+            "v" => roller_box::BoxShape::V,
+            "u" => roller_box::BoxShape::U,
+            other => return Err(input("kind", other, "must be \"v\" or \"u\"")),
+        };
+        if let Some(s) = arc_length {
+            pipelay::error::finite("arc_length", &[s]).map_err(to_py)?;
+        }
+        let mut shape = roller_box::RollerBox::new(shape, half_angle, roller_length, bottom, sides)
+            .map_err(to_py)?;
+        shape.friction =
+            RollerFriction::new(friction, rolling_resistance, locked).map_err(to_py)?;
+        Ok(RollerBox { arc_length, shape })
+    }
+
+    /// Where the box stands along the stinger (m), or None: at the place of the roller it replaces.
+    #[getter]
+    fn arc_length(&self) -> Option<f64> {
+        self.arc_length
+    }
+    /// "v" or "u".
+    #[getter]
+    fn kind(&self) -> &'static str {
+        match self.shape.shape {
+            roller_box::BoxShape::V => "v",
+            roller_box::BoxShape::U => "u",
+        }
+    }
+    /// The V's rollers' rise from the lateral (rad).
+    #[getter]
+    fn half_angle(&self) -> f64 {
+        self.shape.half_angle
+    }
+    /// Every roller's length (m).
+    #[getter]
+    fn roller_length(&self) -> f64 {
+        self.shape.roller_length
+    }
+    #[getter]
+    fn bottom(&self) -> bool {
+        self.shape.bottom
+    }
+    #[getter]
+    fn sides(&self) -> bool {
+        self.shape.sides
+    }
+    /// Coulomb friction μ of the box's rollers.
+    #[getter]
+    fn friction(&self) -> f64 {
+        self.shape.friction.friction
+    }
+    /// Rolling resistance f_r of the box's rollers.
+    #[getter]
+    fn rolling_resistance(&self) -> f64 {
+        self.shape.friction.rolling_resistance
+    }
+    /// Whether the box's rollers are locked.
+    #[getter]
+    fn locked(&self) -> bool {
+        self.shape.friction.locked
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "RollerBox(kind={:?}, half_angle={}, roller_length={}, bottom={}, sides={})",
+            self.kind(),
+            self.shape.half_angle,
+            self.shape.roller_length,
+            self.shape.bottom,
+            self.shape.sides
+        )
     }
 }
 
 /// S-lay: the pipe held by the tensioner at `tensioner` (body frame, m) on a horizontal firing line along
-/// the vessel's axis, running aft over the stinger's rollers. `friction`: roller friction along the pipe
-/// (only 0.0, frictionless rollers, is modelled). `roller_stiffness`: contact stiffness (N/m).
+/// the vessel's axis, running aft over the stinger's rollers. `friction`: the rolling resistance along the
+/// pipe (force per normal force) of the stinger's rollers that have no friction of their own (lone rollers;
+/// a `RollerBox` carries its own). `roller_stiffness`: contact stiffness (N/m).
 #[pyclass(module = "pipelay", name = "SLay", frozen)]
 #[derive(Clone)]
 pub struct SLay(pub LayEquipment);
@@ -111,15 +286,16 @@ impl SLay {
         friction: f64,
         roller_stiffness: f64,
     ) -> PyResult<Self> {
-        if friction != 0.0 {
-            return Err(input(
-                "friction",
-                friction,
-                "must be 0.0: roller friction is not modelled (rollers turn freely)",
-            ));
-        }
+        let resistance = RollerFriction::new(0.0, friction, false)
+            .map_err(|_| input("friction", friction, "must be a finite coefficient ≥ 0"))?;
         let tensioner = vector3(tensioner, "tensioner")?;
-        let rollers = stinger.map(|s| s.0.clone()).unwrap_or_default();
+        let mut rollers = stinger.map(|s| s.0.clone()).unwrap_or_default();
+        for roller in rollers
+            .iter_mut()
+            .filter(|r| r.friction == RollerFriction::default())
+        {
+            roller.friction = resistance;
+        }
         LayEquipment::s_lay(tensioner, rollers, roller_stiffness)
             .map(SLay)
             .map_err(to_py)

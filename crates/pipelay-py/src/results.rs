@@ -270,6 +270,19 @@ impl Results {
         let array = PyArray1::from_slice(py, &h.roller_reactions);
         Ok(Some(array.reshape([h.len(), h.rollers_count])?.into_any()))
     }
+    /// Each roller's force on the pipe (T, k, 3) in the vessel's body frame (forward, starboard, down; N);
+    /// None without rollers, or from a file written before they were recorded.
+    #[getter]
+    fn roller_reaction_vectors<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let h = &self.history;
+        if h.rollers_count == 0 || h.roller_vectors.is_empty() {
+            return Ok(None);
+        }
+        let array = PyArray1::from_slice(py, &h.roller_vectors);
+        Ok(Some(
+            array.reshape([h.len(), h.rollers_count, 3])?.into_any(),
+        ))
+    }
     /// The lay summary over time: a dict of (T,) arrays with the keys of State.lay_summary()
     /// (liftoff_roller as a number, NaN: none); None without a vessel.
     fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
@@ -525,6 +538,8 @@ impl Results {
         }
         h.roller_reactions = optional("roller_reactions")?;
         h.rollers_count = h.roller_reactions.len() / h.time.len().max(1);
+        // Files written before roller boxes existed have no reaction vectors.
+        h.roller_vectors = optional("roller_reaction_vectors")?;
         // Without a seabed no touchdown_arc_length is written: the lay summary's is NaN throughout.
         let lay: Vec<Vec<f64>> = LAY_FIELDS
             .iter()
@@ -532,9 +547,15 @@ impl Results {
                 // Files written before the tip clearance existed have none either.
                 Ok(series)
                     if series.is_empty()
-                        && (*name == "touchdown_arc_length" || *name == "tip_clearance") =>
+                        && (*name == "touchdown_arc_length"
+                            || *name == "tip_clearance"
+                            || *name == "tip_offset") =>
                 {
                     Ok(vec![f64::NAN; h.time.len()])
+                }
+                // Files written before roller boxes existed: the pipe stayed on endless rollers.
+                Ok(series) if series.is_empty() && *name == "boxes_left" => {
+                    Ok(vec![0.0; h.time.len()])
                 }
                 other => other,
             })

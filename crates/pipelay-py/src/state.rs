@@ -10,7 +10,9 @@ use pipelay::dynamics::ledger::Energy;
 use pipelay::dynamics::state::DynamicState;
 use pipelay::model::Model;
 use pipelay::response::configuration::Response;
-use pipelay::response::lay_summary::{lay_summary, roller_tops, LaySummary, LAY_FIELDS};
+use pipelay::response::lay_summary::{
+    lay_summary, roller_tops, LaySummary, RollerContacts, LAY_FIELDS,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -59,6 +61,10 @@ pub struct State {
 struct LayState {
     strain: Vec<f64>,
     roller_forces: Option<Vec<f64>>,
+    /// Each roller's force on the pipe (body frame, N) and its contact's offset along it (m; NaN: none).
+    roller_vectors: Option<(Vec<Vector3<f64>>, Vec<f64>)>,
+    /// The support (lone roller or box) of each roller.
+    roller_supports: Vec<usize>,
     summary: Option<LaySummary>,
     /// The sections of the line's segments, and the segment of each element.
     sections: Vec<pipelay::rod::section::Section>,
@@ -78,6 +84,7 @@ impl LayState {
         configuration: &Configuration,
         section_forces: &[Vector6<f64>],
         roller_forces: Option<&[f64]>,
+        roller_vectors: Option<(&[Vector3<f64>], &[f64])>,
         summary: Option<LaySummary>,
     ) -> Self {
         let rod = &model.rod;
@@ -88,6 +95,12 @@ impl LayState {
                 .map(|(e, f)| rod.section(e).strain(f))
                 .collect(),
             roller_forces: roller_forces.map(<[f64]>::to_vec),
+            roller_vectors: roller_vectors.map(|(v, o)| (v.to_vec(), o.to_vec())),
+            roller_supports: model
+                .vessel
+                .as_ref()
+                .map(|a| a.rollers().iter().map(|r| r.support).collect())
+                .unwrap_or_default(),
             summary,
             sections: rod.sections.clone(),
             segment_of: rod.segment_of.clone(),
@@ -109,10 +122,11 @@ impl State {
         steps: usize,
     ) -> Self {
         let count = model.rod.node_count();
-        let rollers = response
-            .rollers
-            .as_ref()
-            .map(|r| (&r.forces[..], &r.elements[..]));
+        let rollers = response.rollers.as_ref().map(|r| RollerContacts {
+            forces: &r.forces,
+            elements: &r.elements,
+            offsets: &r.offsets,
+        });
         let summary = lay_summary(
             model,
             &configuration.positions,
@@ -125,7 +139,11 @@ impl State {
             model,
             &configuration,
             &response.section_forces,
-            rollers.map(|r| r.0),
+            rollers.map(|r| r.forces),
+            response
+                .rollers
+                .as_ref()
+                .map(|r| (&r.reactions[..], &r.offsets[..])),
             summary,
         );
         State {
@@ -171,6 +189,7 @@ impl State {
             &state.configuration,
             &section_forces,
             observables.roller_forces(),
+            observables.roller_reactions(),
             observables.lay_summary(&section_forces),
         );
         State {
@@ -360,13 +379,35 @@ impl State {
     fn roller_reactions<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
         self.lay.roller_forces.as_ref().map(|f| to_numpy(py, f))
     }
+    /// Each roller's force on the pipe (k, 3) in the vessel's body frame (forward, starboard, down; N): its
+    /// vertical part is −[:, 2], its lateral part [:, 1]; its length is roller_reactions. None without
+    /// rollers.
+    #[getter]
+    fn roller_reaction_vectors<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        let (vectors, _) = self.lay.roller_vectors.as_ref()?;
+        Some(crate::convert::points_to_numpy(py, vectors))
+    }
+    /// Where each roller's contact lies along it (k,): from the roller's centre along its axis (m; NaN out
+    /// of contact). None without rollers.
+    #[getter]
+    fn roller_offsets<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        let (_, offsets) = self.lay.roller_vectors.as_ref()?;
+        Some(to_numpy(py, offsets))
+    }
+    /// The support of each roller (k,): the 0-based index of its lone roller or roller box along the
+    /// stinger (for a stinger of lone rollers, 0 … k − 1). Empty without rollers.
+    #[getter]
+    fn roller_supports(&self) -> Vec<usize> {
+        self.lay.roller_supports.clone()
+    }
     /// The lay summary (dict; SI units, angles in rad): top_tension (N, at the hold point), departure_angle
-    /// (below the horizontal where the pipe leaves the equipment), liftoff_roller (the 0-based index into
-    /// roller_reactions of the last roller in contact, or None; people read rollers numbered from 1),
+    /// (below the horizontal where the pipe leaves the equipment), liftoff_roller (the 0-based index of the
+    /// last support in contact, a lone roller or a roller box, as in roller_supports, or None; people read
+    /// rollers numbered from 1),
     /// liftoff_arc_length, inflection_arc_length (the steepest point, where the overbend meets the sagbend),
     /// layback (horizontal, hold point to touchdown; NaN without one), touchdown_arc_length, overbend_strain
     /// (largest, hold point to inflection), sagbend_strain and sagbend_moment (largest, inflection to
-    /// touchdown), tip_clearance (m, the pipe to the stinger's last roller; NaN without rollers). None
+    /// touchdown), tip_clearance (m, the pipe to the stinger's last support; NaN without rollers). None
     /// without a vessel.
     fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Some(summary) = &self.lay.summary else {

@@ -387,8 +387,14 @@ def lay_configuration(state: State, path: _PathLike | None = None, **check: Any)
     )
     detail.set_xlim(x[near].min() - 5.0, x[near].max() + 5.0)
     detail.set_ylim(elevation[near].min() - 5.0, elevation[near].max() + 5.0)
-    liftoff = summary["liftoff_roller"]  # 0-based; rollers are numbered from 1 for people
-    at = f" at roller {liftoff + 1} of {len(rollers)}" if liftoff is not None and rollers is not None else ""
+    liftoff = summary["liftoff_roller"]  # 0-based; rollers (boxes) are numbered from 1 for people
+    supports = state.roller_supports
+    count, noun = (
+        (max(supports) + 1, "box")
+        if supports and max(supports) + 1 < len(supports)
+        else (len(supports), "roller")
+    )
+    at = f" at {noun} {liftoff + 1} of {count}" if liftoff is not None and rollers is not None else ""
     detail.set_title(f"At the vessel: departure {np.degrees(summary['departure_angle']):.1f}°{at}")
     detail.set_xlabel("x (m)")
     arc = state.reference_arc_length

@@ -308,7 +308,8 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
     if summary is None:
         parts.append(html.subsection("Lay summary", html.note("no lay summary: the model has no vessel")))
     else:
-        parts.append(html.subsection("Lay summary", _lay_summary(results, summary)))
+        supports = None if model is None else model.rest().roller_supports
+        parts.append(html.subsection("Lay summary", _lay_summary(results, summary, supports)))
     section = model.rod.section if model is not None else None
     dnv = dict(checks or {}) if section is not None and section.wall_thickness is not None else None
     try:
@@ -355,12 +356,16 @@ STINGER_ONLY = ("liftoff_roller", "overbend_strain", "tip_clearance")
 """The lay summary's quantities that only a stinger has: a lay without rollers (a J-lay tower) leaves them out."""
 
 
-def _lay_summary(results: Results, summary: Mapping[str, Any]) -> Markup:
+def _lay_summary(results: Results, summary: Mapping[str, Any], supports: list[int] | None = None) -> Markup:
     """The lay summary's minimum, mean and maximum over the run, each quantity in the unit people read; the
-    lift-off roller numbered from 1 (no mean: it names a roller); without rollers, only what a lay without a
-    stinger has (`STINGER_ONLY` left out)."""
+    lift-off roller (or box, on a stinger of roller boxes: `supports`, each roller's box, from the model)
+    numbered from 1 (no mean: it names a roller); without rollers, only what a lay without a stinger has
+    (`STINGER_ONLY` left out)."""
     rollers = results.roller_reactions
     count = None if rollers is None else int(np.asarray(rollers).shape[1])
+    noun = "roller"
+    if supports and count is not None and max(supports) + 1 < count:
+        count, noun = max(supports) + 1, "box"
     rows = []
     for key, series in summary.items():
         if rollers is None and key in STINGER_ONLY:
@@ -373,9 +378,9 @@ def _lay_summary(results: Results, summary: Mapping[str, Any]) -> Markup:
         shown = quantity(key)
         if key == "liftoff_roller":
             cells = [
-                roller_cell(low, count, id=f"lay-{key}-min"),
+                roller_cell(low, count, id=f"lay-{key}-min", noun=noun),
                 Cell("—", id=f"lay-{key}-mean"),
-                roller_cell(high, count, id=f"lay-{key}-max"),
+                roller_cell(high, count, id=f"lay-{key}-max", noun=noun),
                 "numbered from 1 in the stinger's order",
             ]
         else:

@@ -87,6 +87,8 @@ QUANTITIES: dict[str, Quantity] = {
     "sagbend_strain": _entry("sagbend strain", "1", _PERCENT),
     "sagbend_moment": _entry("sagbend bending moment", "N m", _KNM),
     "tip_clearance": _entry("stinger tip clearance", "m"),
+    "tip_offset": _entry("lateral offset at the stinger tip", "m"),
+    "boxes_left": _entry("roller boxes the pipe is leaving", "1", _PLAIN),
     # The extremes of a run and a sweep's statistics (pipelay.analysis.sweep.STATISTICS).
     "top_tension_max": _entry("largest top tension", "N", _KN),
     "top_tension_min": _entry("smallest top tension", "N", _KN),
@@ -133,10 +135,11 @@ def quantity(name: str, unit: str = "") -> Quantity:
     return _entry(name.replace("_", " "), unit, _SHOWN.get(unit))
 
 
-def roller_cell(index: Any, count: int | None, *, id: str | None = None) -> Cell:
-    """A cell naming a roller by its number from 1, "roller 12 of 15" (`count` rollers; "—" for None or
-    NaN: no roller), with the Python index from 0 in ``data-value`` and ``data-unit`` "index from 0"."""
+def roller_cell(index: Any, count: int | None, *, id: str | None = None, noun: str = "roller") -> Cell:
+    """A cell naming a roller (or a roller box, `noun` "box") by its number from 1, "roller 12 of 15" (`count`
+    of them; "—" for None or NaN: none), with the Python index from 0 in ``data-value`` and ``data-unit``
+    "index from 0"."""
     if index is None or not math.isfinite(float(index)):
         return Cell("—", id=id, data={"value": "nan", "unit": "index from 0"}, numeric=True)
-    text = f"roller {round(float(index)) + 1}" + (f" of {count}" if count is not None else "")
+    text = f"{noun} {round(float(index)) + 1}" + (f" of {count}" if count is not None else "")
     return Cell(text, id=id, data={"value": repr(float(index)), "unit": "index from 0"}, numeric=True)

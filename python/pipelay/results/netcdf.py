@@ -72,7 +72,7 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "liftoff_roller": (
         ("time",),
         "1",
-        "0-based index into roller_reactions of the last roller in contact, NaN: none",
+        "0-based index of the last support (lone roller or roller box) in contact, NaN: none",
     ),
     "liftoff_arc_length": (("time",), "m", "arc length of the lift-off point from end A"),
     "inflection_arc_length": (
@@ -87,7 +87,17 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "tip_clearance": (
         ("time",),
         "m",
-        "gap between the line and the stinger's last roller (<= 0: in contact)",
+        "gap between the line and the stinger's last support (<= 0: in contact)",
+    ),
+    "tip_offset": (
+        ("time",),
+        "m",
+        "lateral offset (to starboard) of the line from the last support's station, NaN: none",
+    ),
+    "boxes_left": (
+        ("time",),
+        "1",
+        "number of roller boxes with the pipe at a roller's end (0: in its boxes)",
     ),
     "touchdown": (
         ("time", "axis"),
@@ -181,6 +191,8 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "sagbend_strain",
         "sagbend_moment",
         "tip_clearance",
+        "tip_offset",
+        "boxes_left",
     ),
 }
 # The groups ``load`` needs to build a Results (the engine's Results has no missing arrays).

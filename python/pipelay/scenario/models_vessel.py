@@ -56,6 +56,7 @@ __all__ = [
     "ModelVessel",
     "Observer",
     "PayOut",
+    "RollerBox",
     "RollerStinger",
     "Route",
     "RouteController",
@@ -74,8 +75,38 @@ _RollerRadius = Annotated[float | None, POSITIVE_LENGTH, api("radius of every ro
 """`roller_radius`, a key of either way to give a stinger."""
 
 
+class RollerBox(Table):
+    """`[vessel.lay.stinger.box]` or an entry of `[[vessel.lay.stinger.boxes]]`: `pl.RollerBox`, rollers of
+    finite length set across the pipe at a place of the stinger."""
+
+    arc_length: Annotated[float | None, Number("m", ge=0)] = api(
+        "where the box stands along the stinger from its start (boxes only; default: the place of the "
+        "roller it replaces)",
+        words="the roller's place",
+    )
+    kind: Annotated[Literal["v", "u"] | None, Choice(("v", "u"))] = api(
+        "v: two rollers in a V (optional bottom and side rollers); u: a bottom roller between two vertical "
+        "side rollers",
+        "v",
+    )
+    half_angle: Annotated[float | None, Number("rad", gt=0)] = api(
+        "each V roller's rise from the lateral, below π/2", words="π/6"
+    )
+    roller_length: Annotated[float | None, Number("m", gt=0)] = api("every roller's length", 1.2)
+    bottom: Annotated[bool | None, Flag()] = api("a bottom roller between the V's rollers", False)
+    sides: Annotated[bool | None, Flag()] = api("vertical side rollers at the V's upper ends", False)
+    friction: Annotated[float | None, Number(ge=0)] = api(
+        "Coulomb friction μ of the rollers: along them if they turn, every way if locked", 0
+    )
+    rolling_resistance: Annotated[float | None, Number(ge=0)] = api(
+        "rolling resistance of free-turning rollers along the pipe (force per normal force)", 0
+    )
+    locked: Annotated[bool | None, Flag()] = api("rollers braked or locked: they do not turn", False)
+
+
 class ArcStinger(Table):
-    """`[vessel.lay.stinger]` as an arc: `pl.Stinger`."""
+    """`[vessel.lay.stinger]` as an arc: `pl.Stinger`, its supports lone rollers across it or roller boxes
+    (`box`: the same box at every roller's place; `boxes`: one box per place, or each at its arc length)."""
 
     conflicts: ClassVar[dict[str, str]] = {"axes": "belongs to positions (rollers given point by point)"}
     radius: Annotated[float, POSITIVE_LENGTH] = Field(description="radius of the arc, the rollers' top line")
@@ -90,6 +121,17 @@ class ArcStinger(Table):
         "the arc's slope below the horizontal at the origin", 0
     )
     roller_radius: _RollerRadius = None
+    box: RollerBox | None = api("the roller box standing at every roller's place", words="lone rollers")
+    boxes: list[RollerBox] | None = api("the roller boxes, one per place or each at its arc_length")
+
+    @model_validator(mode="after")
+    def box_or_boxes(self) -> ArcStinger:
+        """Not both `box` and `boxes`; `box` has no arc length."""
+        if self.box is not None and self.boxes is not None:
+            raise rule("conflicts with boxes: give one box for every place, or the list", "box")
+        if self.box is not None and self.box.arc_length is not None:
+            raise rule("has no arc_length: the box stands at every roller's place", "box.arc_length")
+        return self
 
 
 class RollerStinger(Table):
@@ -138,7 +180,7 @@ class SLay(Table):
         "contact stiffness of every roller", 1e7
     )
     friction: Annotated[float | None, Number(ge=0)] = api(
-        "roller friction; only 0 (free rollers) is modelled", 0
+        "rolling resistance along the pipe (force per normal force) of the stinger's lone rollers", 0
     )
     stinger: Stinger | None = None
 

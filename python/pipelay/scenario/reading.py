@@ -313,7 +313,12 @@ def _lay(lay: models.SLay | models.JLay) -> pl.SLay | pl.JLay:
             if isinstance(lay.stinger, models.RollerStinger):
                 stinger = pl.Stinger.from_rollers(**lay.stinger.given())
             else:
-                stinger = pl.Stinger(**lay.stinger.given())
+                arc = lay.stinger
+                boxes = [arc.box] * arc.rollers if arc.box is not None else arc.boxes
+                placed = (
+                    None if boxes is None else [pl.RollerBox(**b.given(), kind=b.kind or "v") for b in boxes]
+                )
+                stinger = pl.Stinger(**arc.given("box", "boxes"), boxes=placed)
     with _engine("vessel.lay", KEYS["vessel.lay"]):
         return pl.SLay(stinger=stinger, **lay.given("stinger"))
 

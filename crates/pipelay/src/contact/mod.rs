@@ -6,9 +6,13 @@
 //! - [`rule`]: how an evaluation treats the step (static or energy–momentum);
 //! - [`sinks`]: where contact puts its tangent;
 //! - [`seabed`]: the seabed's normal contact and, through [`friction`], its friction;
-//! - [`rollers`]: unilateral contact with the vessel's rollers;
+//! - [`roller_friction`]: what a roller's surface resists along the contact (rolling resistance, Coulomb);
+//! - [`roller_geometry`]: where the pipe's surface is nearest a roller of finite length;
+//! - [`rollers`]: unilateral contact with the vessel's rollers, their reactions and the energy–momentum step;
 //! - [`touchdown`]: where the pipe leaves the seabed.
 pub mod friction;
+pub mod roller_friction;
+pub mod roller_geometry;
 pub mod rollers;
 pub mod rule;
 pub mod seabed;

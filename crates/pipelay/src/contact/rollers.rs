@@ -1,19 +1,11 @@
 //! Rollers on the vessel: unilateral contact of the pipe's outer surface with vessel-fixed cylinders, in
 //! statics and in the energy–momentum step.
 //!
-//! **Geometry.** A roller has an axis line (centre c, unit direction a) and radius r_r; it is fixed in the
-//! frame of the vessel's end node N, where the pipe's nodes have local coordinates y_j = Λ_Nᵀ(x_j − x_N).
-//! The pipe's centreline is the Catmull–Rom spline through the nodes: on element i,
-//! r(ξ) = Σ_j w_j(ξ) y_j over the nodes i − 1 … i + 2 (ξ ∈ [0, 1]; at an end of the rod, and at a joint of
-//! elements of different diameters, the missing node is mirrored, y_{−1} = 2y_0 − y_1), which passes through
-//! the nodes with a continuous tangent. Its distance
-//! from the axis, in the plane normal to a, is d = min over ξ of |(I − a aᵀ)(r(ξ) − c)| on the elements next
-//! to the nearest chord, counted negative on the far side of the axis (against the roller's normal, the side
-//! the pipe rests on). The surfaces overlap by δ = r_r + d_o/2 − d; the contact potential is V = ½ k δ₊²
-//! (k the roller stiffness, N/m), pushing only, so the pipe lifts off freely. Because the spline has no
-//! kinks, V changes smoothly as the pipe slides over a roller: the chord polygon, whose nodes stand out of
-//! its chords by the sagitta ℓ²/8R on a stinger of radius R, bumped every roller once per element, and a
-//! stiff contact rang with it. At the foot ξ*, ∂d/∂y_j = w_j(ξ*) n (n the unit foot direction).
+//! **Geometry** ([`super::roller_geometry`]). The distance d from a roller of finite length to the spline
+//! through the pipe's nodes, nearest it, in the frame of the vessel's end node N. The surfaces overlap by
+//! δ = r_r + d_o/2 − d; the contact potential is V = ½ k δ₊² (k the roller stiffness, N/m), pushing only, so
+//! the pipe lifts off freely. At the foot ξ*, ∂d/∂y_j = w_j(ξ*) n, and the roller pushes the pipe with
+//! k δ n: its reaction vector, recorded with the foot's offset along the roller.
 //!
 //! **Forces on pipe and vessel.** With g_j = ∂V/∂y_j, node j carries f_j = Λ_N g_j, and N, which is the
 //! vessel, carries the reaction −Σ f_j and the moment Σ f_j × (x_j − x_N): roller forces act on the vessel in
@@ -30,13 +22,16 @@
 //! [`MAX_NODES`] pipe nodes and N), checked against differences of the assembled residual in the tests.
 // Indexing cannot go out of bounds here: Roller, node and element indices of the contact's own mesh and roller list.
 #![allow(clippy::indexing_slicing)]
+use crate::contact::roller_friction;
+use crate::contact::roller_geometry::{
+    nearest, nearest_spline_element, spline_distance, LocalRoller, Segment, Surfaces,
+};
 use crate::contact::rule::ContactRule;
 use crate::contact::sinks::EntrySink;
 use crate::rod::Rod;
 use crate::so3::{cayley, exp, skew};
-use crate::vessel::lay::Roller;
 use crate::vessel::VesselAttachment;
-use nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector2, Vector3};
 
 /// Most pipe nodes one roller's discrete gradient spans: those of the spline's elements nearest it at the
 /// step's start, end and midpoint, four each.
@@ -61,23 +56,10 @@ const STEP_TANGENT_ROTATION: f64 = 1e-7;
 const MAX_SEGMENTS: usize = 3;
 const MAX_VARIABLES: usize = 3 * MAX_NODES + 6;
 
-/// A roller in the end node's frame.
-#[derive(Debug, Clone, Copy)]
-struct LocalRoller {
-    centre: Vector3<f64>,
-    /// The side the pipe rests on (unit, normal to the axis).
-    normal: Vector3<f64>,
-    /// The axis a (unit) and the projector I − a aᵀ onto the plane normal to it.
-    axis: Vector3<f64>,
-    projector: Matrix3<f64>,
-    /// The roller's radius r_r (m).
-    radius: f64,
-}
-
 /// The rollers of a model and their state at the last evaluation.
 #[derive(Debug, Clone)]
 pub struct RollerContact {
-    rollers: Vec<LocalRoller>,
+    pub(super) rollers: Vec<LocalRoller>,
     stiffness: f64,
     end_node: usize,
     /// The line's surface along each element of the rod.
@@ -86,13 +68,68 @@ pub struct RollerContact {
     elements: std::ops::Range<usize>,
     /// Normal force of each roller at the evaluated (end) state (N, ≥ 0).
     pub forces: Vec<f64>,
+    /// Each roller's force on the pipe there, in the vessel's body frame (N; zero out of contact).
+    pub reactions: Vec<Vector3<f64>>,
+    /// Where each roller's contact lies along it there, from its centre along its axis (m; NaN out of
+    /// contact).
+    pub offsets: Vec<f64>,
+    /// The rotation from the body frame to the end node's frame (R_t^b transposed).
+    to_end: Matrix3<f64>,
     /// The element nearest each roller there.
     pub nearest_elements: Vec<usize>,
-    /// Contact energy at the evaluated (end) state (J).
+    /// Contact energy at the evaluated (end) state (J), the friction springs' included.
     pub energy_end: f64,
+    /// Energy the rollers' friction dissipated over the evaluated step (J).
+    pub dissipated: f64,
+    /// Each roller's elastic friction slip (ĉ, â; m): at the last committed state, and at the evaluated end.
+    slips: Vec<Vector2<f64>>,
+    slips_end: Vec<Vector2<f64>>,
     /// Local coordinates of the nodes of `elements` at the end, start and midpoint of the evaluated step
     /// (scratch, filled once per evaluation and shared by the rollers).
     locals: [Vec<Vector3<f64>>; 3],
+}
+
+/// What one roller's residual is evaluated on: the spline's elements near it, the nodes that control them
+/// (sorted) and, in a step, the contact energy at the step's start.
+struct Spline<'a> {
+    segments: &'a [Segment],
+    nodes: &'a [usize],
+    value_start: f64,
+    /// In a step, the friction's frame at its start, where the roller resists sliding and touched the pipe.
+    friction: Option<FrictionFrame>,
+}
+
+/// A roller's contact at one state: its force on the pipe (local frame, N), the foot's offset along the
+/// roller (m), and the foot's control nodes (indices into the roller's node list), spline weights and unit
+/// normal.
+#[derive(Debug, Clone, Copy)]
+struct Touch {
+    reaction: Vector3<f64>,
+    along: f64,
+    control: [usize; 4],
+    weights: [f64; 4],
+    normal: Vector3<f64>,
+}
+
+/// Friction over a step at a roller, frozen at the step's start ([`roller_friction`]): the foot's control
+/// nodes and weights, the tangent directions (ĉ, â) and the elastic slip there.
+#[derive(Debug, Clone, Copy)]
+struct FrictionFrame {
+    control: [usize; 4],
+    weights: [f64; 4],
+    directions: [Vector3<f64>; 2],
+    slip_start: Vector2<f64>,
+}
+
+/// One evaluation of a roller's residual ([`RollerContact::roller_residual`]): the residual over its
+/// unknowns, the contact energy at the end (with the friction spring's), the contact there, and the
+/// friction's slip at the end and dissipation over the step.
+struct RollerStep {
+    residual: [f64; MAX_VARIABLES],
+    energy: f64,
+    touch: Option<Touch>,
+    slip: Vector2<f64>,
+    dissipated: f64,
 }
 
 /// The end node's pose.
@@ -106,280 +143,6 @@ impl Pose {
     fn local(&self, x: &Vector3<f64>) -> Vector3<f64> {
         self.rotation.transpose() * (x - self.position)
     }
-}
-
-/// The element nearest `roller` among those whose nodes have local coordinates `locals` (the first
-/// element's index is `first`): the one whose surface is nearest, by [`chord_distance`] less its radius
-/// (`half_diameters`, per element of the rod).
-///
-/// Every point of a chord lies within half the chord's length h of one of its ends, so its distance from
-/// the axis is at least ρ − h, ρ the nearer end's distance. A chord with ρ − h above both the best gap so
-/// far plus its radius and 2(r_r + d/2) (beyond which a chord on the far side is out of reach) cannot be
-/// nearer, and its [`chord_distance`] is skipped: the same element is found for a fraction of the cost.
-fn nearest(
-    roller: &LocalRoller,
-    half_diameters: &[f64],
-    first: usize,
-    locals: &[Vector3<f64>],
-) -> usize {
-    // Squared distance of a node from the axis, |(I − a aᵀ)(y − c)|² = |y − c|² − (a·(y − c))².
-    let axis_distance2 = |y: &Vector3<f64>| {
-        let v = y - roller.centre;
-        v.norm_squared() - roller.axis.dot(&v).powi(2)
-    };
-    let mut best = (f64::INFINITY, first);
-    let mut start_distance2 = locals.first().map_or(0.0, axis_distance2);
-    for (e, chord) in (first..).zip(locals.windows(2)) {
-        let end_distance2 = axis_distance2(&chord[1]);
-        let nearer_end = start_distance2.min(end_distance2).max(0.0).sqrt();
-        start_distance2 = end_distance2;
-        let half_length = 0.5 * (chord[1] - chord[0]).norm();
-        let half_diameter = half_diameters[e];
-        let reach = roller.radius + half_diameter;
-        // A relative margin of 1e-9 keeps the bound below the rounded chord_distance.
-        if (nearer_end - half_length) * (1.0 - 1e-9) > (best.0 + half_diameter).max(2.0 * reach) {
-            continue;
-        }
-        let (d, _, _) = chord_distance(roller, reach, &chord[0], &chord[1]);
-        if d - half_diameter < best.0 {
-            best = (d - half_diameter, e);
-        }
-    }
-    best.1
-}
-
-/// Distance from the roller's axis to the chord (y0, y1) in the plane normal to the axis, with ∂d/∂y0 and
-/// ∂d/∂y1. Negative where the chord has passed the axis to the far side (against the roller's normal) and
-/// is still within twice the contact distance: the contact then pushes it back. Far beyond, the chord is
-/// out of the roller's reach r_r + d/2 (infinite distance).
-fn chord_distance(
-    roller: &LocalRoller,
-    reach: f64,
-    y0: &Vector3<f64>,
-    y1: &Vector3<f64>,
-) -> (f64, Vector3<f64>, Vector3<f64>) {
-    let u0 = roller.projector * (y0 - roller.centre);
-    let chord = roller.projector * (y1 - y0);
-    let length2 = chord.norm_squared();
-    let s = if length2 > 0.0 {
-        (-u0.dot(&chord) / length2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let foot = u0 + s * chord;
-    let d = foot.norm();
-    let normal = if d > 0.0 { foot / d } else { Vector3::zeros() };
-    if foot.dot(&roller.normal) >= 0.0 {
-        (d, (1.0 - s) * normal, s * normal)
-    } else if d < 2.0 * reach {
-        (-d, -(1.0 - s) * normal, -s * normal)
-    } else {
-        (f64::INFINITY, Vector3::zeros(), Vector3::zeros())
-    }
-}
-
-/// One element of the spline: the indices, in a roller's node list, of its control nodes i − 1, i, i + 1 and
-/// i + 2 ([`Surfaces::control_nodes`]), and whether the first or the last is mirrored ([`Surfaces::spline_ends`]).
-#[derive(Debug, Clone, Copy)]
-struct Segment {
-    element: usize,
-    control: [usize; 4],
-    mirrored: [bool; 2],
-}
-
-/// What one roller's residual is evaluated on: the spline's elements near it, the nodes that control them
-/// (sorted) and, in a step, the contact energy at the step's start.
-struct Spline<'a> {
-    segments: &'a [Segment],
-    nodes: &'a [usize],
-    value_start: f64,
-}
-
-/// Catmull–Rom weights w_j(ξ) of the four control nodes and their first and second derivatives in ξ, with a
-/// mirrored end (y_{i−1} = 2y_i − y_{i+1}, y_{i+2} = 2y_{i+1} − y_i) folded into the nodes that stand for it.
-fn spline_weights(xi: f64, mirrored: [bool; 2]) -> [[f64; 4]; 3] {
-    let (x2, x3) = (xi * xi, xi * xi * xi);
-    let mut weights = [
-        [
-            0.5 * (-x3 + 2.0 * x2 - xi),
-            0.5 * (3.0 * x3 - 5.0 * x2 + 2.0),
-            0.5 * (-3.0 * x3 + 4.0 * x2 + xi),
-            0.5 * (x3 - x2),
-        ],
-        [
-            0.5 * (-3.0 * x2 + 4.0 * xi - 1.0),
-            0.5 * (9.0 * x2 - 10.0 * xi),
-            0.5 * (-9.0 * x2 + 8.0 * xi + 1.0),
-            0.5 * (3.0 * x2 - 2.0 * xi),
-        ],
-        [
-            0.5 * (-6.0 * xi + 4.0),
-            0.5 * (18.0 * xi - 10.0),
-            0.5 * (-18.0 * xi + 8.0),
-            0.5 * (6.0 * xi - 2.0),
-        ],
-    ];
-    for w in &mut weights {
-        if mirrored[0] {
-            w[1] += 2.0 * w[0];
-            w[2] -= w[0];
-            w[0] = 0.0;
-        }
-        if mirrored[1] {
-            w[2] += 2.0 * w[3];
-            w[1] -= w[3];
-            w[3] = 0.0;
-        }
-    }
-    weights
-}
-
-/// Signed distance d from the roller's axis to the spline element through `points` (see [`chord_distance`]
-/// for the sign), the weights w_j(ξ*) at its foot and the signed unit foot direction ±n, so that
-/// ∂d/∂y_j = w_j(ξ*) (±n). The foot ξ* ∈ [0, 1] is found by Newton's method on ∂|u(ξ)|²/∂ξ = 0 from the
-/// chord's foot, u(ξ) the spline point's offset from the axis in the plane normal to it.
-fn spline_distance(
-    roller: &LocalRoller,
-    reach: f64,
-    points: &[Vector3<f64>; 4],
-    mirrored: [bool; 2],
-) -> (f64, [f64; 4], Vector3<f64>) {
-    let offsets = points.map(|y| roller.projector * (y - roller.centre));
-    let combine = |w: &[f64; 4]| -> Vector3<f64> {
-        w.iter()
-            .zip(&offsets)
-            .map(|(w, u)| *w * u)
-            .sum::<Vector3<f64>>()
-    };
-    let chord = offsets[2] - offsets[1];
-    let length2 = chord.norm_squared();
-    let mut xi = if length2 > 0.0 {
-        (-offsets[1].dot(&chord) / length2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    for _ in 0..30 {
-        let [w, dw, ddw] = spline_weights(xi, mirrored);
-        let (foot, tangent, bend) = (combine(&w), combine(&dw), combine(&ddw));
-        let metric = tangent.norm_squared();
-        if metric == 0.0 {
-            break;
-        }
-        // Newton's step, or Gauss–Newton's where the curvature term would make it climb.
-        let curvature = metric + foot.dot(&bend);
-        let slope = foot.dot(&tangent);
-        let next = (xi - slope / curvature.max(0.5 * metric)).clamp(0.0, 1.0);
-        let converged = (next - xi).abs() <= 1e-15;
-        xi = next;
-        if converged {
-            break;
-        }
-    }
-    let [weights, _, _] = spline_weights(xi, mirrored);
-    let foot = combine(&weights);
-    let d = foot.norm();
-    let normal = if d > 0.0 { foot / d } else { Vector3::zeros() };
-    if foot.dot(&roller.normal) >= 0.0 {
-        (d, weights, normal)
-    } else if d < 2.0 * reach {
-        (-d, weights, -normal)
-    } else {
-        (f64::INFINITY, [0.0; 4], Vector3::zeros())
-    }
-}
-
-/// The line's surface along each element: half its hydrodynamic diameter (m), and whether it is a cable's
-/// bar (whose centreline is its chord, kinked at the nodes).
-#[derive(Debug, Clone)]
-struct Surfaces {
-    half_diameters: Vec<f64>,
-    cables: Vec<bool>,
-}
-
-impl Surfaces {
-    fn new(rod: &Rod) -> Self {
-        let sections = (0..rod.element_count()).map(|e| rod.section(e));
-        Surfaces {
-            half_diameters: sections
-                .clone()
-                .map(|s| 0.5 * s.hydrodynamic_diameter)
-                .collect(),
-            cables: sections.map(|s| s.cable).collect(),
-        }
-    }
-
-    /// Whether element e's spline ends at its first or last node (mirrored there): at an end of the rod, at
-    /// a joint of two elements of different diameters (a pipe's end and the wire fitted to it, say), so
-    /// that the one's direction does not bend the other's surface, and at both ends of a cable's bar, which
-    /// makes the spline its chord.
-    fn spline_ends(&self, e: usize) -> [bool; 2] {
-        let (diameters, cables) = (&self.half_diameters, &self.cables);
-        let joint = |other: usize| diameters[other] != diameters[e] || cables[other] || cables[e];
-        [
-            e == 0 || joint(e - 1),
-            e + 1 == diameters.len() || joint(e + 1),
-        ]
-    }
-
-    /// Element e's control nodes e − 1, e, e + 1, e + 2 and its [`Self::spline_ends`]; a mirrored node's slot
-    /// holds its neighbour in the element (its weight is zero: any node stands for it).
-    fn control_nodes(&self, e: usize) -> ([usize; 4], [bool; 2]) {
-        let ends = self.spline_ends(e);
-        let first = if ends[0] { e } else { e - 1 };
-        let last = if ends[1] { e + 1 } else { e + 2 };
-        ([first, e, e + 1, last], ends)
-    }
-}
-
-/// Of the spline's elements next to the nearest chord `chord` (itself and its neighbours within
-/// `elements`), the one whose surface is nearest `roller`, and its gap d − D/2 − r_r (m), the nodes'
-/// coordinates in the roller's frame given by `local`.
-fn nearest_spline_element(
-    roller: &LocalRoller,
-    surfaces: &Surfaces,
-    elements: std::ops::Range<usize>,
-    chord: usize,
-    local: &dyn Fn(usize) -> Vector3<f64>,
-) -> (f64, usize) {
-    let mut best = (f64::INFINITY, chord);
-    for e in [chord.wrapping_sub(1), chord, chord + 1] {
-        if !elements.contains(&e) {
-            continue;
-        }
-        let (control, mirrored) = surfaces.control_nodes(e);
-        let points = control.map(local);
-        let half_diameter = surfaces.half_diameters[e];
-        let (d, _, _) = spline_distance(roller, roller.radius + half_diameter, &points, mirrored);
-        if d - half_diameter < best.0 {
-            best = (d - half_diameter, e);
-        }
-    }
-    (best.0 - roller.radius, best.1)
-}
-
-/// The gap (m) between the line's surface and `roller` (in the vessel's body frame, whose rotation to e is
-/// `body` and whose roller frame origin lies at `origin` in e) as the contact measures it: from the spline's
-/// element nearest the roller next to the chord `chord`; ≤ 0 in contact (minus the overlap).
-pub fn roller_gap(
-    rod: &Rod,
-    positions: &[Vector3<f64>],
-    roller: &Roller,
-    body: &Matrix3<f64>,
-    origin: &Vector3<f64>,
-    chord: usize,
-) -> f64 {
-    let axis = roller.axis;
-    let local = LocalRoller {
-        centre: roller.centre,
-        normal: roller.normal,
-        axis,
-        projector: Matrix3::identity() - axis * axis.transpose(),
-        radius: roller.radius,
-    };
-    let surfaces = Surfaces::new(rod);
-    let elements = 0..surfaces.half_diameters.len();
-    let in_body = |node: usize| body.transpose() * (positions[node] - origin);
-    nearest_spline_element(&local, &surfaces, elements, chord, &in_body).0
 }
 
 impl RollerContact {
@@ -410,19 +173,16 @@ impl RollerContact {
         let rollers = lay
             .rollers
             .iter()
-            .map(|r: &Roller| {
-                let axis = to_end * r.axis;
-                LocalRoller {
-                    centre: to_end * (r.centre - hold),
-                    normal: to_end * r.normal,
-                    axis,
-                    projector: Matrix3::identity() - axis * axis.transpose(),
-                    radius: r.radius,
-                }
-            })
+            .map(|r| LocalRoller::new(r, &to_end, &hold))
             .collect::<Vec<_>>();
         Some(RollerContact {
             forces: vec![0.0; rollers.len()],
+            reactions: vec![Vector3::zeros(); rollers.len()],
+            offsets: vec![f64::NAN; rollers.len()],
+            slips: vec![Vector2::zeros(); rollers.len()],
+            slips_end: vec![Vector2::zeros(); rollers.len()],
+            dissipated: 0.0,
+            to_end,
             nearest_elements: vec![0; rollers.len()],
             rollers,
             stiffness: lay.roller_stiffness,
@@ -432,6 +192,17 @@ impl RollerContact {
             elements,
             energy_end: 0.0,
         })
+    }
+
+    /// Takes the friction slips of the evaluated step as the committed ones (the step is accepted).
+    pub fn commit_slips(&mut self) {
+        self.slips.clone_from(&self.slips_end);
+    }
+
+    /// Keeps the friction slips of `old`, the same rollers' contact before the mesh changed.
+    pub fn carry_slips(&mut self, old: &RollerContact) {
+        self.slips.clone_from(&old.slips);
+        self.slips_end.clone_from(&old.slips_end);
     }
 
     /// The nodes coupled to the end node through the rollers: those of `elements` and, as the spline's
@@ -449,37 +220,52 @@ impl RollerContact {
         locals.extend(nodes.map(local));
     }
 
-    /// V and ∂V/∂y_j over the spline's `segments` (nodes' local coordinates `y`, in the roller's node order).
+    /// V and ∂V/∂y_j over the spline's `segments` (nodes' local coordinates `y`, in the roller's node order),
+    /// and the contact, if the pipe touches the roller.
     fn potential(
         &self,
         k: usize,
         segments: &[Segment],
         y: &[Vector3<f64>],
-    ) -> (f64, [Vector3<f64>; MAX_NODES]) {
+    ) -> (f64, [Vector3<f64>; MAX_NODES], Option<Touch>) {
         let roller = &self.rollers[k];
         // The element whose surface is nearest: the smallest gap d − D/2.
-        let mut best: Option<(f64, Segment, [f64; 4], Vector3<f64>)> = None;
+        // The gap, the segment, and the foot's weights, direction and offset along the roller.
+        type Foot = (f64, Segment, [f64; 4], Vector3<f64>, f64);
+        let mut best: Option<Foot> = None;
         for segment in segments {
             let half_diameter = self.surfaces.half_diameters[segment.element];
             let reach = roller.radius + half_diameter;
             let points = segment.control.map(|i| y[i]);
-            let (d, weights, direction) = spline_distance(roller, reach, &points, segment.mirrored);
+            let (d, weights, direction, along) =
+                spline_distance(roller, reach, &points, segment.mirrored);
             if best.is_none_or(|b| d - half_diameter < b.0) {
-                best = Some((d - half_diameter, *segment, weights, direction));
+                best = Some((d - half_diameter, *segment, weights, direction, along));
             }
         }
         let mut gradient = [Vector3::zeros(); MAX_NODES];
-        let Some((gap, segment, weights, direction)) = best else {
-            return (0.0, gradient);
+        let Some((gap, segment, weights, direction, along)) = best else {
+            return (0.0, gradient, None);
         };
         let overlap = roller.radius - gap;
         if overlap <= 0.0 {
-            return (0.0, gradient);
+            return (0.0, gradient, None);
         }
         for (i, w) in segment.control.iter().zip(weights) {
             gradient[*i] -= self.stiffness * overlap * w * direction;
         }
-        (0.5 * self.stiffness * overlap * overlap, gradient)
+        let touch = Touch {
+            reaction: self.stiffness * overlap * direction,
+            along,
+            control: segment.control,
+            weights,
+            normal: direction,
+        };
+        (
+            0.5 * self.stiffness * overlap * overlap,
+            gradient,
+            Some(touch),
+        )
     }
 
     /// Of the spline's elements next to the nearest chord `chord`, the one whose surface is nearest roller k
@@ -578,6 +364,7 @@ impl RollerContact {
         };
         let mut magnitude = magnitude;
         self.energy_end = 0.0;
+        self.dissipated = 0.0;
         // The nodes' local coordinates at the end (and, in a step, at the start and midpoint), once for all
         // rollers.
         let end_local = |node: usize| end.local(&(positions[node] + step_of(node)));
@@ -605,21 +392,32 @@ impl RollerContact {
             }
             let (segments, segment_count, nodes, count) = self.segments(&elements[..states]);
             let (segments, nodes) = (&segments[..segment_count], &nodes[..count]);
-            // The energy at the step's start does not depend on the unknowns: once per roller.
-            let value_start = if stepping {
+            // The energy and the contact at the step's start do not depend on the unknowns: once per roller.
+            let (value_start, touch_start) = if stepping {
                 let y_start: [Vector3<f64>; MAX_NODES] = std::array::from_fn(|i| {
                     nodes
                         .get(i)
                         .map_or_else(Vector3::zeros, |&node| start_local(node))
                 });
-                self.potential(k, segments, &y_start[..count]).0
+                let (value, _, touch) = self.potential(k, segments, &y_start[..count]);
+                (value, touch)
             } else {
-                0.0
+                (0.0, None)
             };
+            let roller = &self.rollers[k];
+            let friction = touch_start
+                .filter(|_| !roller.friction.is_frictionless())
+                .map(|touch| FrictionFrame {
+                    control: touch.control,
+                    weights: touch.weights,
+                    directions: roller_friction::tangent_directions(&touch.normal, &roller.axis),
+                    slip_start: self.slips[k],
+                });
             let contact = Spline {
                 segments,
                 nodes,
                 value_start,
+                friction,
             };
             let variables = 3 * count + 6;
             // Unknowns: Δx of each node of R, then Δx and θ of N; residual in the same order.
@@ -629,9 +427,23 @@ impl RollerContact {
             }
             base[3 * count..3 * count + 3].copy_from_slice(step_of(n).as_slice());
             base[3 * count + 3..variables].copy_from_slice(theta.as_slice());
-            let (forces, value, normal_force) =
-                self.roller_residual(k, rule, &contact, positions, &start, &base, &update);
+            let RollerStep {
+                residual: forces,
+                energy: value,
+                touch,
+                slip,
+                dissipated,
+            } = self.roller_residual(k, rule, &contact, positions, &start, &base, &update);
+            self.slips_end[k] = slip;
+            self.dissipated += dissipated;
+            // The reaction in the end node's frame at the end state, turned to the body frame.
+            let (reaction, offset) = touch.map_or((Vector3::zeros(), f64::NAN), |touch| {
+                (self.to_end.transpose() * touch.reaction, touch.along)
+            });
+            let normal_force = reaction.norm();
             self.forces[k] = normal_force;
+            self.reactions[k] = reaction;
+            self.offsets[k] = offset;
             self.nearest_elements[k] = chords[0];
             self.energy_end += value;
             if normal_force == 0.0 && forces[..variables].iter().all(|f| *f == 0.0) {
@@ -669,10 +481,12 @@ impl RollerContact {
                     let mut minus = base;
                     plus[j] += h;
                     minus[j] -= h;
-                    let (fp, _, _) =
-                        self.roller_residual(k, rule, &contact, positions, &start, &plus, &update);
-                    let (fm, _, _) =
-                        self.roller_residual(k, rule, &contact, positions, &start, &minus, &update);
+                    let fp = self
+                        .roller_residual(k, rule, &contact, positions, &start, &plus, &update)
+                        .residual;
+                    let fm = self
+                        .roller_residual(k, rule, &contact, positions, &start, &minus, &update)
+                        .residual;
                     for i in 0..variables {
                         let value = (fp[i] - fm[i]) / (2.0 * h);
                         if value != 0.0 {
@@ -684,8 +498,9 @@ impl RollerContact {
         }
     }
 
-    /// Roller k's residual over its unknowns `step` (see [`Self::evaluate`]) on the spline `contact`, the
-    /// contact energy at the end and the roller's normal force there.
+    /// Roller k's residual over its unknowns `step` (see [`Self::evaluate`]) on the spline `contact`, with its
+    /// friction: the contact energy at the end and the contact there, and the friction's slip and
+    /// dissipation.
     #[allow(clippy::too_many_arguments)]
     fn roller_residual(
         &self,
@@ -696,7 +511,7 @@ impl RollerContact {
         start: &Pose,
         step: &[f64; MAX_VARIABLES],
         update: &dyn Fn(&Vector3<f64>) -> Matrix3<f64>,
-    ) -> ([f64; MAX_VARIABLES], f64, f64) {
+    ) -> RollerStep {
         let nodes = contact.nodes;
         let count = nodes.len();
         let dx_n = Vector3::from_column_slice(&step[3 * count..3 * count + 3]);
@@ -713,11 +528,29 @@ impl RollerContact {
             y_start[i] = start.local(&positions[node]);
             y_end[i] = end.local(&x_end[i]);
         }
-        let (value_end, gradient_end) = self.potential(k, contact.segments, &y_end[..count]);
-        let normal_force = (2.0 * self.stiffness * value_end).sqrt();
+        let (value_end, mut gradient_end, touch) =
+            self.potential(k, contact.segments, &y_end[..count]);
+        let roller = &self.rollers[k];
+        let mut slip = Vector2::zeros();
+        let mut dissipated = 0.0;
+        let mut friction_energy = 0.0;
         let mut out = [0.0; MAX_VARIABLES];
         let (gradient, frame, arms) = match rule {
             ContactRule::Static => {
+                // The pipe slides out over the rollers: held back toward the hold point with the limit force.
+                if let Some(touch) = touch.filter(|_| !roller.friction.is_frictionless()) {
+                    let y = |slot: usize| y_end[touch.control[slot]];
+                    let toward_hold = if self.end_node == 0 { -1.0 } else { 1.0 } * (y(2) - y(1));
+                    let force = roller_friction::static_force(
+                        &roller.friction,
+                        &touch.normal,
+                        &toward_hold,
+                        touch.reaction.norm(),
+                    );
+                    for (i, w) in touch.control.iter().zip(touch.weights) {
+                        gradient_end[*i] -= w * force;
+                    }
+                }
                 let arms: [Vector3<f64>; MAX_NODES] =
                     std::array::from_fn(|i| x_end[i] - end.position);
                 (gradient_end, end.rotation, arms)
@@ -730,7 +563,7 @@ impl RollerContact {
                     change2 += (y_end[i] - y_start[i]).norm_squared();
                 }
                 let value_start = contact.value_start;
-                let (_, mut gradient) = self.potential(k, contact.segments, &y_mid[..count]);
+                let (_, mut gradient, _) = self.potential(k, contact.segments, &y_mid[..count]);
                 let along: f64 = (0..count)
                     .map(|i| gradient[i].dot(&(y_end[i] - y_start[i])))
                     .sum();
@@ -745,6 +578,28 @@ impl RollerContact {
                     for i in 0..count {
                         gradient[i] += c * (y_end[i] - y_start[i]);
                     }
+                }
+                // Friction on the material point's move Δu = Σ w_j Δy_j, in the directions of the step's start.
+                if let Some(frame) = &contact.friction {
+                    let moved: Vector3<f64> = frame
+                        .control
+                        .iter()
+                        .zip(frame.weights)
+                        .map(|(&i, w)| w * (y_end[i] - y_start[i]))
+                        .sum();
+                    let normal_force = touch.map_or(0.0, |t| t.reaction.norm());
+                    let step = roller_friction::step(
+                        &roller.friction,
+                        &frame.directions,
+                        &frame.slip_start,
+                        &moved,
+                        normal_force,
+                        self.stiffness,
+                    );
+                    for (i, w) in frame.control.iter().zip(frame.weights) {
+                        gradient[*i] -= w * step.force;
+                    }
+                    (slip, dissipated, friction_energy) = (step.slip, step.dissipated, step.energy);
                 }
                 // w_j = (I + ½θ̂)⁻¹ d_j,{n+1}.
                 let solve = (Matrix3::identity() + 0.5 * skew(&theta))
@@ -765,13 +620,20 @@ impl RollerContact {
         }
         out[3 * count..3 * count + 3].copy_from_slice(force_n.as_slice());
         out[3 * count + 3..3 * count + 6].copy_from_slice(moment_n.as_slice());
-        (out, value_end, normal_force)
+        RollerStep {
+            residual: out,
+            energy: value_end + friction_energy,
+            touch,
+            slip,
+            dissipated,
+        }
     }
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
+    use crate::contact::roller_geometry::spline_weights;
     use crate::vessel::lay::{stinger_rollers, LayEquipment};
     use std::collections::HashMap;
 
@@ -783,7 +645,8 @@ mod tests {
     }
 
     /// A pipe of 12 nodes, 5 m apart, laid over a stinger of 6 rollers fixed to the frame of its last node.
-    fn pipe_over_stinger() -> (RollerContact, Vec<Vector3<f64>>, Vec<UnitQuaternion<f64>>) {
+    pub(in crate::contact) fn pipe_over_stinger(
+    ) -> (RollerContact, Vec<Vector3<f64>>, Vec<UnitQuaternion<f64>>) {
         let rollers =
             stinger_rollers(40.0, 30.0, 6, Vector3::new(-5.0, 0.0, 0.0), 0.0, 0.25).unwrap();
         let lay = LayEquipment::s_lay(Vector3::new(0.0, 0.0, -0.3), rollers, 1e7).unwrap();
@@ -828,49 +691,6 @@ mod tests {
         (contact, positions, rotations)
     }
 
-    /// The pruned search finds the element a full scan of [`chord_distance`] finds, for every roller, with
-    /// the pipe pressed into the stinger, lifted off it by up to 3 m and pushed through it by up to 1 m, and
-    /// with chords from 0.5 to 20 m.
-    #[test]
-    fn pruned_nearest_is_the_full_scan() {
-        let (contact, positions, _) = pipe_over_stinger();
-        // Half-diameters alternating along the refined polyline, as at joints of a line of segments.
-        let half_diameters: Vec<f64> = (0..400).map(|e| [0.3, 0.04, 0.3][e % 3]).collect();
-        let full_scan = |roller: &LocalRoller, locals: &[Vector3<f64>]| {
-            let mut best = (f64::INFINITY, 0);
-            for e in 0..locals.len() - 1 {
-                let reach = roller.radius + half_diameters[e];
-                let (d, _, _) = chord_distance(roller, reach, &locals[e], &locals[e + 1]);
-                if d - half_diameters[e] < best.0 {
-                    best = (d - half_diameters[e], e);
-                }
-            }
-            best.1
-        };
-        let mut checked = 0;
-        for lift in [-1.0, -0.3, 0.0, 0.2, 1.0, 3.0] {
-            for refine in [1, 4, 10] {
-                // The pipe's polyline subdivided `refine` times, moved by `lift` along the stinger's normal.
-                let mut locals = Vec::new();
-                for pair in positions.windows(2) {
-                    for i in 0..refine {
-                        let t = i as f64 / refine as f64;
-                        locals.push(pair[0] * (1.0 - t) + pair[1] * t + Vector3::z() * lift);
-                    }
-                }
-                locals.push(positions[positions.len() - 1] + Vector3::z() * lift);
-                for roller in &contact.rollers {
-                    assert_eq!(
-                        nearest(roller, &half_diameters, 0, &locals),
-                        full_scan(roller, &locals)
-                    );
-                    checked += 1;
-                }
-            }
-        }
-        assert_eq!(checked, 6 * 3 * contact.rollers.len());
-    }
-
     /// A pipe bent to a circle of radius R = 200 m in elements of ℓ = 5 m slides over a roller inside the bend
     /// (at the distance from the circle's centre that presses it in by δ₀ = 1 cm): the roller's force stays
     /// k δ₀ within 2e-4 of it over a whole element of sliding, where the chord polygon's force would swing
@@ -888,10 +708,13 @@ mod tests {
             centre: centre - (bend - radius - half_diameter + overlap) * Vector3::z(),
             normal: -Vector3::z(),
             axis,
-            projector: Matrix3::identity() - axis * axis.transpose(),
+            half_length: f64::INFINITY,
             radius,
+            friction: crate::vessel::lay::RollerFriction::default(),
         }];
         contact.forces = vec![0.0];
+        contact.reactions = vec![Vector3::zeros()];
+        contact.offsets = vec![f64::NAN];
         contact.nearest_elements = vec![0];
         // Elements away from the end node N, which stays at the origin: local coordinates are positions.
         contact.elements = 0..9;
@@ -970,10 +793,28 @@ mod tests {
     }
 
     /// The energy–momentum residual's tangent (central differences of the kernel) matches central
-    /// differences of the assembled residual in the step's increments, the vessel node's rotation included.
+    /// differences of the assembled residual in the step's increments, the vessel node's rotation included,
+    /// on frictionless rollers and on locked ones with friction slips from an earlier step.
     #[test]
     fn step_tangent_matches_differences_of_the_residual() {
-        let (mut contact, positions, rotations) = pipe_over_stinger();
+        for locked in [false, true] {
+            let (mut contact, positions, rotations) = pipe_over_stinger();
+            if locked {
+                for (k, roller) in contact.rollers.iter_mut().enumerate() {
+                    roller.friction =
+                        crate::vessel::lay::RollerFriction::new(0.3, 0.0, true).unwrap();
+                    contact.slips[k] = Vector2::new(1e-5 * k as f64, -2e-6);
+                }
+            }
+            step_tangent_matches(&mut contact, &positions, &rotations);
+        }
+    }
+
+    fn step_tangent_matches(
+        contact: &mut RollerContact,
+        positions: &[Vector3<f64>],
+        rotations: &[UnitQuaternion<f64>],
+    ) {
         let rule = ContactRule::EnergyMomentum { time_step: 0.1 };
         let dofs = 6 * positions.len();
         let increments: Vec<f64> = (0..dofs)
@@ -981,15 +822,15 @@ mod tests {
             .collect();
         let residual = |contact: &mut RollerContact, inc: &[f64]| {
             let mut r = vec![0.0; dofs];
-            contact.evaluate(rule, &positions, &rotations, Some(inc), &mut r, None, None);
+            contact.evaluate(rule, positions, rotations, Some(inc), &mut r, None, None);
             r
         };
         let mut dense = Dense(HashMap::new());
         let mut r = vec![0.0; dofs];
         contact.evaluate(
             rule,
-            &positions,
-            &rotations,
+            positions,
+            rotations,
             Some(&increments),
             &mut r,
             None,
@@ -1000,6 +841,7 @@ mod tests {
             "{:?}",
             contact.forces
         );
+        let sliding = contact.dissipated > 0.0;
         let mut worst: f64 = 0.0;
         let mut largest: f64 = 0.0;
         for column in 0..dofs {
@@ -1008,10 +850,7 @@ mod tests {
             let mut minus = increments.clone();
             plus[column] += h;
             minus[column] -= h;
-            let (rp, rm) = (
-                residual(&mut contact, &plus),
-                residual(&mut contact, &minus),
-            );
+            let (rp, rm) = (residual(contact, &plus), residual(contact, &minus));
             for row in 0..dofs {
                 let fd = (rp[row] - rm[row]) / (2.0 * h);
                 let entry = dense.0.get(&(row, column)).copied().unwrap_or(0.0);
@@ -1019,7 +858,175 @@ mod tests {
                 largest = largest.max(entry.abs());
             }
         }
-        println!("worst tangent error {worst:.3e} of {largest:.3e}");
+        println!("worst tangent error {worst:.3e} of {largest:.3e} (sliding: {sliding})");
         assert!(worst < 1e-5 * largest, "{worst:e} of {largest:e}");
+    }
+}
+
+#[cfg(test)]
+mod box_tests {
+    use super::*;
+    use crate::vessel::lay::LayEquipment;
+    use crate::vessel::roller_box::{BoxShape, RollerBox};
+
+    /// A straight pipe 0.6 m across on a frictionless V box (half-angle θ = 30°, rollers 1.2 m long) standing
+    /// 5 m from the held end, loaded by F down and L to starboard: the pipe's offset (m, lateral and down)
+    /// where the rollers balance the load, or where the search for it ends unbalanced, whether they balance
+    /// it, and each roller's reaction (N) and contact offset (m) there.
+    fn pipe_in_a_v(load_down: f64, load_lateral: f64) -> (Vector3<f64>, bool, Vec<f64>, Vec<f64>) {
+        let theta = std::f64::consts::FRAC_PI_6;
+        let roller_box = RollerBox::new(BoxShape::V, theta, 1.2, false, false).unwrap();
+        let station = Vector3::new(-5.0, 0.0, 0.0);
+        let rollers = roller_box.rollers(station, -Vector3::z(), Vector3::y(), 0.25, 0);
+        let lay = LayEquipment::s_lay(Vector3::zeros(), rollers, 1e7).unwrap();
+        let attachment = VesselAttachment {
+            node: 10,
+            vessel: crate::vessel::rigid_body::Vessel::osv(),
+            angle: lay.end_frame.transpose(),
+            eta: nalgebra::Vector6::zeros(),
+            controller: None,
+            environment: Vec::new(),
+            surface: 0.0,
+            lay: Some(lay),
+            winch: None,
+            hull_loads: false,
+        };
+        let section = crate::rod::section::Section::pipe(
+            0.6, 0.02, 7850.0, 207e9, 0.3, 0.0, [0.0; 2], [0.0; 2],
+        )
+        .unwrap();
+        let rod =
+            Rod::straight(Vector3::new(-10.0, 0.0, 0.0), Vector3::zeros(), 10, section).unwrap();
+        let mut contact = RollerContact::new(&attachment, &rod, &rod.arc_lengths()).unwrap();
+        let rotations = vec![UnitQuaternion::identity(); 11];
+        // The pipe's nodes but the held one moved by (lateral, down); the rollers' total force on it.
+        let mut total = |offset: &Vector3<f64>| {
+            let positions: Vec<Vector3<f64>> = (0..11)
+                .map(|i| {
+                    let x = Vector3::new(-10.0 + i as f64, 0.0, 0.0);
+                    if i < 10 {
+                        x + offset
+                    } else {
+                        x
+                    }
+                })
+                .collect();
+            let mut residual = vec![0.0; 66];
+            contact.evaluate(
+                ContactRule::Static,
+                &positions,
+                &rotations,
+                None,
+                &mut residual,
+                None,
+                None,
+            );
+            let force: Vector3<f64> = contact.reactions.iter().sum();
+            (
+                force + Vector3::new(0.0, load_lateral, load_down),
+                contact.reactions.clone(),
+                contact.offsets.clone(),
+            )
+        };
+        // Damped Newton on the pipe's lateral and vertical offset, the Jacobian by central differences. On a
+        // single roller the contact is stiff only along its normal: along the roller the pipe moves with the
+        // unbalanced force instead, by up to 2 cm a step.
+        let mut offset = Vector3::new(0.0, 0.0, -0.3 / theta.cos());
+        for _ in 0..200 {
+            let (r, _, _) = total(&offset);
+            if r.yz().norm() < 1e-6 * load_down {
+                break;
+            }
+            let h = 1e-7;
+            let mut jacobian = nalgebra::Matrix2::zeros();
+            for j in 0..2 {
+                let mut step = Vector3::zeros();
+                step[j + 1] = h;
+                let difference =
+                    (total(&(offset + step)).0 - total(&(offset - step)).0) / (2.0 * h);
+                jacobian.set_column(j, &difference.yz());
+            }
+            let svd = jacobian.svd(true, true);
+            let (u, v_t) = (svd.u.unwrap(), svd.v_t.unwrap());
+            let mut delta = nalgebra::Vector2::zeros();
+            let mut unbalanced = r.yz();
+            for i in 0..2 {
+                let (u_i, v_i) = (u.column(i), v_t.row(i).transpose());
+                if svd.singular_values[i] > 1e-6 * svd.singular_values.max() {
+                    delta -= u_i.dot(&r.yz()) / svd.singular_values[i] * v_i;
+                    unbalanced -= u_i.dot(&r.yz()) * u_i;
+                }
+            }
+            if unbalanced.norm() > 1e-9 * load_down {
+                delta += 0.02 * unbalanced.normalize();
+            }
+            let scale = (0.02 / delta.norm()).min(1.0);
+            offset += Vector3::new(0.0, scale * delta.x, scale * delta.y);
+        }
+        let (r, reactions, offsets) = total(&offset);
+        let magnitudes = reactions.iter().map(|f| f.norm()).collect();
+        (
+            offset,
+            r.yz().norm() < 1e-6 * load_down,
+            magnitudes,
+            offsets,
+        )
+    }
+
+    /// Frictionless, symmetric V under a vertical load F: each roller carries F/(2 cos θ), and the pipe rests
+    /// R tan θ up each roller from its lower end; with a lateral load L both carry F/(2 cos θ) ± L/(2 sin θ).
+    #[test]
+    fn v_box_reactions_match_the_closed_form() {
+        let (theta, load) = (std::f64::consts::FRAC_PI_6, 50e3);
+        let (_, balanced, reactions, offsets) = pipe_in_a_v(load, 0.0);
+        assert!(balanced);
+        for (reaction, offset) in reactions.iter().zip(&offsets) {
+            let expected = load / (2.0 * theta.cos());
+            assert!(
+                (reaction / expected - 1.0).abs() < 1e-6,
+                "{reaction} vs {expected}"
+            );
+            // R tan θ from the lower end, 0.6 m below the centre, less the overlap's shift along the roller.
+            assert!(
+                (offset - (0.3 * theta.tan() - 0.6)).abs() < 2e-3,
+                "{offset}"
+            );
+        }
+        let lateral = 0.5 * load * theta.tan();
+        let (_, balanced, reactions, _) = pipe_in_a_v(load, lateral);
+        assert!(balanced);
+        let expected = [
+            load / (2.0 * theta.cos()) - lateral / (2.0 * theta.sin()),
+            load / (2.0 * theta.cos()) + lateral / (2.0 * theta.sin()),
+        ];
+        for (reaction, expected) in reactions.iter().zip(expected) {
+            assert!(
+                (reaction / expected - 1.0).abs() < 1e-6,
+                "{reaction} vs {expected}"
+            );
+        }
+    }
+
+    /// The pipe climbs out of the V at a lateral load of F tan θ: at 0.97 F tan θ it rests on both rollers
+    /// inside the box, the port roller's share F/(2 cos θ) − L/(2 sin θ) small but positive; at 1.03 F tan θ
+    /// no place in the box balances the load: the port roller unloads and the pipe slides up the starboard
+    /// roller to its upper end (within 1 mm), where it leaves the box.
+    #[test]
+    fn a_pipe_climbs_out_of_the_v_at_f_tan_theta() {
+        let (theta, load) = (std::f64::consts::FRAC_PI_6, 50e3);
+        let lateral = 0.97 * load * theta.tan();
+        let (_, balanced, reactions, offsets) = pipe_in_a_v(load, lateral);
+        let port = load / (2.0 * theta.cos()) - lateral / (2.0 * theta.sin());
+        assert!(
+            balanced && (reactions[0] / port - 1.0).abs() < 1e-6,
+            "{reactions:?}"
+        );
+        assert!(offsets.iter().all(|o| o.abs() < 0.5), "{offsets:?}");
+        let (offset, balanced, reactions, offsets) = pipe_in_a_v(load, 1.03 * load * theta.tan());
+        assert!(!balanced);
+        assert_eq!(reactions[0], 0.0, "{reactions:?}");
+        assert!(offsets[1] > 0.599, "{offsets:?}");
+        // The pipe's centre has risen with it, to about the V's upper ends (0.6 m above the station).
+        assert!(-offset.z > 0.8 && offset.y > 0.85, "{offset}");
     }
 }

@@ -32,8 +32,9 @@ pub struct Snapshot<'a> {
     pub station: Option<StationRecord>,
     /// With a seabed: where the pipe leaves it.
     pub touchdown: Option<Touchdown>,
-    /// With rollers: each roller's normal force (N).
+    /// With rollers: each roller's normal force (N) and its force on the pipe (body frame, N).
     pub roller_forces: Option<&'a [f64]>,
+    pub roller_vectors: Option<&'a [Vector3<f64>]>,
     /// With a vessel: the lay summary.
     pub lay: Option<LaySummary>,
     /// Work supplied and energy dissipated since the integrator started (J).
@@ -96,9 +97,11 @@ pub struct History {
     pub seabed: Vec<f64>,
     /// Energy stored in the roller contacts (J).
     pub rollers: Vec<f64>,
-    /// With rollers: each roller's normal force, (T, k) (N); empty without.
+    /// With rollers: each roller's normal force, (T, k) (N), and its force on the pipe in the body frame,
+    /// (T, k, 3) (N); empty without (the vectors also in files written before they were recorded).
     pub roller_reactions: Vec<f64>,
-    /// With a vessel: the lay summary of each record, (T, 10) in the order of
+    pub roller_vectors: Vec<f64>,
+    /// With a vessel: the lay summary of each record, (T, 13) in the order of
     /// [`crate::response::lay_summary::LAY_FIELDS`]; empty without.
     pub lay: Vec<f64>,
     /// Number of rollers k.
@@ -181,7 +184,7 @@ impl History {
         let seabed = !self.touchdown_arc_length.is_empty();
         let six = |series: &Vec<f64>| if series.is_empty() { 0 } else { 6 };
         let k = self.thrusters_count;
-        let fields: [(&str, usize, usize); 35] = [
+        let fields: [(&str, usize, usize); 36] = [
             (
                 "eta_low_frequency",
                 self.eta_low_frequency.len(),
@@ -208,6 +211,15 @@ impl History {
                 "roller_reactions",
                 self.roller_reactions.len(),
                 self.rollers_count,
+            ),
+            (
+                "roller_reaction_vectors",
+                self.roller_vectors.len(),
+                if self.roller_vectors.is_empty() {
+                    0
+                } else {
+                    3 * self.rollers_count
+                },
             ),
             (
                 "lay summary",
@@ -369,6 +381,10 @@ impl History {
         if let Some(forces) = snapshot.roller_forces {
             self.rollers_count = forces.len();
             self.roller_reactions.extend_from_slice(forces);
+        }
+        if let Some(vectors) = snapshot.roller_vectors {
+            self.roller_vectors
+                .extend(vectors.iter().flat_map(|v| [v.x, v.y, v.z]));
         }
         if let Some(lay) = snapshot.lay {
             self.lay.extend_from_slice(&lay.values());

@@ -360,6 +360,7 @@ impl Integrator {
             station: self.station_record(&observables),
             touchdown: observables.touchdown(),
             roller_forces: observables.roller_forces(),
+            roller_vectors: observables.roller_reactions().map(|(vectors, _)| vectors),
             supplied_work: self.ledger.supplied_work(),
             dissipated: self.ledger.dissipated(),
             length: observables.length(),
@@ -753,8 +754,11 @@ impl Integrator {
         let rollers = self.assembler.rollers.take();
         let mut assembler = Assembler::new(&self.model);
         if let (Some(new), Some(old)) = (&mut assembler.rollers, rollers) {
+            new.carry_slips(&old);
             new.energy_end = old.energy_end;
             new.forces = old.forces;
+            new.reactions = old.reactions;
+            new.offsets = old.offsets;
             new.nearest_elements = old
                 .nearest_elements
                 .iter()
@@ -802,6 +806,9 @@ impl Integrator {
         self.state.gauss.copy_from_slice(&self.next_gauss);
         if let Some(contact) = &self.contact {
             self.state.slips.copy_from_slice(contact.slips());
+        }
+        if let Some(rollers) = &mut self.assembler.rollers {
+            rollers.commit_slips();
         }
         if let (Some(attachment), Some(motion), Some(step)) = (
             &self.model.vessel,

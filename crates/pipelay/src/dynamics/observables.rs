@@ -10,7 +10,7 @@ use crate::dynamics::ledger::Energy;
 use crate::dynamics::nodal::NodalProperties;
 use crate::dynamics::state::DynamicState;
 use crate::model::Model;
-use crate::response::lay_summary::{lay_summary, LaySummary};
+use crate::response::lay_summary::{lay_summary, LaySummary, RollerContacts};
 use crate::vessel::coupling::{eta_of, low_frequency_pose, vessel_pose};
 use crate::vessel::rigid_body::kinetic_energy;
 use crate::vessel::wave_motion::WaveOffset;
@@ -136,8 +136,11 @@ impl<'a> Observables<'a> {
             &state.configuration.positions,
             &state.configuration.rotations,
             section_forces,
-            self.rollers
-                .map(|r| (&r.forces[..], &r.nearest_elements[..])),
+            self.rollers.map(|r| RollerContacts {
+                forces: &r.forces,
+                elements: &r.nearest_elements,
+                offsets: &r.offsets,
+            }),
             self.touchdown().as_ref(),
         )
     }
@@ -156,6 +159,12 @@ impl<'a> Observables<'a> {
     /// Each roller's normal force in the current state (N); `None` without rollers.
     pub fn roller_forces(&self) -> Option<&'a [f64]> {
         self.rollers.map(|r| &r.forces[..])
+    }
+
+    /// Each roller's force on the pipe (body frame, N) and its contact's offset along it (m; NaN out of
+    /// contact) in the current state; `None` without rollers.
+    pub fn roller_reactions(&self) -> Option<(&'a [Vector3<f64>], &'a [f64])> {
+        self.rollers.map(|r| (&r.reactions[..], &r.offsets[..]))
     }
 
     /// Linear momentum Σ M_I v_I (kg·m/s), M_I with the added mass by direction.

@@ -195,6 +195,12 @@ impl Integrator {
             Some(&mut self.magnitude),
             with_tangent,
         );
+        // The rollers' friction dissipates what its springs do not store.
+        work.dissipated += self
+            .assembler
+            .rollers
+            .as_ref()
+            .map_or(0.0, |r| r.dissipated);
         for (load, scale) in model.point_loads.iter().zip(scales) {
             let base = NODE_DOFS * load.node;
             let force = load.force * *scale;

@@ -36,6 +36,10 @@ pub struct Response {
 pub struct RollerResponse {
     /// Each roller's normal force (N, ≥ 0).
     pub forces: Vec<f64>,
+    /// Each roller's force on the pipe, body frame (N), and where its contact lies along it from its centre
+    /// (m; NaN out of contact).
+    pub reactions: Vec<Vector3<f64>>,
+    pub offsets: Vec<f64>,
     /// The element nearest each roller.
     pub elements: Vec<usize>,
     /// Energy stored in the contacts (J).
@@ -147,6 +151,8 @@ impl Response {
         });
         let rollers = assembler.rollers.as_ref().map(|r| RollerResponse {
             forces: r.forces.clone(),
+            reactions: r.reactions.clone(),
+            offsets: r.offsets.clone(),
             elements: r.nearest_elements.clone(),
             energy: r.energy_end,
         });

@@ -8,10 +8,19 @@
 //! steepest.
 // Indexing cannot go out of bounds here: Node and element indices of the state summarised (the vessel's node is a node of its mesh).
 #![allow(clippy::indexing_slicing)]
-use crate::contact::rollers::roller_gap;
+use crate::contact::roller_geometry::roller_gap;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
+
+/// What the roller contact reports of a configuration, per roller: its normal force (N), the element
+/// nearest it, and where its contact lies along it from its centre (m; NaN out of contact).
+#[derive(Debug, Clone, Copy)]
+pub struct RollerContacts<'a> {
+    pub forces: &'a [f64],
+    pub elements: &'a [usize],
+    pub offsets: &'a [f64],
+}
 
 /// The lay summary of one configuration (SI units; angles in rad).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,8 +29,8 @@ pub struct LaySummary {
     pub top_tension: f64,
     /// Angle of the pipe below the horizontal where it leaves the equipment (rad).
     pub departure_angle: f64,
-    /// The 0-based index of the lift-off roller (the last in contact) among the rollers, `None` if the pipe
-    /// touches no roller.
+    /// The 0-based index of the lift-off roller (the last in contact) among the stinger's supports (lone
+    /// rollers or roller boxes), `None` if the pipe touches no roller.
     pub liftoff_roller: Option<usize>,
     /// Arc length of the lift-off point from end A along the reference (m).
     pub liftoff_arc_length: f64,
@@ -40,6 +49,12 @@ pub struct LaySummary {
     /// axis to the nearest element's chord less the roller's radius and the element's half diameter (≤ 0: in
     /// contact); NaN without rollers.
     pub tip_clearance: f64,
+    /// The pipe's centreline's lateral offset (m, to starboard) from the last support's station, where it
+    /// crosses the support's plane (normal to the stinger); NaN without rollers or where it does not cross.
+    pub tip_offset: f64,
+    /// How many roller boxes the pipe is leaving: those with a contact at a roller's end (0: the pipe stays in
+    /// its boxes; always 0 on lone rollers, which are endless).
+    pub boxes_left: usize,
 }
 
 /// Where the rollers' top points are in a configuration (in e, m); empty without rollers.
@@ -61,7 +76,7 @@ pub fn roller_tops(
 }
 
 /// Names of [`LaySummary::values`], in order (`liftoff_roller` as a number, NaN: none).
-pub const LAY_FIELDS: [&str; 11] = [
+pub const LAY_FIELDS: [&str; 13] = [
     "top_tension",
     "departure_angle",
     "liftoff_roller",
@@ -73,11 +88,13 @@ pub const LAY_FIELDS: [&str; 11] = [
     "sagbend_strain",
     "sagbend_moment",
     "tip_clearance",
+    "tip_offset",
+    "boxes_left",
 ];
 
 impl LaySummary {
     /// The fields as numbers, in the order of [`LAY_FIELDS`].
-    pub fn values(&self) -> [f64; 11] {
+    pub fn values(&self) -> [f64; 13] {
         [
             self.top_tension,
             self.departure_angle,
@@ -90,19 +107,20 @@ impl LaySummary {
             self.sagbend_strain,
             self.sagbend_moment,
             self.tip_clearance,
+            self.tip_offset,
+            self.boxes_left as f64,
         ]
     }
 }
 
 /// The summary of a configuration of `model` (which must hold its end with a vessel; `None` otherwise):
-/// `roller_forces` and `roller_elements` (the element nearest each roller) as the roller contact reports
-/// them, `touchdown` from the seabed contact.
+/// `rollers` as the roller contact reports them, `touchdown` from the seabed contact.
 pub fn lay_summary(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
     section_forces: &[Vector6<f64>],
-    rollers: Option<(&[f64], &[usize])>,
+    rollers: Option<RollerContacts>,
     touchdown: Option<&Touchdown>,
 ) -> Option<LaySummary> {
     let attachment = model.vessel.as_ref()?;
@@ -111,17 +129,19 @@ pub fn lay_summary(
     let top_element = if node == 0 { 0 } else { elements - 1 };
     let arc_of_node = model.rod.arc_lengths();
     // The lift-off element: of the rollers in contact, the one farthest from the hold point along the pipe.
-    let liftoff = rollers.and_then(|(forces, elements)| {
-        forces
+    let liftoff = rollers.and_then(|contacts| {
+        contacts
+            .forces
             .iter()
-            .zip(elements)
+            .zip(contacts.elements)
             .enumerate()
             .filter(|(_, (f, _))| **f > 0.0)
             .map(|(k, (_, e))| (k, *e))
             .min_by_key(|(_, e)| if node == 0 { usize::MAX - e } else { *e })
     });
+    let support = |k: usize| attachment.rollers().get(k).map_or(k, |r| r.support);
     let (liftoff_roller, liftoff_node) = match liftoff {
-        Some((k, e)) => (Some(k), if node == 0 { e + 1 } else { e }),
+        Some((k, e)) => (Some(support(k)), if node == 0 { e + 1 } else { e }),
         None => (None, node),
     };
     // The pipe's angle below the horizontal at each node, going down from the hold point; a cable's node (the
@@ -184,6 +204,8 @@ pub fn lay_summary(
         }
     }
     let tip_clearance = tip_clearance(model, positions, rotations, rollers);
+    let tip_offset = tip_offset(model, positions, rotations);
+    let boxes_left = rollers.map_or(0, |contacts| boxes_left(attachment.rollers(), contacts));
     let nan_if_empty = |v: f64| if v.is_finite() { v } else { f64::NAN };
     Some(LaySummary {
         top_tension: section_forces[top_element][0],
@@ -197,26 +219,83 @@ pub fn lay_summary(
         sagbend_strain: nan_if_empty(sagbend_strain),
         sagbend_moment,
         tip_clearance,
+        tip_offset,
+        boxes_left,
     })
 }
 
-/// The gap between the line and the last roller (m), as the roller contact measures it, from the element
-/// nearest it that the contact reports (`rollers`: forces and nearest elements); NaN without rollers.
+/// The number of supports with a contact at a roller's end (within 1 mm of it, or beyond): a pipe climbing
+/// out of its box ([`crate::vessel::roller_box`]).
+fn boxes_left(rollers: &[crate::vessel::lay::Roller], contacts: RollerContacts) -> usize {
+    let mut left: Vec<usize> = rollers
+        .iter()
+        .zip(contacts.offsets)
+        .filter(|(roller, offset)| offset.abs() >= 0.5 * roller.length - 1e-3)
+        .map(|(roller, _)| roller.support)
+        .collect();
+    left.dedup();
+    left.len()
+}
+
+/// The lateral offset (m) of the line's centreline from the last support's station, in the vessel's body
+/// frame, where the centreline crosses the support's plane (through the station, normal to the stinger's
+/// tangent there, the plane of the outward normal and b2); NaN without rollers or where it does not cross it.
+fn tip_offset(model: &Model, positions: &[Vector3<f64>], rotations: &[UnitQuaternion<f64>]) -> f64 {
+    let Some(attachment) = model.vessel.as_ref() else {
+        return f64::NAN;
+    };
+    let Some(&(station, up)) = crate::vessel::lay::supports(attachment.rollers()).last() else {
+        return f64::NAN;
+    };
+    let node = attachment.node;
+    let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
+    let origin = positions[node] - body * attachment.hang_off();
+    let tangent = Vector3::y().cross(&up);
+    let local = |x: &Vector3<f64>| body.transpose() * (x - origin) - station;
+    // The crossing nearest the station, between consecutive nodes on either side of the plane.
+    let mut best = (f64::INFINITY, f64::NAN);
+    for pair in positions.windows(2) {
+        let (a, b) = (local(&pair[0]), local(&pair[1]));
+        let (da, db) = (a.dot(&tangent), b.dot(&tangent));
+        if da * db > 0.0 || da == db {
+            continue;
+        }
+        let point = a + (da / (da - db)) * (b - a);
+        if point.norm() < best.0 {
+            best = (point.norm(), point.y);
+        }
+    }
+    best.1
+}
+
+/// The gap between the line and the last support (m): the least over its rollers (a lone roller, or a box's),
+/// as the roller contact measures it, from the element nearest each that the contact reports (`rollers`:
+/// forces and nearest elements); NaN without rollers.
 fn tip_clearance(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
-    rollers: Option<(&[f64], &[usize])>,
+    rollers: Option<RollerContacts>,
 ) -> f64 {
-    let (Some(attachment), Some((_, elements))) = (model.vessel.as_ref(), rollers) else {
+    let (Some(attachment), Some(RollerContacts { elements, .. })) =
+        (model.vessel.as_ref(), rollers)
+    else {
         return f64::NAN;
     };
-    let (Some(roller), Some(&element)) = (attachment.rollers().last(), elements.last()) else {
+    let Some(last) = attachment.rollers().last().map(|r| r.support) else {
         return f64::NAN;
     };
     let node = attachment.node;
     let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
     // The body frame's origin as the rollers place it: the hold point at the end node.
     let origin = positions[node] - body * attachment.hang_off();
-    roller_gap(&model.rod, positions, roller, &body, &origin, element)
+    attachment
+        .rollers()
+        .iter()
+        .zip(elements)
+        .filter(|(roller, _)| roller.support == last)
+        .map(|(roller, &element)| {
+            roller_gap(&model.rod, positions, roller, &body, &origin, element)
+        })
+        .fold(f64::NAN, f64::min)
 }

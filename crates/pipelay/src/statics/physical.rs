@@ -14,7 +14,7 @@
 //! tension as low as 2.5 w s) is under the stinger.
 // Indexing cannot go out of bounds here: node and roller indices of the state's own model.
 #![allow(clippy::indexing_slicing)]
-use crate::contact::rollers::roller_gap;
+use crate::contact::roller_geometry::roller_gap;
 use crate::model::Model;
 use nalgebra::{UnitQuaternion, Vector3};
 use std::fmt;
@@ -27,12 +27,21 @@ const SAG_PER_SPAN: f64 = 0.05;
 pub enum Unphysical {
     /// The vessel's equilibrium found is capsized (roll and pitch, rad).
     Capsized { roll: f64, pitch: f64 },
-    /// The pipe's centreline passed roller `roller`'s axis to its far side: the pipe went through it.
+    /// The pipe's centreline passed roller `roller`'s axis to its far side, or, on a box's roller, overlaps it
+    /// by more than the pipe's radius: the pipe went through it.
     ThroughRoller {
         /// The roller, counted from 1 along the pipe from the hold point.
         roller: usize,
         /// How far the pipe's surface overlaps the roller's (m).
         overlap: f64,
+    },
+    /// Roller `roller` (counted from 1 along the stinger) of support `support` (a box, counted from 1) pushes
+    /// the pipe down, away from the stinger: the pipe lies under it, outside its box.
+    UnderRoller {
+        roller: usize,
+        support: usize,
+        /// The roller's force on the pipe (N).
+        force: f64,
     },
     /// Node `node` hangs under the stinger, between roller `after` (0: the hold point) and the next.
     UnderStinger {
@@ -55,6 +64,16 @@ impl fmt::Display for Unphysical {
                 f,
                 "the pipe passes through roller {roller} (its surface overlaps the roller's by {overlap:.3} m, \
                  its centreline beyond the roller's axis)"
+            ),
+            Unphysical::UnderRoller {
+                roller,
+                support,
+                force,
+            } => write!(
+                f,
+                "the pipe lies under roller {roller} of box {support}, outside the box: the roller pushes it \
+                 down with {:.1} kN",
+                force / 1e3
             ),
             Unphysical::UnderStinger { node, after, depth } => {
                 let place = if *after == 0 {
@@ -80,7 +99,9 @@ impl Unphysical {
                 "check the vessel's position and the line's length for a line that can hang from it, or start \
                  from the catenary (start=\"auto\")"
             }
-            Unphysical::ThroughRoller { .. } | Unphysical::UnderStinger { .. } => {
+            Unphysical::ThroughRoller { .. }
+            | Unphysical::UnderStinger { .. }
+            | Unphysical::UnderRoller { .. } => {
                 "the tension is too low for the stinger, or the line is slack between the vessel and the seabed: \
                  move the vessel forward along the lay (η's x) to raise the tension, or lay with a stinger that \
                  leaves the pipe steeper"
@@ -117,16 +138,26 @@ pub fn check(
     for (k, (roller, &element)) in rollers.iter().zip(nearest_elements).enumerate() {
         let gap = roller_gap(&model.rod, positions, roller, &body, &origin, element);
         let diameter = model.rod.section(element).hydrodynamic_diameter;
-        if gap < -(roller.radius + 0.5 * diameter) {
+        // A box's roller (finite) pinching the pipe by more than its radius has it wedged through the box.
+        let through = if roller.length.is_finite() {
+            0.5 * diameter
+        } else {
+            roller.radius + 0.5 * diameter
+        };
+        if gap < -through {
             return Some(Unphysical::ThroughRoller {
                 roller: k + 1,
                 overlap: -gap,
             });
         }
     }
-    // The rollers' line: the hold point, then each roller's top.
+    // The rollers' line: the hold point, then each support's station.
     let line: Vec<Vector3<f64>> = std::iter::once(hang_off)
-        .chain(rollers.iter().map(|r| r.centre + r.radius * r.normal))
+        .chain(
+            crate::vessel::lay::supports(rollers)
+                .into_iter()
+                .map(|s| s.0),
+        )
         .collect();
     let mut deepest: Option<Unphysical> = None;
     for (i, x) in positions.iter().enumerate() {
@@ -154,6 +185,28 @@ pub fn check(
         }
     }
     deepest
+}
+
+/// The first roller that pushes the pipe down in a converged state of `model`, given each roller's force on the
+/// pipe (`reactions`, body frame): one whose force points against its support's outward normal by more than
+/// 60° ([`crate::vessel::lay::supports`]). A lone roller cannot (its contact pushes along its normal); a box's
+/// roller does where the pipe has left the box under it.
+pub fn pushed_down(model: &Model, reactions: &[Vector3<f64>]) -> Option<Unphysical> {
+    let rollers = model.vessel.as_ref()?.rollers();
+    let supports = crate::vessel::lay::supports(rollers);
+    rollers
+        .iter()
+        .zip(reactions)
+        .enumerate()
+        .find(|(_, (roller, force))| {
+            let up = supports.get(roller.support).map_or(roller.normal, |s| s.1);
+            force.dot(&up) < -0.5 * force.norm()
+        })
+        .map(|(k, (roller, force))| Unphysical::UnderRoller {
+            roller: k + 1,
+            support: roller.support + 1,
+            force: force.norm(),
+        })
 }
 
 /// How far `y` lies below the segment of the rollers' line from `start` to `end` (body frame, m), if it lies

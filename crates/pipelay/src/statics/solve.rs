@@ -144,12 +144,18 @@ fn verdict(model: &Model, solution: &StaticSolution) -> Option<Unphysical> {
         .rollers
         .as_ref()
         .map_or(&[][..], |rollers| &rollers.elements[..]);
+    let reactions = solution
+        .response
+        .rollers
+        .as_ref()
+        .map_or(&[][..], |rollers| &rollers.reactions[..]);
     physical::check(
         model,
         &configuration.positions,
         &configuration.rotations,
         nearest,
     )
+    .or_else(|| physical::pushed_down(model, reactions))
 }
 
 /// Static equilibrium of `model` found from `start`, a configuration near it (the state a stage of a lay starts

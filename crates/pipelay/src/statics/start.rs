@@ -117,8 +117,10 @@ fn roller_path(model: &Model, held: &SupportTarget) -> Vec<(f64, Vector3<f64>)> 
             .section(held.node.saturating_sub(1))
             .hydrodynamic_diameter;
     let mut path = vec![(0.0, held.position)];
-    for roller in attachment.rollers() {
-        let top = roller.centre + (roller.radius + radius) * roller.normal;
+    // The line's centre over each support: its station raised by the line's radius (a lone roller's top
+    // plus that radius; in a V it rests a little higher, and the contact lifts it there).
+    for (station, up) in crate::vessel::lay::supports(attachment.rollers()) {
+        let top = station + radius * up;
         let point = held.position + body * (top - hang_off);
         let previous = path[path.len() - 1];
         path.push((previous.0 + (point - previous.1).norm(), point));

@@ -4,9 +4,51 @@
 //! A roller is a vessel-fixed cylinder: an axis line through its centre, a radius. The pipe's outer surface
 //! (radius d_o/2) rests on it, a unilateral contact ([`crate::contact::rollers`]). A stinger is a circular arc of
 //! rollers: the arc is the rollers' top line (the pipe's bottom when it rests on all of them), starting at
-//! `origin` with the slope `angle` below the horizontal, running aft (−b1) and bending down with radius R.
+//! `origin` with the slope `angle` below the horizontal, running aft (−b1) and bending down with radius R,
+//! whose supports are lone rollers across it or roller boxes ([`crate::vessel::roller_box`]).
 use crate::error::{finite, positive, Error, Result};
+use crate::vessel::roller_box::{check_arc_length, RollerBox};
 use nalgebra::{Matrix3, Vector3};
+
+/// What a roller's surface resists along the contact ([`crate::contact::roller_friction`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RollerFriction {
+    /// Coulomb friction coefficient μ: along the roller for a free-turning one, in every direction for a
+    /// locked one.
+    pub friction: f64,
+    /// A free-turning roller's rolling resistance coefficient f_r (force per normal force), along the pipe.
+    pub rolling_resistance: f64,
+    /// Whether the roller is braked or locked (it does not turn).
+    pub locked: bool,
+}
+
+impl RollerFriction {
+    /// A checked friction: coefficients finite and ≥ 0.
+    pub fn new(friction: f64, rolling_resistance: f64, locked: bool) -> Result<Self> {
+        for (name, value) in [
+            ("friction", friction),
+            ("rolling_resistance", rolling_resistance),
+        ] {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(Error::input(
+                    name,
+                    value,
+                    "must be a finite coefficient ≥ 0",
+                ));
+            }
+        }
+        Ok(RollerFriction {
+            friction,
+            rolling_resistance,
+            locked,
+        })
+    }
+
+    /// Whether the roller resists anything along the contact.
+    pub fn is_frictionless(&self) -> bool {
+        self.friction == 0.0 && (self.locked || self.rolling_resistance == 0.0)
+    }
+}
 
 /// A vessel-fixed roller.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -17,8 +59,17 @@ pub struct Roller {
     pub axis: Vector3<f64>,
     /// Roller radius (m).
     pub radius: f64,
+    /// Roller length along its axis (m; infinite for the long cylinders of a plain stinger), centred on
+    /// `centre`, with rounded ends.
+    pub length: f64,
     /// The side the pipe rests on: unit, normal to the axis (body frame); for initial guesses and drawings.
     pub normal: Vector3<f64>,
+    /// The point of the stinger's top line the roller's support stands at (body frame, m): the roller's top
+    /// for a lone roller, the box's station for a roller of a box ([`crate::vessel::roller_box`]).
+    pub station: Vector3<f64>,
+    /// The index of the roller's support (a lone roller or a box) among the stinger's, from the hold point.
+    pub support: usize,
+    pub friction: RollerFriction,
 }
 
 /// Default roller radius (m) and contact stiffness (N/m): a stiff steel roller on its bearing.
@@ -76,26 +127,90 @@ pub fn stinger_rollers(
             } else {
                 length * k as f64 / (count - 1) as f64
             };
-            let slope = angle + s / radius;
-            // Top line: p(s) = origin + R(−(sin φ − sin φ0), 0, cos φ − cos φ0) with φ the slope below horizontal.
-            let top = origin
-                + radius
-                    * Vector3::new(
-                        -(slope.sin() - angle.sin()),
-                        0.0,
-                        -(slope.cos() - angle.cos()),
-                    );
-            // Outward normal (toward the pipe): up and forward of the arc, away from its centre.
-            let normal = Vector3::new(-slope.sin(), 0.0, -slope.cos());
+            let (top, normal, _) = stinger_station(radius, origin, angle, s);
             Roller {
                 centre: top - roller_radius * normal,
                 axis: Vector3::y(),
                 radius: roller_radius,
+                length: f64::INFINITY,
                 normal,
+                station: top,
+                support: k,
+                friction: RollerFriction::default(),
             }
         })
         .collect();
     Ok(rollers)
+}
+
+/// The stinger's top line at arc length `s` (m) from its start `origin`, for a stinger of `radius` starting
+/// with the slope `angle` (rad below the horizontal): the point, the outward normal (toward the pipe: up and
+/// forward of the arc, away from its centre) and the unit tangent (aft and down), body frame.
+pub fn stinger_station(
+    radius: f64,
+    origin: Vector3<f64>,
+    angle: f64,
+    s: f64,
+) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+    let slope = angle + s / radius;
+    // p(s) = origin + R(−(sin φ − sin φ0), 0, −(cos φ − cos φ0)) with φ the slope below the horizontal.
+    let top = origin
+        + radius
+            * Vector3::new(
+                -(slope.sin() - angle.sin()),
+                0.0,
+                -(slope.cos() - angle.cos()),
+            );
+    let normal = Vector3::new(-slope.sin(), 0.0, -slope.cos());
+    let tangent = Vector3::new(-slope.cos(), 0.0, slope.sin());
+    (top, normal, tangent)
+}
+
+/// The rollers of a stinger of roller boxes: each box at its arc length (m) along a stinger arc (as
+/// [`stinger_rollers`]), in the plane normal to the arc there, its rollers of radius `roller_radius` (m).
+pub fn stinger_boxes(
+    radius: f64,
+    length: f64,
+    origin: Vector3<f64>,
+    angle: f64,
+    roller_radius: f64,
+    boxes: &[(f64, RollerBox)],
+) -> Result<Vec<Roller>> {
+    // Checks the arc as a stinger of lone rollers does.
+    stinger_rollers(
+        radius,
+        length,
+        boxes.len().max(1),
+        origin,
+        angle,
+        roller_radius,
+    )?;
+    let mut rollers = Vec::with_capacity(5 * boxes.len());
+    for (support, (arc_length, roller_box)) in boxes.iter().enumerate() {
+        check_arc_length(*arc_length, length)?;
+        let (station, up, _) = stinger_station(radius, origin, angle, *arc_length);
+        rollers.extend(roller_box.rollers(station, up, Vector3::y(), roller_radius, support));
+    }
+    Ok(rollers)
+}
+
+/// Each support's station and the stinger's outward normal there (body frame, m and unit), in the supports'
+/// order: see [`Roller::station`]. The normal is the mean of its rollers' resting sides (a box's V and side
+/// rollers' lateral parts cancel).
+pub fn supports(rollers: &[Roller]) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+    let mut supports: Vec<(Vector3<f64>, Vector3<f64>)> = Vec::new();
+    let mut previous = None;
+    for roller in rollers {
+        match supports.last_mut() {
+            Some(last) if previous == Some(roller.support) => last.1 += roller.normal,
+            _ => supports.push((roller.station, roller.normal)),
+        }
+        previous = Some(roller.support);
+    }
+    for support in &mut supports {
+        support.1 = support.1.try_normalize(1e-12).unwrap_or(-Vector3::z());
+    }
+    supports
 }
 
 /// Rollers at given top points with given axes (body frame); the pipe rests on their upper side.
@@ -106,7 +221,8 @@ pub fn rollers_at(
 ) -> Result<Vec<Roller>> {
     tops.iter()
         .zip(axes)
-        .map(|(top, axis)| {
+        .enumerate()
+        .map(|(support, (top, axis))| {
             finite("roller positions", top.as_slice())?;
             finite("roller axes", axis.as_slice())?;
             let axis = axis.try_normalize(1e-12).ok_or_else(|| {
@@ -130,7 +246,11 @@ pub fn rollers_at(
                 centre: top - roller_radius * normal,
                 axis,
                 radius: roller_radius,
+                length: f64::INFINITY,
                 normal,
+                station: *top,
+                support,
+                friction: RollerFriction::default(),
             })
         })
         .collect()

@@ -1,6 +1,7 @@
 //! The DP vessel: a rigid body (eq. 10), its Euler angles, its coupling to the pipe's end, its control, its
-//! lay equipment (tensioner and stinger, or tower), its RAOs and the wave-frequency motion they give, its
-//! thrusters and their allocation, the observer of its position, and wind, current and wave drift on its hull.
+//! lay equipment (tensioner and stinger of rollers or roller boxes, or tower), its RAOs and the
+//! wave-frequency motion they give, its thrusters and their allocation, the observer of its position, and
+//! wind, current and wave drift on its hull.
 //!
 //! May use: the basics and [`crate::environment`] (the waves that move it).
 pub mod allocation;
@@ -13,6 +14,7 @@ pub mod lay;
 pub mod observer;
 pub mod raos;
 pub mod rigid_body;
+pub mod roller_box;
 pub mod thrusters;
 pub mod wave_motion;
 pub mod winch;
