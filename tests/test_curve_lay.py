@@ -8,9 +8,8 @@ friction's elastic slip."""
 from __future__ import annotations
 
 import numpy as np
-import pytest
-
 import pipelay as pl
+import pytest
 
 RADIUS, ANGLE, FRICTION, DEPTH = 200.0, 0.2, 0.5, 100.0
 SECTION = pl.Section.pipe(0.4064, 0.02, contents_density=0.0, drag=(0.0, 1.0), added_mass=(0.0, 1.0))
@@ -34,7 +33,9 @@ def _run(fraction: float) -> tuple[pl.Results, pl.State]:
     tension = fraction * FRICTION * _weight() * RADIUS
     for node, angle, sign in ((0, THETA[0], -1.0), (ELEMENTS, THETA[-1], 1.0)):
         tangent = np.array([np.cos(angle), np.sin(angle), 0.0])
-        model.point_load(node, force=tuple(sign * tension * tangent), scale=lambda t: np.clip((t - 10.0) / 20.0, 0, 1))
+        model.point_load(
+            node, force=tuple(sign * tension * tangent), scale=lambda t: np.clip((t - 10.0) / 20.0, 0, 1)
+        )
     simulation = model.simulation(state=model.rest(), dt=0.1)
     results = simulation.run(60.0, progress=False)
     return results, simulation.state
@@ -72,13 +73,15 @@ def test_held_curve_reports_its_friction_utilisation_and_deviation() -> None:
     assert np.allclose(utilisation[third], 0.95, rtol=0.02)
     deviation = pl.curve_lay.route_deviation(state, ARC)
     assert np.max(deviation) < 0.011, np.max(deviation)
-    assert pl.curve_lay.minimum_radius(0.95 * FRICTION * _weight() * RADIUS, _weight(), FRICTION) == pytest.approx(
-        0.95 * RADIUS
-    )
+    assert pl.curve_lay.minimum_radius(
+        0.95 * FRICTION * _weight() * RADIUS, _weight(), FRICTION
+    ) == pytest.approx(0.95 * RADIUS)
 
 
 def test_bad_input_names_the_argument() -> None:
     with pytest.raises(pl.InputError, match="lateral_friction"):
         pl.curve_lay.minimum_radius(1e5, 500.0, 0.0)
     with pytest.raises(pl.InputError, match="route"):
-        pl.curve_lay.route_deviation(pl.Model(pl.Rod.straight((0, 0, 0), (1, 0, 0), 1, SECTION)).rest(), [[0, 0]])
+        pl.curve_lay.route_deviation(
+            pl.Model(pl.Rod.straight((0, 0, 0), (1, 0, 0), 1, SECTION)).rest(), [[0, 0]]
+        )

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pipelay as pl
 import pytest
+from pipelay.report import run_report
 from pipelay.scenario import load_scenario, parse_scenario
 
 EXAMPLE = Path(__file__).parent.parent / "examples" / "s_lay_beam_current.toml"
@@ -103,10 +104,10 @@ def test_s_lay_in_a_beam_current_on_v_boxes_solves_with_lateral_loads() -> None:
     assert one_roller >= 3
 
 
-def test_the_beam_current_run_keeps_the_pipe_in_its_boxes_and_the_ledger_exact() -> None:
+def test_the_beam_current_run_keeps_the_pipe_in_its_boxes_and_the_ledger_exact(tmp_path: Path) -> None:
     """From still water, the 1 m/s beam current starting at 5 s pushes the pipe toward starboard on the boxes
     in a 20 s run: it stays in them, its tip offset grows from 0, and the energy ledger closes to 1e-8 of the
-    stored energy."""
+    stored energy. The run records the rollers' reaction vectors, and the report tabulates each box's loads."""
     scenario = parse_scenario(_example(start=5.0), "beam current from 5 s")
     simulation = scenario.model.simulation(dt=0.2)
     results = simulation.run(20.0, progress=False)
@@ -117,6 +118,16 @@ def test_the_beam_current_run_keeps_the_pipe_in_its_boxes_and_the_ledger_exact()
     energy = results.energy["total"]
     balance = energy[-1] - energy[0] - (results.supplied_work[-1] - results.dissipated[-1])
     assert abs(balance) < 1e-8 * abs(energy[0]), balance
+    # The run records each roller's reaction vector, whose size is its normal force.
+    vectors = results.roller_reaction_vectors
+    assert vectors is not None and vectors.shape == (len(results.time), 60, 3)
+    assert np.allclose(np.linalg.norm(vectors, axis=2), results.roller_reactions, rtol=1e-12, atol=1e-6)
+    # The report's table gives each box's largest lateral load over the run.
+    report = run_report(results, tmp_path / "report.html", model=scenario.model, replay=False).read_text()
+    supports = np.array(simulation.state.roller_supports)
+    lateral = [vectors[:, supports == b, 1].sum(axis=1) for b in range(15)]
+    tip = lateral[13][np.argmax(np.abs(lateral[13]))]
+    assert 'id="roller-boxes"' in report and f'data-value="{float(tip / 1e3)!r}"' in report
 
 
 def test_pipelay_static_prints_each_boxs_loads() -> None:

@@ -1039,6 +1039,9 @@ class Results:
     def lay_summary(self) -> dict[str, _FloatArray] | None:
         """The lay summary over time: (T,) arrays with State.lay_summary()'s keys; None without a vessel."""
     @property
+    def roller_reaction_vectors(self) -> _FloatArray | None:
+        """Each roller's force on the pipe (T, k, 3), body frame (N); None without rollers or from older files."""
+    @property
     def energy(self) -> dict[str, _FloatArray]:
         """Energy parts (T,) each (J), keys as State.energy()."""
     @property

@@ -56,7 +56,9 @@ def route_deviation(state: pl.State, route: npt.ArrayLike) -> FloatArray:
     e, m; k ≥ 2): how far the pipe lies from where it was meant to be laid (n + 1,)."""
     points = np.asarray(route, dtype=float)
     if points.ndim != 2 or points.shape[1] != 2 or len(points) < 2 or not np.all(np.isfinite(points)):
-        raise pl.InputError(f"route: must be (k, 2) finite points (x, y) with k ≥ 2, got shape {points.shape}")
+        raise pl.InputError(
+            f"route: must be (k, 2) finite points (x, y) with k ≥ 2, got shape {points.shape}"
+        )
     xy = np.asarray(state.positions)[:, :2]
     start, end = points[:-1], points[1:]
     chord = end - start

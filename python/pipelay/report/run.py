@@ -310,6 +310,9 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
     else:
         supports = None if model is None else model.rest().roller_supports
         parts.append(html.subsection("Lay summary", _lay_summary(results, summary, supports)))
+        vectors = results.roller_reaction_vectors
+        if supports and vectors is not None and max(supports) + 1 < len(supports):
+            parts.append(html.subsection("Roller boxes", _roller_boxes(results, vectors, supports)))
     section = model.rod.section if model is not None else None
     dnv = dict(checks or {}) if section is not None and section.wall_thickness is not None else None
     try:
@@ -392,6 +395,45 @@ def _lay_summary(results: Results, summary: Mapping[str, Any], supports: list[in
             ]
         rows.append([Cell(shown.label, header=True), *cells])
     return html.table(["quantity", "min", "mean", "max", "unit"], rows, id="lay-summary")
+
+
+def _roller_boxes(results: Results, vectors: Any, supports: list[int]) -> Markup:
+    """Each roller box's largest vertical load on the pipe (up) and largest lateral load (either way) over the
+    run, in kN, with the times they occur, and the most boxes the pipe was leaving at once."""
+    vectors = np.asarray(vectors, dtype=np.float64)
+    box_of = np.asarray(supports)
+    time = np.asarray(results.time)
+    rows = []
+    for box in range(int(box_of.max()) + 1):
+        load = vectors[:, box_of == box, :].sum(axis=1)
+        vertical, lateral = -load[:, 2], load[:, 1]
+        up, side = int(np.argmax(vertical)), int(np.argmax(np.abs(lateral)))
+        rows.append(
+            [
+                Cell(f"box {box + 1}", header=True),
+                value_cell(vertical[up] / 1e3, id=f"box-{box}-vertical", digits=4),
+                value_cell(time[up], digits=4),
+                value_cell(lateral[side] / 1e3, id=f"box-{box}-lateral", digits=4),
+                value_cell(time[side], digits=4),
+            ]
+        )
+    lay = results.lay_summary() or {}
+    left = np.asarray(lay.get("boxes_left", [0.0]), dtype=np.float64)
+    most = int(np.nanmax(left)) if left.size else 0
+    said = (
+        "The pipe stayed in its boxes." if most == 0 else f"The pipe was leaving up to {most} boxes at once."
+    )
+    return Markup(
+        html.paragraph(
+            "The boxes' loads on the pipe in the vessel's body frame: vertical up, lateral to starboard (+) or "
+            f"port (−), numbered from 1 from the tensioner. {said}"
+        )
+        + html.table(
+            ["box", "largest vertical (kN)", "at t (s)", "largest lateral (kN)", "at t (s)"],
+            rows,
+            id="roller-boxes",
+        )
+    )
 
 
 def _code_checks(results: Results, model: Model, checks: Mapping[str, Any]) -> Markup:

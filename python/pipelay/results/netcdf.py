@@ -67,6 +67,11 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "roller_energy": (("time",), "J", "energy stored in the roller contacts"),
     "total_energy": (("time",), "J", "storage function E = pipe + vessel + seabed + roller energy"),
     "roller_reactions": (("time", "roller"), "N", "normal force of each roller (0: lifted off)"),
+    "roller_reaction_vectors": (
+        ("time", "roller", "axis"),
+        "N",
+        "each roller's force on the pipe in the vessel's body frame (forward, starboard, down)",
+    ),
     "top_tension": (("time",), "N", "effective tension at the hold point (tensioner or tower)"),
     "departure_angle": (("time",), "rad", "pipe angle below the horizontal where it leaves the equipment"),
     "liftoff_roller": (
@@ -181,6 +186,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
     "seabed": ("touchdown", "touchdown_arc_length", "laid_length"),
     "lay": (
         "roller_reactions",
+        "roller_reaction_vectors",
         "top_tension",
         "departure_angle",
         "liftoff_roller",
@@ -248,8 +254,9 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         "substeps": lambda: results.substeps,
         **{key: partial(getattr, results, key) for key in (*GROUPS["seabed"], *GROUPS["vessel"])},
         "roller_reactions": lambda: results.roller_reactions,
+        "roller_reaction_vectors": lambda: results.roller_reaction_vectors,
         # touchdown_arc_length is recorded with the seabed already.
-        **{key: partial(summary, key) for key in GROUPS["lay"][1:]},
+        **{key: partial(summary, key) for key in GROUPS["lay"][2:]},
     }
     arrays: dict[str, np.ndarray] = {}
     for name in getters if names is None else names:
