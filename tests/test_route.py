@@ -132,3 +132,43 @@ def test_stages_move_the_set_point_and_the_route() -> None:
         free.simulation(
             free.rest(), dt=0.5, stages=pl.Stages([pl.Stage("a", duration=1.0, setpoint=(1.0, 0.0, 0.0))])
         )
+
+
+def test_a_route_of_legs_turns_on_arcs_and_the_vessel_follows_it() -> None:
+    """`Route.legs`: 300 m east, a left turn of 90° on an arc of R = 200 m, 300 m north, at 1 m/s. The reference
+    lies on the arc about (110, 200) with heading and yaw rate v/R there, and stops at the end; the PD-controlled
+    vessel follows it within 0.5 m once past the start's step in speed, its heading D₆₆(v/R)/K_p behind in the
+    turn (within 1 %: sway and yaw couple through the turn's centripetal terms)."""
+    radius, speed = 200.0, 1.0
+    route = pl.Route.legs([(10.0, 0.0), (310.0, 0.0), (310.0, 300.0)], radius=radius, speed=speed)
+    quarter = 0.5 * math.pi * radius
+    for t in np.linspace(100.5, 100.0 + quarter - 0.5, 7):
+        pose, rate = route.at(t)
+        assert np.hypot(pose[0] - 110.0, pose[1] - 200.0) == pytest.approx(radius, rel=1e-12)
+        assert pose[5] == pytest.approx((t - 100.0) / radius, abs=1e-12)
+        assert rate[5] == pytest.approx(speed / radius, rel=1e-12)
+        assert np.hypot(*rate[:2]) == pytest.approx(speed, rel=1e-12)
+    end, stopped = route.at(1e4)
+    assert np.allclose(end[:2], [310.0, 300.0]) and np.all(stopped == 0.0)
+    results = _run(_follower(route), 100.0 + quarter + 50.0)
+    track = [route.at(t)[0] for t in results.time]
+    error = np.array([np.hypot(*(eta[:2] - pose[:2])) for eta, pose in zip(results.eta, track, strict=True)])
+    lag = np.array([eta[5] - pose[5] for eta, pose in zip(results.eta, track, strict=True)])
+    # In the turn the PD holds the yaw rate v/R a steady lag D₆₆(v/R)/K_p behind, as it holds the surge speed.
+    expected = -pl.Vessel.osv().D[5, 5] * speed / radius / 1e8
+    at_arc_end = results.time == 400.0
+    print(
+        f"largest distance from the reference after the start {error[results.time > 60].max():.3f} m; yaw lag at "
+        f"the arc's end {np.degrees(lag[at_arc_end][0]):.3f}° (expected {np.degrees(expected):.3f}°)"
+    )
+    assert error[results.time > 60].max() < 0.5
+    assert lag[at_arc_end][0] == pytest.approx(expected, rel=0.01)
+
+
+def test_a_route_of_legs_refuses_an_arc_its_legs_cannot_hold() -> None:
+    with pytest.raises(pl.InputError, match="radius.*too large for leg"):
+        pl.Route.legs([(0, 0), (100, 0), (100, 100)], radius=150.0, speed=1.0)
+    with pytest.raises(pl.InputError, match="waypoints"):
+        pl.Route.legs([(0, 0)], radius=10.0)
+    with pytest.raises(pl.InputError, match="radius"):
+        pl.Route.legs([(0, 0), (100, 0), (100, 100)], speed=1.0)

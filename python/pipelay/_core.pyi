@@ -719,6 +719,12 @@ class Route:
     def __new__(
         cls, start: _ArrayLike, heading: float = 0.0, speed: float = 0.0, start_time: float = 0.0
     ) -> Route: ...
+    @staticmethod
+    def legs(
+        waypoints: _ArrayLike, radius: float = 0.0, speed: float = 0.0, start_time: float = 0.0
+    ) -> Route:
+        """A route through `waypoints` (k, 2) with its corners cut by arcs of `radius` (m), travelled at `speed`
+        (m/s) from `start_time` (s), the heading along the path; it stops at the last waypoint."""
     def at(self, t: float) -> tuple[_FloatArray, _FloatArray]:
         """η_ref and η̇_ref (6,) each at time t (s)."""
 

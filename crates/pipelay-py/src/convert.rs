@@ -89,6 +89,22 @@ pub fn points(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<Vector3<
         .collect())
 }
 
+/// An (n, 2) array of plane points (x, y).
+pub fn points2(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<nalgebra::Vector2<f64>>> {
+    let (flat, shape) = float_array(value, argument)?;
+    if shape.len() != 2 || shape[1] != 2 {
+        return Err(input(
+            argument,
+            format!("an array of shape {shape:?}"),
+            "must have shape (k, 2): one (x, y) row per point",
+        ));
+    }
+    Ok(flat
+        .chunks_exact(2)
+        .map(nalgebra::Vector2::from_column_slice)
+        .collect())
+}
+
 /// A 1-D float array of any length.
 pub fn vector(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<f64>> {
     let (flat, shape) = float_array(value, argument)?;

@@ -248,6 +248,23 @@ impl PyRoute {
             .map_err(to_py)
     }
 
+    /// A route through `waypoints` (k, 2) (x, y in e, m), its corners cut by circular arcs of `radius` (m)
+    /// tangent to both legs, travelled from the first waypoint at `start_time` (s) at `speed` (m/s), the
+    /// heading along the path; it stops at the last waypoint.
+    #[staticmethod]
+    #[pyo3(signature = (waypoints, radius=0.0, speed=0.0, start_time=0.0))]
+    fn legs(
+        waypoints: &Bound<'_, PyAny>,
+        radius: f64,
+        speed: f64,
+        start_time: f64,
+    ) -> PyResult<Self> {
+        let points = crate::convert::points2(waypoints, "waypoints")?;
+        Reference::path(&points, radius, speed, start_time)
+            .map(PyRoute)
+            .map_err(to_py)
+    }
+
     fn at<'py>(&self, py: Python<'py>, t: f64) -> PyResult<PoseAndRate<'py>> {
         pose_and_rate(py, &self.0, t)
     }

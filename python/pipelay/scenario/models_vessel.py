@@ -504,14 +504,32 @@ Vessel = Annotated[
 
 
 class Route(Table):
-    """`pl.Route`: a moving reference along a lay route, instead of `reference`."""
+    """`pl.Route`: a moving reference along a lay route, instead of `reference`: a straight line from `start`
+    along `heading`, or `pl.Route.legs` through `waypoints` with arcs of `radius` at their corners."""
 
-    start: Annotated[list[float], Vector(2, Number("m"), "[x, y]")] = Field(
-        description="where the route starts, [x, y]"
+    start: Annotated[list[float] | None, Vector(2, Number("m"), "[x, y]")] = api(
+        "where a straight route starts, [x, y] (or give waypoints)"
     )
     heading: Annotated[float | None, Number("rad")] = api("the route's direction and the vessel's heading", 0)
+    waypoints: Annotated[
+        list[list[float]] | None, Matrix(None, Vector(2, Number("m"), "[x, y]"), at_least=2)
+    ] = api("the route's waypoints, one row [x, y] each, instead of start and heading")
+    radius: Annotated[float | None, Number("m", gt=0)] = api(
+        "radius of the arcs that cut the waypoints' corners, > 0"
+    )
     speed: Annotated[float | None, Number("m/s")] = api("lay speed along the route", 0)
     start_time: Annotated[float | None, START] = api("when the reference starts moving", 0)
+
+    @model_validator(mode="after")
+    def straight_or_legs(self) -> Route:
+        """A straight route (start, heading) or one through waypoints (radius), not both."""
+        if (self.start is None) == (self.waypoints is None):
+            raise rule("give start (a straight route) or waypoints (legs), one of them", "start")
+        if self.waypoints is not None and self.heading is not None:
+            raise rule("belongs to a straight route: the legs' heading follows the waypoints", "heading")
+        if self.start is not None and self.radius is not None:
+            raise rule("belongs to waypoints: a straight route has no corners", "radius")
+        return self
 
 
 class Tension(Table):

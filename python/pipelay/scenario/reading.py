@@ -366,7 +366,11 @@ def _controller(controller: models.FixedController | models.RouteController) -> 
     arguments = controller.given("route", "tension", "observer")
     if isinstance(controller, models.RouteController):
         with _engine("controller.route", KEYS["controller.route"]):
-            arguments["reference"] = pl.Route(**controller.route.given())
+            route = controller.route
+            if route.waypoints is not None:
+                arguments["reference"] = pl.Route.legs(**route.given())
+            else:
+                arguments["reference"] = pl.Route(**route.given())
     if controller.tension is not None:
         with _engine("controller.tension", KEYS["controller.tension"]):
             arguments["tension"] = pl.TensionControl(**controller.tension.given())

@@ -3,6 +3,7 @@
 // Indexing cannot go out of bounds here: 6-vectors of the vessel's degrees of freedom indexed by constants.
 #![allow(clippy::indexing_slicing)]
 use super::euler;
+use super::route_path::RoutePath;
 use crate::error::{finite, Error, Result};
 use crate::table::{travel, Leg, TimeFunction};
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
@@ -19,6 +20,9 @@ pub enum Reference {
         heading: f64,
         legs: Vec<Leg>,
     },
+    /// A lay route through waypoints with arcs at its corners ([`RoutePath`]), travelled in legs of speed from
+    /// its start; the heading is the path's, and at its end the route stops. z, φ, θ zero.
+    Path { path: RoutePath, legs: Vec<Leg> },
     /// References in pieces: each (its start time (s), the reference from then on), in time order; before the
     /// first piece's start, the first piece (the stages of a lay: a new DP set-point starts a piece).
     Pieces(Vec<(f64, Reference)>),
@@ -42,6 +46,9 @@ impl std::fmt::Debug for Reference {
                 "Route(start={:?}, heading={heading}, legs={legs:?})",
                 start.as_slice()
             ),
+            Reference::Path { path, legs } => {
+                write!(f, "Path(length={:.1} m, legs={legs:?})", path.length())
+            }
             Reference::Pieces(pieces) => write!(f, "Pieces({pieces:?})"),
             Reference::Function { .. } => write!(f, "Function"),
         }
@@ -64,6 +71,9 @@ impl PartialEq for Reference {
                     legs: g,
                 },
             ) => a == d && b == e && c == g,
+            (Reference::Path { path: a, legs: b }, Reference::Path { path: c, legs: d }) => {
+                a == c && b == d
+            }
             (Reference::Pieces(a), Reference::Pieces(b)) => a == b,
             (Reference::Function { pose: a, .. }, Reference::Function { pose: b, .. }) => {
                 std::sync::Arc::ptr_eq(a, b)
@@ -94,6 +104,27 @@ impl Reference {
                     *heading,
                 );
                 let rate = Vector6::new(speed * cos, speed * sin, 0.0, 0.0, 0.0, 0.0);
+                Ok((pose, rate))
+            }
+            Reference::Path { path, legs } => {
+                let (travelled, speed) = travel(legs, time);
+                let at = path.at(travelled);
+                // At the path's end the route stops.
+                let speed = if travelled < path.length() {
+                    speed
+                } else {
+                    0.0
+                };
+                let (sin, cos) = at.heading.sin_cos();
+                let pose = Vector6::new(at.point.x, at.point.y, 0.0, 0.0, 0.0, at.heading);
+                let rate = Vector6::new(
+                    speed * cos,
+                    speed * sin,
+                    0.0,
+                    0.0,
+                    0.0,
+                    speed * at.curvature,
+                );
                 Ok((pose, rate))
             }
             Reference::Pieces(pieces) => {
@@ -262,6 +293,26 @@ impl Reference {
         Ok(Reference::Fixed(pose))
     }
 
+    /// A route along the path through `waypoints` with arcs of `radius` at its corners ([`RoutePath`]), from
+    /// its first waypoint at `start_time` (s) at `speed` (m/s).
+    pub fn path(
+        waypoints: &[Vector2<f64>],
+        radius: f64,
+        speed: f64,
+        start_time: f64,
+    ) -> Result<Self> {
+        finite("speed", &[speed])?;
+        finite("start_time", &[start_time])?;
+        Ok(Reference::Path {
+            path: RoutePath::new(waypoints, radius)?,
+            legs: vec![Leg {
+                start: start_time,
+                speed,
+                ramp: 0.0,
+            }],
+        })
+    }
+
     /// A lay route, checked finite.
     pub fn route(start: Vector2<f64>, heading: f64, speed: f64, start_time: f64) -> Result<Self> {
         finite("start", start.as_slice())?;
@@ -294,14 +345,28 @@ impl Reference {
     /// there until the first change; a function of time (or a reference in pieces, which the stages change
     /// piece by piece) cannot take them (`key` names the first change in the error).
     pub fn with_speed_changes(&self, changes: &[Leg], key: &str) -> Result<Self> {
-        let (start, heading, mut legs) = match self {
+        let changed = |mut legs: Vec<Leg>| {
+            for &change in changes {
+                legs.retain(|leg| leg.start < change.start);
+                legs.push(change);
+            }
+            legs
+        };
+        // A route along a path keeps its path.
+        if let Reference::Path { path, legs } = self {
+            return Ok(Reference::Path {
+                path: path.clone(),
+                legs: changed(legs.clone()),
+            });
+        }
+        let (start, heading, legs) = match self {
             Reference::Fixed(pose) => (Vector2::new(pose[0], pose[1]), pose[5], Vec::new()),
             Reference::Route {
                 start,
                 heading,
                 legs,
             } => (*start, *heading, legs.clone()),
-            Reference::Pieces(_) | Reference::Function { .. } => {
+            Reference::Pieces(_) | Reference::Function { .. } | Reference::Path { .. } => {
                 return Err(Error::input(
                     key,
                     "a route speed for a controller whose reference is a function of time",
@@ -309,14 +374,10 @@ impl Reference {
                 ))
             }
         };
-        for &change in changes {
-            legs.retain(|leg| leg.start < change.start);
-            legs.push(change);
-        }
         Ok(Reference::Route {
             start,
             heading,
-            legs,
+            legs: changed(legs),
         })
     }
 }

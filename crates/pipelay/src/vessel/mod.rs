@@ -15,6 +15,7 @@ pub mod observer;
 pub mod raos;
 pub mod rigid_body;
 pub mod roller_box;
+pub mod route_path;
 pub mod thrusters;
 pub mod wave_motion;
 pub mod winch;
