@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pipelay as pl
 import pytest
+from pipelay.plots.replay import prepare
 from pipelay.report import run_report
 from pipelay.scenario import load_scenario, parse_scenario
 
@@ -107,7 +108,8 @@ def test_s_lay_in_a_beam_current_on_v_boxes_solves_with_lateral_loads() -> None:
 def test_the_beam_current_run_keeps_the_pipe_in_its_boxes_and_the_ledger_exact(tmp_path: Path) -> None:
     """From still water, the 1 m/s beam current starting at 5 s pushes the pipe toward starboard on the boxes
     in a 20 s run: it stays in them, its tip offset grows from 0, and the energy ledger closes to 1e-8 of the
-    stored energy. The run records the rollers' reaction vectors, and the report tabulates each box's loads."""
+    stored energy. The run records the rollers' reaction vectors, the report tabulates each box's loads, and
+    the replay draws the boxes' rollers."""
     scenario = parse_scenario(_example(start=5.0), "beam current from 5 s")
     simulation = scenario.model.simulation(dt=0.2)
     results = simulation.run(20.0, progress=False)
@@ -128,6 +130,12 @@ def test_the_beam_current_run_keeps_the_pipe_in_its_boxes_and_the_ledger_exact(t
     lateral = [vectors[:, supports == b, 1].sum(axis=1) for b in range(15)]
     tip = lateral[13][np.argmax(np.abs(lateral[13]))]
     assert 'id="roller-boxes"' in report and f'data-value="{float(tip / 1e3)!r}"' in report
+    # The replay draws each box's rollers as lines 1.2 m long, in the vessel's frame as it moves.
+    scene = prepare(results, scenario.model, "tension", 5)
+    assert scene.equipment is not None and scene.equipment[0] == "roller boxes"
+    lines = scene.equipment[1][-1].reshape(60, 3, 3)
+    assert np.allclose(np.linalg.norm(lines[:, 1] - lines[:, 0], axis=1), 1.2, atol=0.011)
+    assert np.all(np.isnan(lines[:, 2]))
 
 
 def test_pipelay_static_prints_each_boxs_loads() -> None:

@@ -496,6 +496,10 @@ class State:
     def roller_positions(self) -> _FloatArray | None:
         """The rollers' top points (k, 3) in e (m) in this state; None without rollers."""
     @property
+    def roller_lines(self) -> _FloatArray | None:
+        """The ends of each roller's top line (k, 2, 3) in e (m): a box's roller's, its length long; a lone
+        roller's top point twice. None without rollers."""
+    @property
     def reference_arc_length(self) -> _FloatArray:
         """Each node's arc length from end A along the stress-free reference (n + 1,) (m)."""
     @property

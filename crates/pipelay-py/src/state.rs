@@ -2,7 +2,7 @@
 use crate::convert::{matrices_to_numpy, points_to_numpy, to_numpy};
 use crate::errors::input;
 use nalgebra::{Matrix3, Vector2, Vector3, Vector6};
-use numpy::{PyArray1, PyArray2, PyArray3};
+use numpy::{PyArray1, PyArray2, PyArray3, PyArrayMethods};
 use pipelay::assembly::configuration::Configuration;
 use pipelay::contact::touchdown::Touchdown;
 use pipelay::dynamics::integrator::Integrator;
@@ -11,7 +11,7 @@ use pipelay::dynamics::state::DynamicState;
 use pipelay::model::Model;
 use pipelay::response::configuration::Response;
 use pipelay::response::lay_summary::{
-    lay_summary, roller_tops, LaySummary, RollerContacts, LAY_FIELDS,
+    lay_summary, roller_lines, roller_tops, LaySummary, RollerContacts, LAY_FIELDS,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -71,6 +71,8 @@ struct LayState {
     segment_of: Vec<usize>,
     /// The rollers' top points in e (m).
     roller_tops: Vec<Vector3<f64>>,
+    /// The ends of each roller's top line in e (m).
+    roller_lines: Vec<[Vector3<f64>; 2]>,
     /// Each node's arc length from end A along the reference (m).
     arc_length: Vec<f64>,
     /// Water depth and density (m, kg/m³), with a sea.
@@ -105,6 +107,7 @@ impl LayState {
             sections: rod.sections.clone(),
             segment_of: rod.segment_of.clone(),
             roller_tops: roller_tops(model, &configuration.positions, &configuration.rotations),
+            roller_lines: roller_lines(model, &configuration.positions, &configuration.rotations),
             arc_length: model.rod.arc_lengths(),
             water: model.sea.as_ref().map(|sea| (sea.depth, sea.density)),
         }
@@ -427,6 +430,26 @@ impl State {
             .roller_forces
             .as_ref()
             .map(|_| points_to_numpy(py, &self.lay.roller_tops))
+    }
+    /// The ends of each roller's top line (k, 2, 3) in e (m): a box's roller's line, its length long, where the
+    /// pipe rests on it; a lone (endless) roller's top point twice. None without rollers.
+    #[getter]
+    fn roller_lines<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if self.lay.roller_forces.is_none() {
+            return Ok(None);
+        }
+        let flat: Vec<f64> = self
+            .lay
+            .roller_lines
+            .iter()
+            .flat_map(|ends| ends.iter().flat_map(|p| [p.x, p.y, p.z]))
+            .collect();
+        let count = self.lay.roller_lines.len();
+        Ok(Some(
+            PyArray1::from_vec(py, flat)
+                .reshape([count, 2, 3])?
+                .into_any(),
+        ))
     }
     /// Each node's arc length from end A along the stress-free reference (n + 1,) (m).
     #[getter]

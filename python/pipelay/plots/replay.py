@@ -92,7 +92,8 @@ class Scene:
         cmin, cmax: the colour scale's range: the elements' smallest and largest values over every record of
             the run (in `unit`; the nodes' averages lie within).
         hull: each frame's hull outline (P, 3), one path, or None without a vessel.
-        equipment: "rollers", "tower" or None, and each frame's points (k, 3) (the tower: its two ends).
+        equipment: "rollers", "roller boxes", "tower" or None, and each frame's points (k, 3) (roller boxes:
+            each roller's top line's ends and a NaN row; the tower: its two ends).
         touchdown: each frame's touchdown point (1, 3) or (0, 3) where the record has none; None without a seabed.
         grid_x, grid_y: the seabed's and sea's grid (nx,), (ny,) (m).
         seabed: the seabed's elevation on the grid (ny, nx) (m).
@@ -245,7 +246,8 @@ def _significant(values: _FloatArray, digits: int = 4) -> _FloatArray:
 
 
 def _lay_equipment(model: Model | None) -> tuple[str, _FloatArray] | None:
-    """The rollers (k, 3) or the tower (its two ends (2, 3)) in the body frame, from the model at rest.
+    """The rollers (k, 3), the roller boxes' rollers (their top lines' ends, each pair followed by a NaN row:
+    (3k, 3)) or the tower (its two ends (2, 3)) in the body frame, from the model at rest.
 
     A tower is drawn for a vessel without rollers whose end of the pipe is held away from CO (more than 1 m)
     with its tangent steeper than 30° in the body frame: a J-lay tower's exit (the model does not say which
@@ -258,6 +260,12 @@ def _lay_equipment(model: Model | None) -> tuple[str, _FloatArray] | None:
     eta = np.asarray(rest.eta, dtype=np.float64)
     turn = rotation(eta)
     rollers = rest.roller_positions
+    lines = rest.roller_lines
+    if lines is not None and len(lines) > 0 and np.any(np.ptp(lines, axis=1) > 0.0):
+        # Roller boxes: each roller's top line, the lines apart (NaN breaks a line in a trace).
+        gaps = np.full((len(lines), 1, 3), np.nan)
+        points = np.concatenate([np.asarray(lines, dtype=np.float64), gaps], axis=1).reshape(-1, 3)
+        return "roller boxes", (points - eta[:3]) @ turn
     if rollers is not None and len(rollers) > 0:
         return "rollers", (np.asarray(rollers, dtype=np.float64) - eta[:3]) @ turn
     positions = np.asarray(rest.positions, dtype=np.float64)
@@ -284,7 +292,7 @@ def _bounds(
     """The plotted area's x and y ranges (m): everything drawn with a 5 % margin, y widened to at least 30 %
     of the x range so that the seabed and the sea read as planes."""
     points = np.concatenate([p[:, :2] for p in pipe + extras if len(p)], axis=0)
-    low, high = points.min(axis=0), points.max(axis=0)
+    low, high = np.nanmin(points, axis=0), np.nanmax(points, axis=0)  # NaN: the gaps between lines
     span = float(max(high[0] - low[0], 1.0))
     margin = 0.05 * span
     x = (float(low[0]) - margin, float(high[0]) + margin)
@@ -377,6 +385,7 @@ def prepare(
     if sea is not None:
         heights.append(sea.ravel())
     z = np.concatenate(heights)
+    z = z[np.isfinite(z)]  # NaN: the gaps between the roller boxes' lines
     z_span = float(max(z.max() - z.min(), 1.0))
     bounds = ((x0, x1), (y0, y1), (float(z.min()) - 0.03 * z_span, float(z.max()) + 0.03 * z_span))
 
@@ -500,11 +509,11 @@ def _traces(scene: Scene) -> tuple[list[Any], list[int]]:
     if scene.equipment is not None:
         gear = next(rest)
         kind = scene.equipment[0]
-        style: dict[str, Any] = (
-            {"mode": "markers", "marker": {"color": "#e8590c", "size": 3}}
-            if kind == "rollers"
-            else {"mode": "lines", "line": {"color": "#7a7a7a", "width": 8}}
-        )
+        styles: dict[str, dict[str, Any]] = {
+            "rollers": {"mode": "markers", "marker": {"color": "#e8590c", "size": 3}},
+            "roller boxes": {"mode": "lines", "line": {"color": "#e8590c", "width": 5}, "connectgaps": False},
+        }
+        style = styles.get(kind, {"mode": "lines", "line": {"color": "#7a7a7a", "width": 8}})
         traces.append(
             go.Scatter3d(x=gear["x"], y=gear["y"], z=gear["z"], name=kind, hoverinfo="skip", **style)
         )

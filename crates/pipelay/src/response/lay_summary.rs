@@ -57,6 +57,33 @@ pub struct LaySummary {
     pub boxes_left: usize,
 }
 
+/// The ends of each roller's top line in a configuration (in e, m): the line the pipe rests on along a roller of
+/// a box, its length long; a lone roller's top point twice (it is endless). Empty without rollers.
+pub fn roller_lines(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+) -> Vec<[Vector3<f64>; 2]> {
+    let tops = roller_tops(model, positions, rotations);
+    let Some(attachment) = model.vessel.as_ref() else {
+        return Vec::new();
+    };
+    let body = crate::vessel::coupling::body_rotation(attachment, &rotations[attachment.node]);
+    attachment
+        .rollers()
+        .iter()
+        .zip(tops)
+        .map(|(roller, top)| {
+            let half = if roller.length.is_finite() {
+                0.5 * roller.length * (body * roller.axis)
+            } else {
+                Vector3::zeros()
+            };
+            [top - half, top + half]
+        })
+        .collect()
+}
+
 /// Where the rollers' top points are in a configuration (in e, m); empty without rollers.
 pub fn roller_tops(
     model: &Model,
