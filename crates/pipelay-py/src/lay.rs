@@ -60,11 +60,12 @@ impl Stinger {
                 ),
             ));
         }
+        // The rollers' places on the arc, the last exactly at its end.
         let place = |k: usize| {
             if count == 1 {
                 0.0
             } else {
-                length * k as f64 / (count - 1) as f64
+                (length * k as f64 / (count - 1) as f64).min(length)
             }
         };
         let placed: Vec<_> = boxes

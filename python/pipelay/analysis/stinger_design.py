@@ -68,7 +68,8 @@ class StingerDesign:
         origin: the first roller's top point (body frame, m).
         tensioner: the tensioner's position (body frame, m).
         stinger: the `pl.Stinger`, for `pl.SLay(tensioner, stinger=...)`.
-        roller_tops: the rollers' top points (k, 3), body frame (m): on the arc of `radius`.
+        roller_tops: the rollers' top points (k, 3), body frame (m): on the arc of `radius` (with boxes, the
+            boxes' stations).
         roller_heights: the rollers' tops' height above the origin's level, −z (k,) (m; negative below it).
         vessel_x: the vessel's position along e1 (η's x, m) at which the top tension is met.
         pipe_length: the length of the pipe the lay was solved with (m), from its pinned end A at the origin
@@ -78,6 +79,7 @@ class StingerDesign:
         tip_clearance: the solved gap between the pipe and the last roller (m).
         state: the static state of the design.
         solves: the static solves the design took.
+        box: the `pl.RollerBox` at every roller's place, or None (lone rollers).
     """
 
     radius: float
@@ -95,14 +97,17 @@ class StingerDesign:
     tip_clearance: float
     state: Any
     solves: int
+    box: Any = None
 
     def table(self) -> dict[str, Any]:
-        """The stinger as a scenario file's ``[vessel.lay.stinger]`` table (radius, length, rollers, origin)."""
+        """The stinger as a scenario file's ``[vessel.lay.stinger]`` table (radius, length, rollers, origin, and
+        the box at every place)."""
         return {
             "radius": self.radius,
             "length": self.length,
             "rollers": self.rollers,
             "origin": list(self.origin),
+            **({} if self.box is None else {"box": _box_table(self.box)}),
         }
 
 
@@ -142,6 +147,7 @@ def design_stinger(
     element_length: float = 2.5,
     strain_tolerance: float = 0.01,
     clearance_tolerance: float = 0.005,
+    box: Any = None,
 ) -> StingerDesign:
     """The stinger (radius, length, roller tops) on which a pipe laid in `depth` at `top_tension` strains by
     `overbend_strain` over the stinger and clears its last roller by `tip_clearance`.
@@ -160,6 +166,7 @@ def design_stinger(
         element_length: the pipe's element length (m).
         strain_tolerance: on the solved overbend strain, relative to the target.
         clearance_tolerance: on the solved tip clearance (m).
+        box: a `pl.RollerBox` standing at every roller's place (its station on the arc), or None: lone rollers.
 
     Returns:
         The design (`StingerDesign`), its lay solved on it.
@@ -207,7 +214,7 @@ def design_stinger(
 
     def solve(radius: float, length: float, rollers: int) -> _Solved:
         nonlocal solves
-        stinger = pl.Stinger(radius=radius, length=length, rollers=rollers, origin=origin_point)
+        stinger = _stinger(radius, length, rollers, origin_point, box)
 
         def build(x: float) -> Any:
             rod = pl.Rod.straight((0.0, 0.0, 0.0), (pipe_length, 0.0, 0.0), elements, section)
@@ -327,7 +334,28 @@ def design_stinger(
             f"overbend_strain: {target!r} not met within {strain_tolerance:.0%} (closest {design.strain:.5g} at "
             f"radius {design.radius:.1f} m)"
         )
-    return _design(design, origin_point, tensioner_point, pipe_length, solves)
+    return _design(design, origin_point, tensioner_point, pipe_length, solves, box)
+
+
+def _box_table(box: Any) -> dict[str, Any]:
+    """A roller box as a scenario file's ``[vessel.lay.stinger.box]`` table."""
+    keys = (
+        "kind",
+        "half_angle",
+        "roller_length",
+        "bottom",
+        "sides",
+        "friction",
+        "rolling_resistance",
+        "locked",
+    )
+    return {key: getattr(box, key) for key in keys}
+
+
+def _stinger(radius: float, length: float, rollers: int, origin: tuple[float, float, float], box: Any) -> Any:
+    """The stinger of `rollers` lone rollers, or of `box`es at their places, over the arc."""
+    boxes = None if box is None else [box] * rollers
+    return pl.Stinger(radius=radius, length=length, rollers=rollers, origin=origin, boxes=boxes)
 
 
 def _design(
@@ -336,12 +364,13 @@ def _design(
     tensioner: tuple[float, float, float],
     pipe_length: float,
     solves: int,
+    box: Any = None,
 ) -> StingerDesign:
     """The `StingerDesign` of a solved stinger."""
     state = solved.state
     rollers = solved.rollers
-    stinger = pl.Stinger(radius=solved.radius, length=solved.length, rollers=rollers, origin=origin)
-    tops = np.asarray(stinger.positions, dtype=np.float64)
+    stinger = _stinger(solved.radius, solved.length, rollers, origin, box)
+    tops = np.asarray(stinger.stations, dtype=np.float64)
     return StingerDesign(
         radius=solved.radius,
         length=solved.length,
@@ -358,4 +387,5 @@ def _design(
         tip_clearance=solved.clearance,
         state=state,
         solves=solves,
+        box=box,
     )
