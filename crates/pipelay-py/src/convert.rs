@@ -73,36 +73,34 @@ fn finite_or_error(argument: &str, values: &[f64]) -> PyResult<()> {
     pipelay::error::finite(argument, values).map_err(crate::errors::to_py)
 }
 
-/// An (n, 3) array of points.
-pub fn points(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<Vector3<f64>>> {
+/// An (n, N) array as n vectors of N numbers; `shape` says the shape wanted, for the error.
+fn rows<const N: usize>(
+    value: &Bound<'_, PyAny>,
+    argument: &str,
+    shape_wanted: &str,
+) -> PyResult<Vec<nalgebra::SVector<f64, N>>> {
     let (flat, shape) = float_array(value, argument)?;
-    if shape.len() != 2 || shape[1] != 3 {
+    if shape.len() != 2 || shape[1] != N {
         return Err(input(
             argument,
             format!("an array of shape {shape:?}"),
-            "must have shape (n + 1, 3)",
+            &format!("must have shape {shape_wanted}"),
         ));
     }
     Ok(flat
-        .chunks_exact(3)
-        .map(Vector3::from_column_slice)
+        .chunks_exact(N)
+        .map(nalgebra::SVector::<f64, N>::from_column_slice)
         .collect())
+}
+
+/// An (n, 3) array of points.
+pub fn points(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<Vector3<f64>>> {
+    rows::<3>(value, argument, "(n + 1, 3)")
 }
 
 /// An (n, 2) array of plane points (x, y).
 pub fn points2(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<Vec<nalgebra::Vector2<f64>>> {
-    let (flat, shape) = float_array(value, argument)?;
-    if shape.len() != 2 || shape[1] != 2 {
-        return Err(input(
-            argument,
-            format!("an array of shape {shape:?}"),
-            "must have shape (k, 2): one (x, y) row per point",
-        ));
-    }
-    Ok(flat
-        .chunks_exact(2)
-        .map(nalgebra::Vector2::from_column_slice)
-        .collect())
+    rows::<2>(value, argument, "(k, 2): one (x, y) row per point")
 }
 
 /// A 1-D float array of any length.

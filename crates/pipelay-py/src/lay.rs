@@ -73,7 +73,7 @@ impl Stinger {
             .enumerate()
             .map(|(k, b)| (b.arc_length.unwrap_or_else(|| place(k)), b.shape))
             .collect();
-        lay::stinger_boxes(radius, length, origin, angle, roller_radius, &placed)
+        roller_box::stinger_boxes(radius, length, origin, angle, roller_radius, &placed)
             .map(Stinger)
             .map_err(to_py)
     }

@@ -644,32 +644,42 @@ pub(super) mod tests {
         }
     }
 
-    /// A pipe of 12 nodes, 5 m apart, laid over a stinger of 6 rollers fixed to the frame of its last node.
-    pub(in crate::contact) fn pipe_over_stinger(
-    ) -> (RollerContact, Vec<Vector3<f64>>, Vec<UnitQuaternion<f64>>) {
-        let rollers =
-            stinger_rollers(40.0, 30.0, 6, Vector3::new(-5.0, 0.0, 0.0), 0.0, 0.25).unwrap();
-        let lay = LayEquipment::s_lay(Vector3::new(0.0, 0.0, -0.3), rollers, 1e7).unwrap();
+    /// The roller contact of `lay` with a straight pipe 0.6 m across from `start` to `end` in `elements`
+    /// elements, held by the vessel at its last node.
+    pub(in crate::contact) fn held_pipe(
+        lay: LayEquipment,
+        start: Vector3<f64>,
+        end: Vector3<f64>,
+        elements: usize,
+    ) -> RollerContact {
         let attachment = VesselAttachment {
-            node: 11,
+            node: elements,
             vessel: crate::vessel::rigid_body::Vessel::osv(),
             angle: lay.end_frame.transpose(),
             eta: nalgebra::Vector6::zeros(),
             controller: None,
             environment: Vec::new(),
             surface: 0.0,
-            lay: Some(lay.clone()),
+            lay: Some(lay),
             winch: None,
             hull_loads: false,
         };
-        // A pipe 0.6 m across, 55 m in 11 elements.
         let section = crate::rod::section::Section::pipe(
             0.6, 0.02, 7850.0, 207e9, 0.3, 0.0, [0.0; 2], [0.0; 2],
         )
         .unwrap();
-        let rod =
-            Rod::straight(Vector3::zeros(), Vector3::new(55.0, 0.0, 0.0), 11, section).unwrap();
-        let contact = RollerContact::new(&attachment, &rod, &rod.arc_lengths()).unwrap();
+        let rod = Rod::straight(start, end, elements, section).unwrap();
+        RollerContact::new(&attachment, &rod, &rod.arc_lengths()).unwrap()
+    }
+
+    /// A pipe of 12 nodes, 5 m apart, laid over a stinger of 6 rollers fixed to the frame of its last node.
+    pub(in crate::contact) fn pipe_over_stinger(
+    ) -> (RollerContact, Vec<Vector3<f64>>, Vec<UnitQuaternion<f64>>) {
+        let rollers =
+            stinger_rollers(40.0, 30.0, 6, Vector3::new(-5.0, 0.0, 0.0), 0.0, 0.25).unwrap();
+        let lay = LayEquipment::s_lay(Vector3::new(0.0, 0.0, -0.3), rollers, 1e7).unwrap();
+        // A pipe 0.6 m across, 55 m in 11 elements.
+        let contact = held_pipe(lay, Vector3::zeros(), Vector3::new(55.0, 0.0, 0.0), 11);
         // The pipe follows the stinger's arc 6 cm too low (pressed into the rollers), then hangs straight.
         let centre = Vector3::new(-5.0, 0.0, 40.0);
         let positions = (0..12)
@@ -865,6 +875,7 @@ pub(super) mod tests {
 
 #[cfg(test)]
 mod box_tests {
+    use super::tests::held_pipe;
     use super::*;
     use crate::vessel::lay::LayEquipment;
     use crate::vessel::roller_box::{BoxShape, RollerBox};
@@ -879,25 +890,7 @@ mod box_tests {
         let station = Vector3::new(-5.0, 0.0, 0.0);
         let rollers = roller_box.rollers(station, -Vector3::z(), Vector3::y(), 0.25, 0);
         let lay = LayEquipment::s_lay(Vector3::zeros(), rollers, 1e7).unwrap();
-        let attachment = VesselAttachment {
-            node: 10,
-            vessel: crate::vessel::rigid_body::Vessel::osv(),
-            angle: lay.end_frame.transpose(),
-            eta: nalgebra::Vector6::zeros(),
-            controller: None,
-            environment: Vec::new(),
-            surface: 0.0,
-            lay: Some(lay),
-            winch: None,
-            hull_loads: false,
-        };
-        let section = crate::rod::section::Section::pipe(
-            0.6, 0.02, 7850.0, 207e9, 0.3, 0.0, [0.0; 2], [0.0; 2],
-        )
-        .unwrap();
-        let rod =
-            Rod::straight(Vector3::new(-10.0, 0.0, 0.0), Vector3::zeros(), 10, section).unwrap();
-        let mut contact = RollerContact::new(&attachment, &rod, &rod.arc_lengths()).unwrap();
+        let mut contact = held_pipe(lay, Vector3::new(-10.0, 0.0, 0.0), Vector3::zeros(), 10);
         let rotations = vec![UnitQuaternion::identity(); 11];
         // The pipe's nodes but the held one moved by (lateral, down); the rollers' total force on it.
         let mut total = |offset: &Vector3<f64>| {

@@ -5,9 +5,9 @@
 //! (radius d_o/2) rests on it, a unilateral contact ([`crate::contact::rollers`]). A stinger is a circular arc of
 //! rollers: the arc is the rollers' top line (the pipe's bottom when it rests on all of them), starting at
 //! `origin` with the slope `angle` below the horizontal, running aft (−b1) and bending down with radius R,
-//! whose supports are lone rollers across it or roller boxes ([`crate::vessel::roller_box`]).
+//! whose supports are lone rollers across it or roller boxes ([`crate::vessel::roller_box`], which builds on
+//! this module).
 use crate::error::{finite, positive, Error, Result};
-use crate::vessel::roller_box::{check_arc_length, RollerBox};
 use nalgebra::{Matrix3, Vector3};
 
 /// What a roller's surface resists along the contact ([`crate::contact::roller_friction`]).
@@ -164,34 +164,6 @@ pub fn stinger_station(
     let normal = Vector3::new(-slope.sin(), 0.0, -slope.cos());
     let tangent = Vector3::new(-slope.cos(), 0.0, slope.sin());
     (top, normal, tangent)
-}
-
-/// The rollers of a stinger of roller boxes: each box at its arc length (m) along a stinger arc (as
-/// [`stinger_rollers`]), in the plane normal to the arc there, its rollers of radius `roller_radius` (m).
-pub fn stinger_boxes(
-    radius: f64,
-    length: f64,
-    origin: Vector3<f64>,
-    angle: f64,
-    roller_radius: f64,
-    boxes: &[(f64, RollerBox)],
-) -> Result<Vec<Roller>> {
-    // Checks the arc as a stinger of lone rollers does.
-    stinger_rollers(
-        radius,
-        length,
-        boxes.len().max(1),
-        origin,
-        angle,
-        roller_radius,
-    )?;
-    let mut rollers = Vec::with_capacity(5 * boxes.len());
-    for (support, (arc_length, roller_box)) in boxes.iter().enumerate() {
-        check_arc_length(*arc_length, length)?;
-        let (station, up, _) = stinger_station(radius, origin, angle, *arc_length);
-        rollers.extend(roller_box.rollers(station, up, Vector3::y(), roller_radius, support));
-    }
-    Ok(rollers)
 }
 
 /// Each support's station and the stinger's outward normal there (body frame, m and unit), in the supports'

@@ -15,7 +15,7 @@
 //!
 //! The rollers are listed V port, V starboard, bottom, side port, side starboard (those the box has).
 use crate::error::{positive, Error, Result};
-use crate::vessel::lay::{Roller, RollerFriction};
+use crate::vessel::lay::{stinger_rollers, stinger_station, Roller, RollerFriction};
 use nalgebra::Vector3;
 
 /// The shape of a box's rollers.
@@ -122,6 +122,34 @@ impl RollerBox {
         }
         rollers
     }
+}
+
+/// The rollers of a stinger of roller boxes: each box at its arc length (m) along a stinger arc (as
+/// [`stinger_rollers`]), in the plane normal to the arc there, its rollers of radius `roller_radius` (m).
+pub fn stinger_boxes(
+    radius: f64,
+    length: f64,
+    origin: Vector3<f64>,
+    angle: f64,
+    roller_radius: f64,
+    boxes: &[(f64, RollerBox)],
+) -> Result<Vec<Roller>> {
+    // Checks the arc as a stinger of lone rollers does.
+    stinger_rollers(
+        radius,
+        length,
+        boxes.len().max(1),
+        origin,
+        angle,
+        roller_radius,
+    )?;
+    let mut rollers = Vec::with_capacity(5 * boxes.len());
+    for (support, (arc_length, roller_box)) in boxes.iter().enumerate() {
+        check_arc_length(*arc_length, length)?;
+        let (station, up, _) = stinger_station(radius, origin, angle, *arc_length);
+        rollers.extend(roller_box.rollers(station, up, Vector3::y(), roller_radius, support));
+    }
+    Ok(rollers)
 }
 
 /// Checks a box's place on the stinger: `arc_length` within [0, `length`] (m).
