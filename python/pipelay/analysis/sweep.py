@@ -724,7 +724,7 @@ def _outcome(future: Any, case: _Case, directory: Path, client: Any, address: st
             " not saved: the next call runs it again"
         )
     except CancelledError as error:
-        _probe(client, address)  # raises _Lost if the scheduler is lost
+        _probe_settled(client, address)  # raises _Lost if the scheduler is lost
         message = f"{type(error).__name__}: {error}"
     except TimeoutError as error:
         if future.status != "error":  # not the task's own error: no result within the timeout
@@ -734,7 +734,10 @@ def _outcome(future: Any, case: _Case, directory: Path, client: Any, address: st
     except Exception as error:  # noqa: BLE001 - recorded as the case's failure
         # A task that failed because its scheduler went away (its comm closed as the cluster shut down) did
         # not finish: raise _Lost rather than record its failure.
-        _probe(client, address)
+        if isinstance(error, (OSError, ConnectionError)) or "Comm" in type(error).__name__:
+            _probe_settled(client, address)
+        else:
+            _probe(client, address)
         message = f"{type(error).__name__}: {error}"
     return {"name": case.name, "error": message}
 
@@ -745,6 +748,19 @@ class _Lost(Exception):
     def __init__(self, address: str, reason: str) -> None:
         super().__init__(address, reason)
         self.address, self.reason = address, reason
+
+
+def _probe_settled(client: Any, address: str) -> None:
+    """`_probe`, and again after `SETTLE` (s) if the scheduler still answers: a task cancelled, or cut off from
+    its comm, while the cluster shuts down sees its scheduler answer for a moment longer. Raises _Lost if it is
+    lost by then."""
+    _probe(client, address)
+    time.sleep(SETTLE)
+    _probe(client, address)
+
+
+SETTLE = 1.0
+"""How long (s) a case cancelled or cut off waits before its scheduler is taken to be alive (`_probe_settled`)."""
 
 
 def _probe(client: Any, address: str) -> int:

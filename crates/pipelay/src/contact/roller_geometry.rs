@@ -52,21 +52,27 @@ impl LocalRoller {
         }
     }
 
-    /// The position along the axis a·(y − c) of the point y, clamped to the roller (m).
-    pub(super) fn along(&self, y: &Vector3<f64>) -> f64 {
-        self.axis
-            .dot(&(y - self.centre))
-            .clamp(-self.half_length, self.half_length)
-    }
-
     /// The offset u(y) of the point y from the axis segment.
     pub(super) fn offset(&self, y: &Vector3<f64>) -> Vector3<f64> {
-        (y - self.centre) - self.along(y) * self.axis
+        self.offset_from_centre(&(y - self.centre))
     }
 
-    /// Whether the point y lies beyond an end of the roller (its offset points from the axis's end).
-    fn beyond(&self, y: &Vector3<f64>) -> bool {
-        self.axis.dot(&(y - self.centre)).abs() > self.half_length
+    /// The position along the axis a·v of the point at `v` = y − c from the centre, clamped to the roller (m).
+    /// Points are taken relative to the centre, so that the foot's search sees them to the round-off of their
+    /// distance from the roller, not of their distance from the vessel.
+    fn along_from_centre(&self, v: &Vector3<f64>) -> f64 {
+        self.axis.dot(v).clamp(-self.half_length, self.half_length)
+    }
+
+    /// [`Self::offset`] of the point at `v` = y − c from the centre.
+    fn offset_from_centre(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        v - self.along_from_centre(v) * self.axis
+    }
+
+    /// Whether the point at `v` = y − c from the centre lies beyond an end of the roller (its offset points
+    /// from the axis's end).
+    fn beyond_from_centre(&self, v: &Vector3<f64>) -> bool {
+        self.axis.dot(v).abs() > self.half_length
     }
 
     /// The signed distance of a point whose offset is `foot` (and that lies beyond the roller's end if
@@ -144,8 +150,8 @@ pub(super) fn chord_distance(
     };
     if roller.half_length.is_finite() {
         for _ in 0..8 {
-            let p = y0 + s * chord;
-            let metric = if roller.beyond(&p) {
+            let v = v0 + s * chord;
+            let metric = if roller.beyond_from_centre(&v) {
                 chord.norm_squared()
             } else {
                 across2
@@ -153,7 +159,7 @@ pub(super) fn chord_distance(
             if metric == 0.0 {
                 break;
             }
-            let next = (s - roller.offset(&p).dot(&chord) / metric).clamp(0.0, 1.0);
+            let next = (s - roller.offset_from_centre(&v).dot(&chord) / metric).clamp(0.0, 1.0);
             if (next - s).abs() <= 1e-14 {
                 s = next;
                 break;
@@ -161,9 +167,13 @@ pub(super) fn chord_distance(
             s = next;
         }
     }
-    let p = y0 + s * chord;
+    let v = v0 + s * chord;
     roller
-        .signed(&roller.offset(&p), roller.beyond(&p), reach)
+        .signed(
+            &roller.offset_from_centre(&v),
+            roller.beyond_from_centre(&v),
+            reach,
+        )
         .map_or(f64::INFINITY, |(d, _)| d)
 }
 
@@ -225,26 +235,31 @@ pub(super) fn spline_distance(
     points: &[Vector3<f64>; 4],
     mirrored: [bool; 2],
 ) -> (f64, [f64; 4], Vector3<f64>, f64) {
+    let relative = points.map(|y| y - roller.centre);
     let combine = |w: &[f64; 4]| -> Vector3<f64> {
         w.iter()
-            .zip(points)
-            .map(|(w, y)| *w * y)
+            .zip(&relative)
+            .map(|(w, v)| *w * v)
             .sum::<Vector3<f64>>()
     };
     let across = |v: Vector3<f64>| v - roller.axis.dot(&v) * roller.axis;
-    let chord = across(points[2] - points[1]);
+    let chord = across(relative[2] - relative[1]);
     let length2 = chord.norm_squared();
     let mut xi = if length2 > 0.0 {
-        (-across(points[1] - roller.centre).dot(&chord) / length2).clamp(0.0, 1.0)
+        (-across(relative[1]).dot(&chord) / length2).clamp(0.0, 1.0)
     } else {
         0.0
     };
     for _ in 0..30 {
         let [w, dw, ddw] = spline_weights(xi, mirrored);
         let point = combine(&w);
-        let (foot, tangent, bend) = (roller.offset(&point), combine(&dw), combine(&ddw));
+        let (foot, tangent, bend) = (
+            roller.offset_from_centre(&point),
+            combine(&dw),
+            combine(&ddw),
+        );
         // Beside the roller u = (I − a aᵀ)(r − c), so u′ = (I − a aᵀ) r′; beyond its end u′ = r′.
-        let moving = if roller.beyond(&point) {
+        let moving = if roller.beyond_from_centre(&point) {
             tangent
         } else {
             across(tangent)
@@ -265,11 +280,11 @@ pub(super) fn spline_distance(
     }
     let [weights, _, _] = spline_weights(xi, mirrored);
     let point = combine(&weights);
-    let foot = roller.offset(&point);
-    let along = roller.along(&point);
+    let foot = roller.offset_from_centre(&point);
+    let along = roller.along_from_centre(&point);
     let d = foot.norm();
     let normal = if d > 0.0 { foot / d } else { Vector3::zeros() };
-    match roller.signed(&foot, roller.beyond(&point), reach) {
+    match roller.signed(&foot, roller.beyond_from_centre(&point), reach) {
         Some((distance, sign)) => (distance, weights, sign * normal, along),
         None => (f64::INFINITY, [0.0; 4], Vector3::zeros(), along),
     }
