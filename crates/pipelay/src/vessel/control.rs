@@ -46,9 +46,8 @@ impl std::fmt::Debug for Reference {
                 "Route(start={:?}, heading={heading}, legs={legs:?})",
                 start.as_slice()
             ),
-            Reference::Path { path, legs } => {
-                write!(f, "Path(length={:.1} m, legs={legs:?})", path.length())
-            }
+            // All of the path: a checkpoint's fingerprint tells two routes apart by it.
+            Reference::Path { path, legs } => write!(f, "Path({path:?}, legs={legs:?})"),
             Reference::Pieces(pieces) => write!(f, "Pieces({pieces:?})"),
             Reference::Function { .. } => write!(f, "Function"),
         }
@@ -593,6 +592,24 @@ mod tests {
         assert!((travelled.norm() - 30.0).abs() < 1e-12);
         assert!((travelled.y.atan2(travelled.x) - 0.5).abs() < 1e-12);
         assert!((rate.fixed_rows::<2>(0).norm() - 2.0).abs() < 1e-12);
+    }
+
+    /// Two routes of one length but other corners differ, in their description too (a checkpoint's
+    /// fingerprint is a digest of it).
+    #[test]
+    fn routes_of_one_length_are_told_apart() {
+        let corner = |turn: f64| {
+            let points = [
+                Vector2::new(0.0, 0.0),
+                Vector2::new(100.0, 0.0),
+                Vector2::new(100.0, turn),
+            ];
+            Reference::path(&points, 30.0, 1.0, 0.0).unwrap()
+        };
+        let (left, right) = (corner(100.0), corner(-100.0));
+        assert_ne!(left, right);
+        assert_ne!(format!("{left:?}"), format!("{right:?}"));
+        assert_eq!(format!("{left:?}"), format!("{:?}", corner(100.0)));
     }
 
     #[test]
