@@ -20,13 +20,15 @@ STATION_Z = TENSIONER[2] + 0.3 / np.cos(THETA)
 PULL = 50e3  # N at end A, away from the vessel
 
 
-def _model(box: pl.RollerBox, speed: float | None = None) -> pl.Model:
-    """The pipe (56 m in 28 elements) from 46 m aft of CO to the tensioner, on 5 boxes 10 m apart, its free end
-    11 m beyond the last, pulled aft at end A; paid out at `speed` (m/s, ramped in over 2 s) if given."""
+def _model(box: pl.RollerBox, speed: float | None = None, aft: float = 46.0) -> pl.Model:
+    """The pipe (in 2 m elements) from `aft` m aft of CO (46: its free end 11 m beyond the last box) to the
+    tensioner, on 5 boxes 10 m apart, pulled aft at end A; paid out at `speed` (m/s, ramped in over 2 s) if
+    given."""
     x_vessel = 500.0
-    start = (x_vessel - 46.0, 0.0, -DEPTH + TENSIONER[2])
+    start = (x_vessel - aft, 0.0, -DEPTH + TENSIONER[2])
     end = (x_vessel + TENSIONER[0], 0.0, -DEPTH + TENSIONER[2])
-    model = pl.Model(pl.Rod.straight(start, end, 28, SECTION), sea=pl.Sea(DEPTH))
+    elements = round((aft + TENSIONER[0]) / 2.0)
+    model = pl.Model(pl.Rod.straight(start, end, elements, SECTION), sea=pl.Sea(DEPTH))
     stinger = pl.Stinger(1e7, 40.0, 5, origin=(5.0, 0.0, STATION_Z), boxes=[box] * 5)
     lay = pl.SLay(tensioner=TENSIONER, stinger=stinger)
     pid = pl.PID(
@@ -97,6 +99,20 @@ def test_paying_out_over_locked_rollers_slides_against_mu_n_and_closes_the_ledge
     energy = results.energy["total"]
     balance = energy - energy[0] - results.supplied_work + results.dissipated
     assert np.max(np.abs(balance)) < 1e-10 * np.max(np.abs(energy)), np.max(np.abs(balance))
+
+
+@pytest.mark.parametrize("aft", [36.0, 38.0, 40.0])
+def test_a_free_end_just_beyond_the_last_box_rests_in_it(aft: float) -> None:
+    """The pipe's free end 1 to 5 m beyond the last box: statics find it resting in every box's V (each V roller
+    pressed, as F/(2 cos θ) of the box's load, within 1e-4), not wedged between the V's lower ends as Newton's
+    steps of a whole contact reach once left it."""
+    state = _model(pl.RollerBox(kind="v", half_angle=THETA), aft=aft).static()
+    supports = np.array(state.roller_supports)
+    for box in range(5):
+        rollers = state.roller_reaction_vectors[supports == box]
+        share = np.linalg.norm(rollers, axis=1)
+        assert np.all(share > 0.0) and share[0] == pytest.approx(share[1], rel=1e-4), (box, share)
+        assert np.linalg.norm(rollers.sum(axis=0)) == pytest.approx(2 * np.cos(THETA) * share[0], rel=1e-4)
 
 
 def test_bad_friction_is_refused() -> None:

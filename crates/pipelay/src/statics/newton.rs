@@ -186,8 +186,8 @@ pub fn largest_increments(model: &Model, assembler: &Assembler, delta: &[f64]) -
 /// The factor that keeps a correction `delta` from moving any node near the rollers down toward them, relative
 /// to the vessel's node and in the vessel's body frame, by more than the rollers' reach (a roller's radius and
 /// the line's half diameter): the contact sees a line only within twice that on the rollers' far side, and a
-/// correction that carries a node further can pass it through the stinger. 1 without rollers, or where
-/// `assembler.limit_roller_steps` is off.
+/// correction that carries a node further can pass it through the stinger (a quarter of that on roller boxes).
+/// 1 without rollers, or where `assembler.limit_roller_steps` is off.
 pub fn roller_step_factor(
     model: &Model,
     assembler: &Assembler,
@@ -210,6 +210,11 @@ pub fn roller_step_factor(
             * (0..model.rod.element_count())
                 .map(|e| model.rod.section(e).hydrodynamic_diameter)
                 .fold(f64::INFINITY, f64::min);
+    // A box's rollers end: beyond an end the contact pushes away from it whichever side the line is on, so a
+    // step that carries a node between the lower ends of a V wedges it there. Steps on boxes are held to a
+    // quarter of the reach.
+    let boxes = attachment.rollers().iter().any(|r| r.length.is_finite());
+    let reach = if boxes { 0.25 * reach } else { reach };
     let moved = |node: usize| {
         Vector3::from_fn(|k, _| {
             assembler.dofs.equation[NODE_DOFS * node + k].map_or(0.0, |i| delta[i])
