@@ -1,6 +1,6 @@
 //! Closed forms of a frictionless V box on the contact itself: each roller's share of a load, and the lateral
 //! load at which the pipe climbs out.
-use super::tests::held_pipe;
+use super::tests::{evaluate_static, held_pipe};
 use super::*;
 use crate::vessel::lay::LayEquipment;
 use crate::vessel::roller_box::{BoxShape, RollerBox};
@@ -29,16 +29,7 @@ fn pipe_in_a_v(load_down: f64, load_lateral: f64) -> (Vector3<f64>, bool, Vec<f6
                 }
             })
             .collect();
-        let mut residual = vec![0.0; 66];
-        contact.evaluate(
-            ContactRule::Static,
-            &positions,
-            &rotations,
-            None,
-            &mut residual,
-            None,
-            None,
-        );
+        evaluate_static(&mut contact, &positions, &rotations);
         let force: Vector3<f64> = contact.reactions.iter().sum();
         (
             force + Vector3::new(0.0, load_lateral, load_down),

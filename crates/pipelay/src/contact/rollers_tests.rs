@@ -12,6 +12,24 @@ impl EntrySink for Dense {
     }
 }
 
+/// Evaluates `contact` in statics at `positions` and `rotations` (its forces, reactions and offsets).
+pub(in crate::contact) fn evaluate_static(
+    contact: &mut RollerContact,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+) {
+    let mut residual = vec![0.0; 6 * positions.len()];
+    contact.evaluate(
+        ContactRule::Static,
+        positions,
+        rotations,
+        None,
+        &mut residual,
+        None,
+        None,
+    );
+}
+
 /// The roller contact of `lay` with a straight pipe 0.6 m across from `start` to `end` in `elements`
 /// elements, held by the vessel at its last node.
 pub(in crate::contact) fn held_pipe(
@@ -112,16 +130,7 @@ fn a_pipe_sliding_over_a_roller_is_pressed_in_evenly() {
                 }
             })
             .collect();
-        let mut residual = vec![0.0; 72];
-        contact.evaluate(
-            ContactRule::Static,
-            &positions,
-            &rotations,
-            None,
-            &mut residual,
-            None,
-            None,
-        );
+        evaluate_static(&mut contact, &positions, &rotations);
         assert_eq!(contact.nearest_elements[0], if slide < 10 { 5 } else { 4 });
         worst = worst.max((contact.forces[0] / expected - 1.0).abs());
     }
