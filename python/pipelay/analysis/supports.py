@@ -6,6 +6,7 @@ loads = pl.support_loads(state)         # None without rollers
 loads.vertical, loads.lateral           # (m,) N per support: up, and to starboard, on the pipe (body frame)
 loads.rollers[b]                        # the normal forces of box b's rollers (N)
 loads.tip_offset, loads.boxes_left      # m to starboard at the stinger's tip; boxes the pipe is leaving
+count, noun = support_count(state.roller_supports)   # 15, "box": how many supports, and what one is called
 ```
 
 Imports of pipelay: the engine only.
@@ -13,6 +14,7 @@ Imports of pipelay: the engine only.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,14 +52,21 @@ class SupportLoads:
         return self.boxes_left == 0
 
 
+def support_count(supports: Sequence[int]) -> tuple[int, str]:
+    """How many supports rollers stand on (`supports`: each roller's, as `state.roller_supports`), and what
+    people call one: "box" where a support holds several rollers, else "roller" (lone rollers, or none)."""
+    count = max(supports, default=-1) + 1
+    return count, "box" if count < len(supports) else "roller"
+
+
 def support_loads(state: pl.State) -> SupportLoads | None:
     """The loads on the stinger's supports in `state`; None without rollers or a lay summary."""
     vectors = state.roller_reaction_vectors
     summary = state.lay_summary()
     if vectors is None or summary is None or len(vectors) == 0:
         return None
+    count, noun = support_count(state.roller_supports)
     supports = np.asarray(state.roller_supports, dtype=int)
-    count = int(supports.max()) + 1
     vertical = np.array([-vectors[supports == b, 2].sum() for b in range(count)])
     lateral = np.array([vectors[supports == b, 1].sum() for b in range(count)])
     normal = np.asarray(state.roller_reactions)
@@ -65,7 +74,7 @@ def support_loads(state: pl.State) -> SupportLoads | None:
         vertical=vertical,
         lateral=lateral,
         rollers=[normal[supports == b] for b in range(count)],
-        boxes=count < len(supports),
+        boxes=noun == "box",
         tip_offset=float(summary["tip_offset"]),
         boxes_left=int(summary["boxes_left"]),
     )

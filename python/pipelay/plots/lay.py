@@ -2,7 +2,8 @@
 route (`lay_deviation`, `lay_accuracy`), the top tension of several runs, a lay configuration on the stinger and
 the lay summary over a run.
 
-Imports of pipelay: the engine (`pipelay._core`), `pipelay.plots.canvas`, and the package (``pl.checks``) when
+Imports of pipelay: the engine (`pipelay._core`), `pipelay.plots.canvas`, `pipelay.analysis.supports`, and the
+package (``pl.checks``) when
 a lay configuration is drawn.
 """
 
@@ -17,6 +18,7 @@ import numpy.typing as npt
 from matplotlib.figure import Figure
 
 from pipelay._core import Results, Route, State
+from pipelay.analysis.supports import support_count
 from pipelay.plots.canvas import (
     _LINESTYLES,
     _figure,
@@ -388,12 +390,7 @@ def lay_configuration(state: State, path: _PathLike | None = None, **check: Any)
     detail.set_xlim(x[near].min() - 5.0, x[near].max() + 5.0)
     detail.set_ylim(elevation[near].min() - 5.0, elevation[near].max() + 5.0)
     liftoff = summary["liftoff_roller"]  # 0-based; rollers (boxes) are numbered from 1 for people
-    supports = state.roller_supports
-    count, noun = (
-        (max(supports) + 1, "box")
-        if supports and max(supports) + 1 < len(supports)
-        else (len(supports), "roller")
-    )
+    count, noun = support_count(state.roller_supports)
     at = f" at {noun} {liftoff + 1} of {count}" if liftoff is not None and rollers is not None else ""
     detail.set_title(f"At the vessel: departure {np.degrees(summary['departure_angle']):.1f}°{at}")
     detail.set_xlabel("x (m)")

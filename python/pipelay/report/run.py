@@ -55,6 +55,7 @@ from pipelay.analysis.statistics import (
     stationary_part,
     top_tension,
 )
+from pipelay.analysis.supports import support_count
 from pipelay.analysis.sweep import STATISTICS
 from pipelay.report import html
 from pipelay.report.html import Cell, Markup, value_cell
@@ -311,7 +312,7 @@ def _checks(results: Results, model: Model | None, checks: Mapping[str, Any] | N
         supports = None if model is None else model.rest().roller_supports
         parts.append(html.subsection("Lay summary", _lay_summary(results, summary, supports)))
         vectors = results.roller_reaction_vectors
-        if supports and vectors is not None and max(supports) + 1 < len(supports):
+        if supports and vectors is not None and support_count(supports)[1] == "box":
             parts.append(html.subsection("Roller boxes", _roller_boxes(results, vectors, supports)))
     section = model.rod.section if model is not None else None
     dnv = dict(checks or {}) if section is not None and section.wall_thickness is not None else None
@@ -367,8 +368,8 @@ def _lay_summary(results: Results, summary: Mapping[str, Any], supports: list[in
     rollers = results.roller_reactions
     count = None if rollers is None else int(np.asarray(rollers).shape[1])
     noun = "roller"
-    if supports and count is not None and max(supports) + 1 < count:
-        count, noun = max(supports) + 1, "box"
+    if supports and count is not None:
+        count, noun = support_count(supports)
     rows = []
     for key, series in summary.items():
         if rollers is None and key in STINGER_ONLY:

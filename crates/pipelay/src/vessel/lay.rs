@@ -88,15 +88,15 @@ pub struct LayEquipment {
     pub roller_stiffness: f64,
 }
 
-/// Body-frame top points, axes and outward normals of `count` rollers spread evenly over a stinger arc.
-pub fn stinger_rollers(
+/// Checks a stinger arc of `radius` and `length` (at most half a circle) from `origin` at the slope `angle`,
+/// and that `count` supports (at least 1) fit in memory.
+pub fn check_arc(
     radius: f64,
     length: f64,
-    count: usize,
     origin: Vector3<f64>,
     angle: f64,
-    roller_radius: f64,
-) -> Result<Vec<Roller>> {
+    count: usize,
+) -> Result<()> {
     positive("stinger radius", radius, "m")?;
     positive("stinger length", length, "m")?;
     finite("stinger origin", origin.as_slice())?;
@@ -120,6 +120,19 @@ pub fn stinger_rollers(
             ),
         ));
     }
+    Ok(())
+}
+
+/// Body-frame top points, axes and outward normals of `count` rollers spread evenly over a stinger arc.
+pub fn stinger_rollers(
+    radius: f64,
+    length: f64,
+    count: usize,
+    origin: Vector3<f64>,
+    angle: f64,
+    roller_radius: f64,
+) -> Result<Vec<Roller>> {
+    check_arc(radius, length, origin, angle, count)?;
     let rollers = (0..count)
         .map(|k| {
             let s = if count == 1 {

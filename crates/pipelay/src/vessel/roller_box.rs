@@ -15,7 +15,7 @@
 //!
 //! The rollers are listed V port, V starboard, bottom, side port, side starboard (those the box has).
 use crate::error::{positive, Error, Result};
-use crate::vessel::lay::{stinger_rollers, stinger_station, Roller, RollerFriction};
+use crate::vessel::lay::{check_arc, stinger_station, Roller, RollerFriction};
 use nalgebra::Vector3;
 
 /// The shape of a box's rollers.
@@ -134,15 +134,7 @@ pub fn stinger_boxes(
     roller_radius: f64,
     boxes: &[(f64, RollerBox)],
 ) -> Result<Vec<Roller>> {
-    // Checks the arc as a stinger of lone rollers does.
-    stinger_rollers(
-        radius,
-        length,
-        boxes.len().max(1),
-        origin,
-        angle,
-        roller_radius,
-    )?;
+    check_arc(radius, length, origin, angle, boxes.len().max(1))?;
     let mut rollers = Vec::with_capacity(5 * boxes.len());
     for (support, (arc_length, roller_box)) in boxes.iter().enumerate() {
         check_arc_length(*arc_length, length)?;
