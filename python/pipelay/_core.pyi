@@ -43,6 +43,7 @@ __all__ = [
     "Stages",
     "State",
     "Stinger",
+    "StingerSection",
     "TensionControl",
     "Thruster",
     "Touchdown",
@@ -500,6 +501,12 @@ class State:
         """The ends of each roller's top line (k, 2, 3) in e (m): a box's roller's, its length long; a lone
         roller's top point twice. None without rollers."""
     @property
+    def hinge_angles(self) -> _FloatArray:
+        """An articulated stinger's hinge angles (h,) (rad; positive: the aft end down); empty without."""
+    @property
+    def section_lines(self) -> _FloatArray | None:
+        """An articulated stinger's sections (h, 2, 3) in e (m): each one's hinge and far end; None without."""
+    @property
     def reference_arc_length(self) -> _FloatArray:
         """Each node's arc length from end A along the stress-free reference (n + 1,) (m)."""
     @property
@@ -544,6 +551,29 @@ class Stinger:
         positions: _ArrayLike, axes: _ArrayLike | None = None, roller_radius: float = ...
     ) -> Stinger:
         """Rollers at given top points (k, 3) with axes (k, 3) (default b2), body frame (m)."""
+    @staticmethod
+    def articulated(
+        sections: Sequence[StingerSection],
+        radius: float,
+        rollers: int,
+        *,
+        fixed_length: float = 0.0,
+        origin: _ArrayLike | None = None,
+        angle: float = 0.0,
+        roller_radius: float = ...,
+        boxes: Sequence[RollerBox] | None = None,
+    ) -> Stinger:
+        """An arc whose first `fixed_length` (m) is on the vessel and whose `sections` follow, each hinged to
+        the one before about b2; its supports as a `Stinger`'s, each on the section that carries its place."""
+    @property
+    def sections(self) -> list[StingerSection]:
+        """The hinged sections (empty unless articulated)."""
+    @property
+    def hinges(self) -> _FloatArray:
+        """Each section's hinge (h, 3), body frame (m), at zero hinge angles."""
+    @property
+    def roller_sections(self) -> list[int]:
+        """The section each roller rides on (k,), -1 on the vessel."""
     @property
     def positions(self) -> _FloatArray:
         """The rollers' top points (k, 3), body frame (m)."""
@@ -560,6 +590,34 @@ class Stinger:
     def lengths(self) -> list[float]:
         """Each roller's length (k,) (m; inf for lone rollers)."""
     def __len__(self) -> int: ...
+
+@final
+class StingerSection:
+    """A hinged section of an articulated stinger: `length` (m) of the arc, `mass` (kg), constant `buoyancy`
+    (N, up), a hinge spring `hinge_stiffness` (N·m/rad) within `hinge_limits` (rad, min ≤ 0 ≤ max; positive:
+    the aft end down), drag area `drag_area` (C_d A, m²)."""
+
+    def __new__(
+        cls,
+        length: float,
+        mass: float,
+        buoyancy: float,
+        hinge_stiffness: float = 0.0,
+        hinge_limits: tuple[float, float] = ...,
+        drag_area: float = 0.0,
+    ) -> StingerSection: ...
+    @property
+    def length(self) -> float: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def buoyancy(self) -> float: ...
+    @property
+    def hinge_stiffness(self) -> float: ...
+    @property
+    def hinge_limits(self) -> tuple[float, float]: ...
+    @property
+    def drag_area(self) -> float: ...
 
 @final
 class RollerBox:
@@ -1051,6 +1109,9 @@ class Results:
     @property
     def roller_reaction_vectors(self) -> _FloatArray | None:
         """Each roller's force on the pipe (T, k, 3), body frame (N); None without rollers or from older files."""
+    @property
+    def hinge_angles(self) -> _FloatArray | None:
+        """An articulated stinger's hinge angles (T, h) (rad); None without."""
     @property
     def energy(self) -> dict[str, _FloatArray]:
         """Energy parts (T,) each (J), keys as State.energy()."""

@@ -3,6 +3,7 @@
 use crate::convert::{points, vector3};
 use crate::errors::{input, to_py};
 use numpy::PyArray2;
+use pipelay::vessel::articulation::{self, Articulation};
 use pipelay::vessel::lay::{self, LayEquipment, Roller, RollerFriction};
 use pipelay::vessel::roller_box;
 use pyo3::prelude::*;
@@ -10,10 +11,10 @@ use pyo3::prelude::*;
 /// A stinger: `rollers` rollers spread evenly over a circular arc of `radius` and `length` (m), the rollers'
 /// top line, starting at `origin` (body frame, m) with the slope `angle` (rad below the horizontal) and
 /// running aft while bending down. `roller_radius` (m). `Stinger.from_rollers(positions, axes)` places
-/// rollers at given top points instead.
+/// rollers at given top points instead; `Stinger.articulated(sections, ...)` hinges the arc's sections.
 #[pyclass(module = "pipelay", name = "Stinger", frozen)]
 #[derive(Clone)]
-pub struct Stinger(pub Vec<Roller>);
+pub struct Stinger(pub Vec<Roller>, pub Option<Articulation>);
 
 #[pymethods]
 impl Stinger {
@@ -39,7 +40,7 @@ impl Stinger {
             .unwrap_or_else(nalgebra::Vector3::zeros);
         let Some(boxes) = boxes else {
             return lay::stinger_rollers(radius, length, count, origin, angle, roller_radius)
-                .map(Stinger)
+                .map(|rollers| Stinger(rollers, None))
                 .map_err(to_py);
         };
         let boxes = boxes
@@ -74,8 +75,82 @@ impl Stinger {
             .map(|(k, b)| (b.arc_length.unwrap_or_else(|| place(k)), b.shape))
             .collect();
         roller_box::stinger_boxes(radius, length, origin, angle, roller_radius, &placed)
-            .map(Stinger)
+            .map(|rollers| Stinger(rollers, None))
             .map_err(to_py)
+    }
+
+    /// An articulated stinger: the arc of `radius` (m) from `origin` at the slope `angle` (as `Stinger`), its
+    /// first `fixed_length` (m) on the vessel, then `sections` (a list of `pl.StingerSection`), each hinged to
+    /// the one before (the first to the vessel) about the vessel's lateral axis b2. Its supports are spread as
+    /// a `Stinger`'s over the whole length, `rollers` lone rollers or `boxes`; each rides on the section that
+    /// carries its place (a support at a hinge on the one before).
+    #[staticmethod]
+    #[pyo3(signature = (sections, radius, rollers, *, fixed_length=0.0, origin=None, angle=0.0, roller_radius=lay::ROLLER_RADIUS, boxes=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn articulated(
+        sections: &Bound<'_, PyAny>,
+        radius: f64,
+        rollers: i64,
+        fixed_length: f64,
+        origin: Option<&Bound<'_, PyAny>>,
+        angle: f64,
+        roller_radius: f64,
+        boxes: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let sections = sections
+            .try_iter()
+            .and_then(|items| {
+                items
+                    .map(|item| Ok(item?.cast::<StingerSection>()?.get().0))
+                    .collect::<PyResult<Vec<_>>>()
+            })
+            .map_err(|_| {
+                input(
+                    "sections",
+                    "the given value",
+                    "must be a list of pl.StingerSection",
+                )
+            })?;
+        let length = fixed_length + sections.iter().map(|s| s.length).sum::<f64>();
+        let Stinger(mut placed, _) =
+            Stinger::new(radius, length, rollers, origin, angle, roller_radius, boxes)?;
+        let origin = origin
+            .map(|o| vector3(o, "origin"))
+            .transpose()?
+            .unwrap_or_else(nalgebra::Vector3::zeros);
+        let articulation =
+            Articulation::new(radius, origin, angle, fixed_length, sections).map_err(to_py)?;
+        articulation.assign(&mut placed);
+        Ok(Stinger(placed, Some(articulation)))
+    }
+
+    /// The hinged sections (a list of `pl.StingerSection`; empty unless articulated).
+    #[getter]
+    fn sections(&self) -> Vec<StingerSection> {
+        self.1
+            .as_ref()
+            .map(|a| a.sections.iter().copied().map(StingerSection).collect())
+            .unwrap_or_default()
+    }
+
+    /// Each section's hinge (h, 3), body frame (m), where the sections stand at zero hinge angles.
+    #[getter]
+    fn hinges<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let hinges = self
+            .1
+            .as_ref()
+            .map(|a| a.chain.hinges.clone())
+            .unwrap_or_default();
+        crate::convert::points_to_numpy(py, &hinges)
+    }
+
+    /// The section each roller rides on (k,), -1 for a roller on the vessel.
+    #[getter]
+    fn roller_sections(&self) -> Vec<i64> {
+        self.0
+            .iter()
+            .map(|r| r.section.map_or(-1, |j| j as i64))
+            .collect()
     }
 
     /// Rollers at `positions` (k, 3), their top points (where the pipe's bottom rests), with axes `axes`
@@ -108,7 +183,7 @@ impl Stinger {
             ));
         }
         lay::rollers_at(&tops, &axes, roller_radius)
-            .map(Stinger)
+            .map(|rollers| Stinger(rollers, None))
             .map_err(to_py)
     }
 
@@ -156,11 +231,94 @@ impl Stinger {
 
     fn __repr__(&self) -> String {
         let supports = self.0.last().map_or(0, |r| r.support + 1);
+        let hinged = self.1.as_ref().map_or(String::new(), |a| {
+            format!(", {} hinged sections", a.sections.len())
+        });
         if supports == self.0.len() {
-            format!("Stinger({} rollers)", self.0.len())
+            format!("Stinger({} rollers{hinged})", self.0.len())
         } else {
-            format!("Stinger({supports} boxes, {} rollers)", self.0.len())
+            format!(
+                "Stinger({supports} boxes, {} rollers{hinged})",
+                self.0.len()
+            )
         }
+    }
+}
+
+/// A section of an articulated stinger (`Stinger.articulated`): it carries `length` (m) of the stinger's top
+/// line, a rigid body of `mass` (kg) with a constant `buoyancy` (N, upward: its displaced water with its
+/// ballast set), hinged at its start with a spring of `hinge_stiffness` (N·m/rad, about the angle 0 where it
+/// lies on the stinger's arc; 0: a free hinge) within `hinge_limits` (min ≤ 0 ≤ max, rad; a positive angle
+/// turns its aft end down), against drag of area `drag_area` (C_d A, m²).
+#[pyclass(module = "pipelay", name = "StingerSection", frozen)]
+#[derive(Clone)]
+pub struct StingerSection(pub articulation::StingerSection);
+
+#[pymethods]
+impl StingerSection {
+    #[new]
+    #[pyo3(signature = (length, mass, buoyancy, hinge_stiffness=0.0, hinge_limits=(-0.5, 0.5), drag_area=0.0))]
+    fn new(
+        length: f64,
+        mass: f64,
+        buoyancy: f64,
+        hinge_stiffness: f64,
+        hinge_limits: (f64, f64),
+        drag_area: f64,
+    ) -> PyResult<Self> {
+        articulation::StingerSection::new(
+            length,
+            mass,
+            buoyancy,
+            hinge_stiffness,
+            [hinge_limits.0, hinge_limits.1],
+            drag_area,
+        )
+        .map(StingerSection)
+        .map_err(to_py)
+    }
+
+    /// The length of the stinger's top line it carries (m).
+    #[getter]
+    fn length(&self) -> f64 {
+        self.0.length
+    }
+    /// Mass (kg).
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.0.mass
+    }
+    /// Buoyancy (N, upward).
+    #[getter]
+    fn buoyancy(&self) -> f64 {
+        self.0.buoyancy
+    }
+    /// Hinge stiffness (N·m/rad).
+    #[getter]
+    fn hinge_stiffness(&self) -> f64 {
+        self.0.hinge_stiffness
+    }
+    /// The hinge's angle limits (min, max) (rad).
+    #[getter]
+    fn hinge_limits(&self) -> (f64, f64) {
+        (self.0.limits[0], self.0.limits[1])
+    }
+    /// Drag area C_d A (m²).
+    #[getter]
+    fn drag_area(&self) -> f64 {
+        self.0.drag_area
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "StingerSection(length={}, mass={}, buoyancy={}, hinge_stiffness={}, hinge_limits=({}, {}))",
+            self.0.length,
+            self.0.mass,
+            self.0.buoyancy,
+            self.0.hinge_stiffness,
+            self.0.limits[0],
+            self.0.limits[1]
+        )
     }
 }
 
@@ -297,9 +455,9 @@ impl SLay {
         {
             roller.friction = resistance;
         }
-        LayEquipment::s_lay(tensioner, rollers, roller_stiffness)
-            .map(SLay)
-            .map_err(to_py)
+        let mut lay = LayEquipment::s_lay(tensioner, rollers, roller_stiffness).map_err(to_py)?;
+        lay.articulation = stinger.and_then(|s| s.1.clone());
+        Ok(SLay(lay))
     }
 
     /// The tensioner's position (body frame, m).
@@ -312,7 +470,7 @@ impl SLay {
     /// The stinger's rollers (body frame), as a Stinger.
     #[getter]
     fn stinger(&self) -> Stinger {
-        Stinger(self.0.rollers.clone())
+        Stinger(self.0.rollers.clone(), self.0.articulation.clone())
     }
 
     fn __repr__(&self) -> String {

@@ -51,6 +51,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vessel::PyRoute>()?;
     m.add_class::<vessel::PyTensionControl>()?;
     m.add_class::<lay::Stinger>()?;
+    m.add_class::<lay::StingerSection>()?;
     m.add_class::<lay::RollerBox>()?;
     m.add_class::<lay::SLay>()?;
     m.add_class::<lay::JLay>()?;

@@ -221,6 +221,7 @@ impl Results {
         )?;
         dict.set_item("seabed", PyArray1::from_slice(py, &h.seabed))?;
         dict.set_item("rollers", PyArray1::from_slice(py, &h.rollers))?;
+        dict.set_item("stinger", PyArray1::from_slice(py, &h.stinger))?;
         dict.set_item("total", PyArray1::from_slice(py, &total))?;
         Ok(dict)
     }
@@ -282,6 +283,17 @@ impl Results {
         Ok(Some(
             array.reshape([h.len(), h.rollers_count, 3])?.into_any(),
         ))
+    }
+    /// An articulated stinger's hinge angles (T, h) (rad; positive: a section's aft end turned down); None
+    /// without.
+    #[getter]
+    fn hinge_angles<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let h = &self.history;
+        if h.hinges_count == 0 {
+            return Ok(None);
+        }
+        let array = PyArray1::from_slice(py, &h.hinge_angles);
+        Ok(Some(array.reshape([h.len(), h.hinges_count])?.into_any()))
     }
     /// The lay summary over time: a dict of (T,) arrays with the keys of State.lay_summary()
     /// (liftoff_roller as a number, NaN: none); None without a vessel.
@@ -536,6 +548,13 @@ impl Results {
         if h.rollers.is_empty() {
             h.rollers = vec![0.0; h.time.len()];
         }
+        // Files written before articulated stingers existed have neither.
+        h.stinger = optional("stinger_energy")?;
+        if h.stinger.is_empty() {
+            h.stinger = vec![0.0; h.time.len()];
+        }
+        h.hinge_angles = optional("hinge_angles")?;
+        h.hinges_count = h.hinge_angles.len() / h.time.len().max(1);
         h.roller_reactions = optional("roller_reactions")?;
         h.rollers_count = h.roller_reactions.len() / h.time.len().max(1);
         // Files written before roller boxes existed have no reaction vectors.

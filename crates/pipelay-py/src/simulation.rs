@@ -565,6 +565,29 @@ impl Simulation {
                 2,
             )?;
         }
+        // An articulated stinger's hinge angles and rates, and its sections' points' velocities.
+        if !state.hinge_rates.is_empty() {
+            rows(
+                "hinges",
+                state
+                    .configuration
+                    .hinge_angles
+                    .iter()
+                    .zip(&state.hinge_rates)
+                    .flat_map(|(a, r)| [*a, *r])
+                    .collect(),
+                2,
+            )?;
+            rows(
+                "section_velocities",
+                state
+                    .section_velocities
+                    .iter()
+                    .flat_map(|v| v.iter().copied())
+                    .collect(),
+                3,
+            )?;
+        }
         if let Some(v) = &state.vessel {
             let parts = [
                 v.velocity,
@@ -732,13 +755,38 @@ impl Simulation {
                     .collect()
             },
         );
+        let hinge_count = model.hinge_count();
+        let hinges = optional_values(
+            arrays,
+            "hinges",
+            2 * hinge_count,
+            "must hold each hinge's angle and rate",
+        )?
+        .unwrap_or_else(|| vec![0.0; 2 * hinge_count]);
+        let section_velocities = optional_values(
+            arrays,
+            "section_velocities",
+            6 * hinge_count,
+            "must hold 3 values for each of the sections' 2 points",
+        )?
+        .map_or_else(
+            || vec![Vector3::zeros(); 2 * hinge_count],
+            |data| {
+                data.chunks_exact(3)
+                    .map(Vector3::from_column_slice)
+                    .collect()
+            },
+        );
         let time = get("time")?.first().copied().unwrap_or(0.0);
         let state = DynamicState {
             time,
             configuration: pipelay::assembly::configuration::Configuration {
                 positions: vectors("positions", nodes)?,
                 rotations,
+                hinge_angles: hinges.iter().step_by(2).copied().collect(),
             },
+            hinge_rates: hinges.iter().skip(1).step_by(2).copied().collect(),
+            section_velocities,
             velocities: vectors("velocities", nodes)?,
             body_angular_velocities: vectors("body_angular_velocities", nodes)?,
             // The predictor's accelerations (checkpoints written before they existed have none).

@@ -11,7 +11,7 @@ use pipelay::dynamics::state::DynamicState;
 use pipelay::model::Model;
 use pipelay::response::configuration::Response;
 use pipelay::response::lay_summary::{
-    lay_summary, roller_lines, roller_tops, LaySummary, RollerContacts, LAY_FIELDS,
+    lay_summary, roller_lines, roller_tops, section_lines, LaySummary, RollerContacts, LAY_FIELDS,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -73,6 +73,8 @@ struct LayState {
     roller_tops: Vec<Vector3<f64>>,
     /// The ends of each roller's top line in e (m).
     roller_lines: Vec<[Vector3<f64>; 2]>,
+    /// An articulated stinger's sections: each one's hinge and far end (in e, m).
+    section_lines: Vec<[Vector3<f64>; 2]>,
     /// Each node's arc length from end A along the reference (m).
     arc_length: Vec<f64>,
     /// Water depth and density (m, kg/m³), with a sea.
@@ -106,12 +108,47 @@ impl LayState {
             summary,
             sections: rod.sections.clone(),
             segment_of: rod.segment_of.clone(),
-            roller_tops: roller_tops(model, &configuration.positions, &configuration.rotations),
-            roller_lines: roller_lines(model, &configuration.positions, &configuration.rotations),
+            roller_tops: roller_tops(
+                model,
+                &configuration.positions,
+                &configuration.rotations,
+                &configuration.hinge_angles,
+            ),
+            section_lines: section_lines(
+                model,
+                &configuration.positions,
+                &configuration.rotations,
+                &configuration.hinge_angles,
+            ),
+            roller_lines: roller_lines(
+                model,
+                &configuration.positions,
+                &configuration.rotations,
+                &configuration.hinge_angles,
+            ),
             arc_length: model.rod.arc_lengths(),
             water: model.sea.as_ref().map(|sea| (sea.depth, sea.density)),
         }
     }
+}
+
+/// An articulated stinger's sections' energy at rest in `configuration` (J; 0 without): weight less buoyancy's
+/// potential and the hinges'.
+fn stinger_energy_at_rest(model: &Model, configuration: &Configuration) -> f64 {
+    let Some(attachment) = &model.vessel else {
+        return 0.0;
+    };
+    let count = model.rod.node_count();
+    pipelay::vessel::stinger_sections::StingerSections::new(attachment, count, model.gravity)
+        .map_or(0.0, |sections| {
+            let node = attachment.node;
+            sections.energy(
+                &configuration.positions[node],
+                &configuration.rotations[node],
+                &configuration.hinge_angles,
+                &vec![Vector3::zeros(); sections.point_count()],
+            )
+        })
 }
 
 impl State {
@@ -134,6 +171,7 @@ impl State {
             model,
             &configuration.positions,
             &configuration.rotations,
+            &configuration.hinge_angles,
             &response.section_forces,
             rollers,
             response.seabed.as_ref().map(|s| &s.touchdown),
@@ -149,6 +187,7 @@ impl State {
                 .map(|r| (&r.reactions[..], &r.offsets[..])),
             summary,
         );
+        let stinger = stinger_energy_at_rest(model, &configuration);
         State {
             lay,
             attachment_forces: model.attachment_forces(&configuration.positions, None, 0.0),
@@ -165,6 +204,7 @@ impl State {
                 vessel_potential: response.vessel.map_or(0.0, |v| v.restoring_energy),
                 seabed: response.seabed.as_ref().map_or(0.0, |s| s.energy),
                 rollers: response.rollers.as_ref().map_or(0.0, |r| r.energy),
+                stinger,
             },
             seabed: response.seabed.as_ref().map(|s| SeabedState {
                 forces: s.forces.clone(),
@@ -273,6 +313,7 @@ fn energy_dict<'py>(py: Python<'py>, energy: &Energy) -> PyResult<Bound<'py, PyD
     dict.set_item("vessel_potential", energy.vessel_potential)?;
     dict.set_item("seabed", energy.seabed)?;
     dict.set_item("rollers", energy.rollers)?;
+    dict.set_item("stinger", energy.stinger)?;
     dict.set_item("total", energy.total())?;
     Ok(dict)
 }
@@ -430,6 +471,32 @@ impl State {
             .roller_forces
             .as_ref()
             .map(|_| points_to_numpy(py, &self.lay.roller_tops))
+    }
+    /// An articulated stinger's hinge angles (h,) (rad; positive: a section's aft end turned down from the
+    /// stinger's arc). Empty without.
+    #[getter]
+    fn hinge_angles<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        to_numpy(py, &self.configuration.hinge_angles)
+    }
+    /// An articulated stinger's sections (h, 2, 3) in e (m): each section's hinge and far end on the
+    /// stinger's top line. None unless articulated.
+    #[getter]
+    fn section_lines<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if self.lay.section_lines.is_empty() {
+            return Ok(None);
+        }
+        let flat: Vec<f64> = self
+            .lay
+            .section_lines
+            .iter()
+            .flat_map(|ends| ends.iter().flat_map(|p| [p.x, p.y, p.z]))
+            .collect();
+        let count = self.lay.section_lines.len();
+        Ok(Some(
+            PyArray1::from_vec(py, flat)
+                .reshape([count, 2, 3])?
+                .into_any(),
+        ))
     }
     /// The ends of each roller's top line (k, 2, 3) in e (m): a box's roller's line, its length long, where the
     /// pipe rests on it; a lone (endless) roller's top point twice. None without rollers.

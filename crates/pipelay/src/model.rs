@@ -984,6 +984,24 @@ impl Model {
         self.rod.is_cable_node(node) && self.vessel.as_ref().is_none_or(|v| v.node != node)
     }
 
+    /// How many hinge angles the model has: the sections of its vessel's articulated stinger (0 without).
+    pub fn hinge_count(&self) -> usize {
+        self.vessel
+            .as_ref()
+            .and_then(|v| v.lay.as_ref())
+            .map_or(0, |lay| lay.hinge_count())
+    }
+
+    /// All DOFs: the nodes' six each, then the hinge angles.
+    pub fn dof_count(&self) -> usize {
+        self.hinge_dof(self.hinge_count())
+    }
+
+    /// The global DOF of hinge `i`'s angle: after the nodes' (see [`crate::assembly::dofs`]).
+    pub fn hinge_dof(&self, i: usize) -> usize {
+        crate::assembly::dofs::NODE_DOFS * self.rod.node_count() + i
+    }
+
     /// The seabed, if the model has one.
     pub fn seabed(&self) -> Option<&crate::environment::seabed::Seabed> {
         self.sea.as_ref().and_then(|sea| sea.seabed.as_ref())

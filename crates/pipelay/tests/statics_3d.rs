@@ -267,6 +267,7 @@ fn verdict(model: &Model, solution: &StaticSolution) -> Option<Unphysical> {
         model,
         &config.positions,
         &config.rotations,
+        &[],
         &nearest_elements(solution),
     )
 }
@@ -285,7 +286,7 @@ fn the_check_refuses_a_pipe_under_or_through_the_stinger_and_a_capsized_vessel()
     let element = nearest[roller];
     let mut under = config.clone();
     under.positions[element].z += 5.0;
-    match check(&model, &under.positions, &under.rotations, &nearest) {
+    match check(&model, &under.positions, &under.rotations, &[], &nearest) {
         Some(Unphysical::UnderStinger { node, depth, .. }) => {
             assert_eq!(node, element);
             assert!(depth > 4.0 && depth < 6.0, "depth {depth}");
@@ -297,7 +298,13 @@ fn the_check_refuses_a_pipe_under_or_through_the_stinger_and_a_capsized_vessel()
     for node in element - 2..=element + 3 {
         through.positions[node].z += 0.7;
     }
-    match check(&model, &through.positions, &through.rotations, &nearest) {
+    match check(
+        &model,
+        &through.positions,
+        &through.rotations,
+        &[],
+        &nearest,
+    ) {
         Some(Unphysical::ThroughRoller { roller: k, overlap }) => {
             assert_eq!(k, roller + 1);
             assert!(overlap > 0.55, "overlap {overlap}");
@@ -313,7 +320,13 @@ fn the_check_refuses_a_pipe_under_or_through_the_stinger_and_a_capsized_vessel()
     capsized.rotations[last] =
         UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 2.5) * capsized.rotations[last];
     assert!(matches!(
-        check(&model, &capsized.positions, &capsized.rotations, &nearest),
+        check(
+            &model,
+            &capsized.positions,
+            &capsized.rotations,
+            &[],
+            &nearest
+        ),
         Some(Unphysical::Capsized { .. })
     ));
 }

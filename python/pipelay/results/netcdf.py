@@ -65,7 +65,17 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "vessel_potential": (("time",), "J", "vessel hydrostatic restoring energy"),
     "seabed_energy": (("time",), "J", "energy stored in the seabed contact (normal and friction springs)"),
     "roller_energy": (("time",), "J", "energy stored in the roller contacts"),
-    "total_energy": (("time",), "J", "storage function E = pipe + vessel + seabed + roller energy"),
+    "stinger_energy": (
+        ("time",),
+        "J",
+        "an articulated stinger's sections: kinetic, weight less buoyancy's potential and the hinges' springs",
+    ),
+    "total_energy": (("time",), "J", "storage function E = pipe + vessel + seabed + roller + stinger energy"),
+    "hinge_angles": (
+        ("time", "hinge"),
+        "rad",
+        "each articulated stinger section's hinge angle, positive with its aft end turned down",
+    ),
     "roller_reactions": (("time", "roller"), "N", "normal force of each roller (0: lifted off)"),
     "roller_reaction_vectors": (
         ("time", "roller", "axis"),
@@ -163,6 +173,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
         *ENERGY_KEYS,
         "seabed_energy",
         "roller_energy",
+        "stinger_energy",
         "total_energy",
         "supplied_work",
         "dissipated",
@@ -187,6 +198,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
     "lay": (
         "roller_reactions",
         "roller_reaction_vectors",
+        "hinge_angles",
         "top_tension",
         "departure_angle",
         "liftoff_roller",
@@ -245,6 +257,7 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         **{key: partial(part, key) for key in ENERGY_KEYS},
         "seabed_energy": lambda: part("seabed"),
         "roller_energy": lambda: part("rollers"),
+        "stinger_energy": lambda: part("stinger"),
         "total_energy": lambda: part("total"),
         "length": lambda: results.length,
         "pay_out_energy": lambda: results.pay_out_energy,
@@ -255,8 +268,9 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         **{key: partial(getattr, results, key) for key in (*GROUPS["seabed"], *GROUPS["vessel"])},
         "roller_reactions": lambda: results.roller_reactions,
         "roller_reaction_vectors": lambda: results.roller_reaction_vectors,
+        "hinge_angles": lambda: results.hinge_angles,
         # touchdown_arc_length is recorded with the seabed already.
-        **{key: partial(summary, key) for key in GROUPS["lay"][2:]},
+        **{key: partial(summary, key) for key in GROUPS["lay"][3:]},
     }
     arrays: dict[str, np.ndarray] = {}
     for name in getters if names is None else names:

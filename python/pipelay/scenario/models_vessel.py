@@ -62,6 +62,7 @@ __all__ = [
     "RouteController",
     "SLay",
     "Stinger",
+    "StingerSection",
     "Tension",
     "Thruster",
     "TunnelThruster",
@@ -104,6 +105,24 @@ class RollerBox(Table):
     locked: Annotated[bool | None, Flag()] = api("rollers braked or locked: they do not turn", False)
 
 
+class StingerSection(Table):
+    """An entry of `[[vessel.lay.stinger.sections]]`: `pl.StingerSection`, a hinged section of an articulated
+    stinger, the next stretch of the arc after the one before (the first after the fixed part)."""
+
+    length: Annotated[float, POSITIVE_LENGTH] = Field(description="the length of the arc the section carries")
+    mass: Annotated[float, Number("kg", ge=0)] = Field(description="the section's mass")
+    buoyancy: Annotated[float, Number("N", ge=0)] = Field(
+        description="its buoyancy, upward, constant: its displaced water with its ballast set"
+    )
+    hinge_stiffness: Annotated[float | None, Number("N·m/rad", ge=0)] = api(
+        "the hinge's spring about the angle 0 where the section lies on the arc (0: a free hinge)", 0
+    )
+    hinge_limits: Annotated[list[float] | None, Vector(2, Number("rad"), "[min, max]")] = api(
+        "the hinge's angle limits [min, max], min ≤ 0 ≤ max (positive: the aft end down)", [-0.5, 0.5]
+    )
+    drag_area: Annotated[float | None, Number("m²", ge=0)] = api("the section's drag area C_d A", 0)
+
+
 class ArcStinger(Table):
     """`[vessel.lay.stinger]` as an arc: `pl.Stinger`, its supports lone rollers across it or roller boxes
     (`box`: the same box at every roller's place; `boxes`: one box per place, or each at its arc length)."""
@@ -123,14 +142,26 @@ class ArcStinger(Table):
     roller_radius: _RollerRadius = None
     box: RollerBox | None = api("the roller box standing at every roller's place", words="lone rollers")
     boxes: list[RollerBox] | None = api("the roller boxes, one per place or each at its arc_length")
+    sections: list[StingerSection] | None = api(
+        "the arc's last stretches as hinged sections (an articulated stinger); the part before them is fixed "
+        "on the vessel",
+        words="one rigid stinger",
+    )
 
     @model_validator(mode="after")
     def box_or_boxes(self) -> ArcStinger:
-        """Not both `box` and `boxes`; `box` has no arc length."""
+        """Not both `box` and `boxes`; `box` has no arc length; the sections fit on the arc."""
         if self.box is not None and self.boxes is not None:
             raise rule("conflicts with boxes: give one box for every place, or the list", "box")
         if self.box is not None and self.box.arc_length is not None:
             raise rule("has no arc_length: the box stands at every roller's place", "box.arc_length")
+        if self.sections is not None:
+            total = sum(s.length for s in self.sections)
+            if total > self.length * (1 + 1e-12):
+                raise rule(
+                    f"must fit on the arc: their lengths add up to {total} m, the arc is {self.length} m",
+                    "sections",
+                )
         return self
 
 

@@ -318,7 +318,22 @@ def _lay(lay: models.SLay | models.JLay) -> pl.SLay | pl.JLay:
                 placed = (
                     None if boxes is None else [pl.RollerBox(**b.given(), kind=b.kind or "v") for b in boxes]
                 )
-                stinger = pl.Stinger(**arc.given("box", "boxes"), boxes=placed)
+                if arc.sections is None:
+                    stinger = pl.Stinger(**arc.given("box", "boxes", "sections"), boxes=placed)
+                else:
+                    sections = [
+                        pl.StingerSection(
+                            **s.given("hinge_limits"), hinge_limits=tuple(s.hinge_limits or (-0.5, 0.5))
+                        )
+                        for s in arc.sections
+                    ]
+                    fixed = arc.length - sum(s.length for s in arc.sections)
+                    stinger = pl.Stinger.articulated(
+                        sections,
+                        **arc.given("box", "boxes", "sections", "length"),
+                        fixed_length=max(fixed, 0.0),
+                        boxes=placed,
+                    )
     with _engine("vessel.lay", KEYS["vessel.lay"]):
         return pl.SLay(stinger=stinger, **lay.given("stinger"))
 

@@ -14,6 +14,7 @@ use crate::linalg::largest::largest_magnitude;
 use crate::linalg::tangent_lu::TangentLu;
 use crate::model::Model;
 use crate::rod::element::ElementMatrix;
+use crate::vessel::stinger_sections::StingerSections;
 use nalgebra::{Matrix6, Vector2, Vector3, Vector6};
 
 /// Assembles residuals and tangents of one model into preallocated storage.
@@ -61,6 +62,8 @@ pub struct Assembler {
     pub contact_slips: Vec<Vector2<f64>>,
     /// The vessel's rollers, if it has any.
     pub rollers: Option<RollerContact>,
+    /// An articulated stinger's sections, if the vessel has one.
+    pub sections: Option<StingerSections>,
     /// Whether statics' Newton corrections are kept from carrying the line through the rollers
     /// ([`crate::statics::newton::roller_step_factor`]).
     pub limit_roller_steps: bool,
@@ -103,12 +106,13 @@ impl Assembler {
             }
             map
         }));
-        let total = NODE_DOFS * model.rod.node_count();
+        let node_dofs = NODE_DOFS * model.rod.node_count();
+        let total = node_dofs + model.hinge_count();
         let rotation_diagonal = dofs
             .equation
             .iter()
             .enumerate()
-            .filter(|(dof, _)| dof % NODE_DOFS >= 3)
+            .filter(|(dof, _)| *dof < node_dofs && dof % NODE_DOFS >= 3)
             .filter_map(|(_, eq)| eq.and_then(|i| lu.position(i, i)))
             .collect();
         let node_scatter = ScatterMap::new((0..model.rod.node_count()).map(|node| {
@@ -137,8 +141,12 @@ impl Assembler {
             });
             SeabedContact::new(seabed, elements.collect(), model.rod.cable_nodes())
         });
+        let sections = model.vessel.as_ref().and_then(|attachment| {
+            StingerSections::new(attachment, model.rod.node_count(), model.gravity)
+        });
         Assembler {
             rollers,
+            sections,
             bending_scale: 1.0,
             current_scale: 1.0,
             limit_roller_steps: true,
@@ -241,6 +249,7 @@ impl Assembler {
             rule,
             &config.positions,
             &config.rotations,
+            &config.hinge_angles,
             increments,
             &mut self.residual,
             magnitude,

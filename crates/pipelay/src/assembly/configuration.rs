@@ -1,14 +1,17 @@
-//! A configuration of the rod: its nodal positions and rotations.
+//! A configuration of the rod: its nodal positions and rotations, and the hinge angles of its vessel's
+//! articulated stinger.
 // Indexing cannot go out of bounds here: node indices of the model's own elements.
 #![allow(clippy::indexing_slicing)]
 use crate::model::Model;
 use nalgebra::{UnitQuaternion, Vector3};
 
-/// A configuration of the rod: nodal positions and rotations.
+/// A configuration of the rod: nodal positions and rotations, and hinge angles.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Configuration {
     pub positions: Vec<Vector3<f64>>,
     pub rotations: Vec<UnitQuaternion<f64>>,
+    /// Each stinger section's hinge angle φ_i (rad; [`crate::vessel::articulation`]); empty without.
+    pub hinge_angles: Vec<f64>,
 }
 
 impl Configuration {
@@ -17,6 +20,7 @@ impl Configuration {
         Configuration {
             positions: model.rod.nodes.clone(),
             rotations: model.rod.frames.clone(),
+            hinge_angles: vec![0.0; model.hinge_count()],
         }
     }
 

@@ -1,5 +1,6 @@
 //! The rod's degrees of freedom: six per node, and which of them are free (not prescribed by a support, and
-//! not the rotation of a cable node, which has none).
+//! not the rotation of a cable node, which has none); after the nodes', the hinge angles of an articulated
+//! stinger, all free.
 // Indexing cannot go out of bounds here: DOF indices of the model's own nodes (supports are checked against them).
 #![allow(clippy::indexing_slicing)]
 use crate::model::Model;
@@ -10,7 +11,7 @@ pub const NODE_DOFS: usize = 6;
 /// Which DOFs are free, and their equation numbers.
 #[derive(Debug, Clone)]
 pub struct DofMap {
-    /// Equation number of each global DOF (node·6 + k), `None` when prescribed.
+    /// Equation number of each global DOF (node·6 + k, then the hinges'), `None` when prescribed.
     pub equation: Vec<Option<usize>>,
     /// Number of free DOFs.
     pub free: usize,
@@ -21,7 +22,7 @@ pub struct DofMap {
 impl DofMap {
     /// Free DOFs of a model: all but those its supports prescribe and the rotations of its cable nodes.
     pub fn new(model: &Model) -> Self {
-        let mut fixed = vec![false; NODE_DOFS * model.rod.node_count()];
+        let mut fixed = vec![false; NODE_DOFS * model.rod.node_count() + model.hinge_count()];
         for node in (0..model.rod.node_count()).filter(|&a| model.is_rotationless(a)) {
             let base = NODE_DOFS * node;
             fixed[base + 3..base + 6].iter_mut().for_each(|f| *f = true);

@@ -1,6 +1,7 @@
 //! The tangent's sparsity pattern over the free DOFs: each element couples its two nodes, and a vessel's
 //! rollers couple the nodes within their reach to the vessel's node and to their neighbours up to
-//! [`COUPLING_REACH`] nodes away.
+//! [`COUPLING_REACH`] nodes away, and an articulated stinger's hinge angles to those nodes, the vessel's node
+//! and each other.
 // Indexing cannot go out of bounds here: DOF, node and equation indices of the model's own mesh.
 #![allow(clippy::indexing_slicing)]
 use crate::assembly::dofs::{DofMap, NODE_DOFS};
@@ -11,7 +12,7 @@ use crate::model::Model;
 /// The tangent's pattern and how it divides.
 pub struct TangentPattern {
     pub pattern: Pattern,
-    /// With rollers, the vessel node's free unknowns: the border of the factorisation.
+    /// With rollers, the vessel node's free unknowns and the hinge angles: the border of the factorisation.
     pub border: Vec<usize>,
     /// Where the columns of each node begin in the values (and, last, their end).
     pub node_values: Vec<usize>,
@@ -50,6 +51,25 @@ impl TangentPattern {
                     couple(a, b);
                 }
             }
+            // Hinge angles: rows and columns over the nodes in reach, the vessel's node and the hinges.
+            let hinges: Vec<usize> = (0..model.hinge_count())
+                .filter_map(|i| dofs.equation[model.hinge_dof(i)])
+                .collect();
+            let node_equations = |node: usize| {
+                (0..NODE_DOFS).filter_map(move |k| dofs.equation[NODE_DOFS * node + k])
+            };
+            let coupled: Vec<usize> = nodes
+                .clone()
+                .chain([attachment.node])
+                .flat_map(node_equations)
+                .chain(hinges.iter().copied())
+                .collect();
+            for &hinge in &hinges {
+                columns[hinge].extend(&coupled);
+                for &other in &coupled {
+                    columns[other].push(hinge);
+                }
+            }
         }
         let mut col_ptr = Vec::with_capacity(dofs.free + 1);
         let mut row_idx = Vec::new();
@@ -60,10 +80,12 @@ impl TangentPattern {
             row_idx.extend_from_slice(rows);
             col_ptr.push(row_idx.len());
         }
-        // With rollers, the vessel node's free unknowns are the border of the factorisation.
+        // With rollers, the vessel node's free unknowns and the hinge angles are the border of the factorisation.
         let border: Vec<usize> = match (rollers, &model.vessel) {
             (Some(_), Some(attachment)) => (0..NODE_DOFS)
-                .filter_map(|k| dofs.equation[NODE_DOFS * attachment.node + k])
+                .map(|k| NODE_DOFS * attachment.node + k)
+                .chain((0..model.hinge_count()).map(|i| model.hinge_dof(i)))
+                .filter_map(|dof| dofs.equation[dof])
                 .collect(),
             _ => Vec::new(),
         };

@@ -6,13 +6,16 @@
 use crate::assembly::assembler::Assembler;
 use crate::assembly::configuration::Configuration;
 use crate::assembly::dofs::NODE_DOFS;
+use crate::assembly::scatter::Entries;
 use crate::contact::rule::ContactRule;
+use crate::contact::sinks::EntrySink;
 use crate::environment::drag::{element_current_drag, quadratic_jacobian};
 use crate::model::Model;
 use crate::rod::cable;
 use crate::rod::element::{evaluate, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::vessel::coupling::{static_forces, StaticTarget};
+use crate::vessel::stinger_sections::Water;
 use crate::vessel::VesselAttachment;
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3};
 
@@ -156,6 +159,7 @@ impl Assembler {
             self.contact = Some(contact);
         }
         self.add_rollers(ContactRule::Static, config, None, None, with_tangent);
+        self.add_static_sections(model, config, with_tangent);
         if with_tangent {
             self.shift_rotations();
         }
@@ -164,6 +168,44 @@ impl Assembler {
             strain_energy,
             max_element_rotation,
         }
+    }
+
+    /// An articulated stinger's sections: weight less buoyancy, drag in the current at t = 0 and hinge springs
+    /// ([`crate::vessel::stinger_sections`]).
+    fn add_static_sections(&mut self, model: &Model, config: &Configuration, with_tangent: bool) {
+        let (Some(sections), Some(attachment)) = (&self.sections, &model.vessel) else {
+            return;
+        };
+        let current_scale = self.current_scale;
+        let current = |z: f64| {
+            model.sea.as_ref().map_or_else(Vector3::zeros, |sea| {
+                current_scale * sea.current_at(z, 0.0).0
+            })
+        };
+        let water = Water {
+            density: model.water_density(),
+            surface: attachment.surface,
+            current: &current,
+        };
+        let node = attachment.node;
+        let mut entries = Entries {
+            values: &mut self.values,
+            dofs: &self.dofs,
+            lu: &self.lu,
+        };
+        let sink: Option<&mut dyn EntrySink> = if with_tangent {
+            Some(&mut entries)
+        } else {
+            None
+        };
+        sections.add_static(
+            &config.positions[node],
+            &config.rotations[node],
+            &config.hinge_angles,
+            &water,
+            &mut self.residual,
+            sink,
+        );
     }
 
     /// The attachments' weight less buoyancy and their drag in the current at t = 0 (the line held still) as

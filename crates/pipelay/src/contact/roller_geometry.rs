@@ -36,6 +36,8 @@ pub(super) struct LocalRoller {
     /// The roller's radius r_r (m).
     pub(super) radius: f64,
     pub(super) friction: RollerFriction,
+    /// The articulated stinger's section the roller rides on (its frame the section's at φ = 0), if any.
+    pub(super) section: Option<usize>,
 }
 
 impl LocalRoller {
@@ -49,6 +51,7 @@ impl LocalRoller {
             half_length: 0.5 * roller.length,
             radius: roller.radius,
             friction: roller.friction,
+            section: roller.section,
         }
     }
 

@@ -18,6 +18,14 @@
 //! f_j = Λ_n ∇̄V_j on node j, −Σf_j and Σ f_j × w_j on N do work ΔV exactly. (The correction term is left out
 //! where it is below the round-off of V: dividing that by a tiny |Δy|² would only make noise.)
 //!
+//! **Rollers on an articulated stinger's section** ([`crate::vessel::articulation`]) stand still in the
+//! section's frame, placed in the end node's by S(φ)(z) = R z + t. V is taken as a function of the nodes'
+//! coordinates in the section's frame, z = S(φ)⁻¹(y), and its gradient g_z maps to the unknowns:
+//! - statics: ∂V/∂y = R g_z and ∂V/∂φ_i = −e·Σ_j (y_j − H_i) × R g_z,j (H_i: hinge i, e: the hinges' axis);
+//! - in a step, Δz = ½(R₀ᵀ + R₁ᵀ)Δy + S₁⁻¹(u) − S₀⁻¹(u) with u = ½(y₀ + y₁), exactly: Δy carries
+//!   ½(R₀ + R₁) ∇̄V_z, and the angles the discrete gradient of ψ(φ) = Σ_j ∇̄V_z,j·S(φ)⁻¹(u_j), so that the
+//!   work is ΔV exactly again.
+//!
 //! **Tangent.** Central differences of each active roller's residual in its few nodal unknowns (at most
 //! [`MAX_NODES`] pipe nodes and N), checked against differences of the assembled residual in the tests.
 // Indexing cannot go out of bounds here: Roller, node and element indices of the contact's own mesh and roller list.
@@ -30,6 +38,7 @@ use crate::contact::rule::ContactRule;
 use crate::contact::sinks::EntrySink;
 use crate::rod::Rod;
 use crate::so3::{cayley, exp, skew};
+use crate::vessel::articulation::{Chain, MAX_SECTIONS};
 use crate::vessel::VesselAttachment;
 use nalgebra::{Matrix3, UnitQuaternion, Vector2, Vector3};
 
@@ -54,7 +63,7 @@ const STEP_TANGENT_ROTATION: f64 = 1e-7;
 
 /// Most spline elements one roller's distance is minimised over: one per state of the step.
 const MAX_SEGMENTS: usize = 3;
-const MAX_VARIABLES: usize = 3 * MAX_NODES + 6;
+const MAX_VARIABLES: usize = 3 * MAX_NODES + 6 + MAX_SECTIONS;
 
 /// The rollers of a model and their state at the last evaluation.
 #[derive(Debug, Clone)]
@@ -87,6 +96,13 @@ pub struct RollerContact {
     /// Local coordinates of the nodes of `elements` at the end, start and midpoint of the evaluated step
     /// (scratch, filled once per evaluation and shared by the rollers).
     locals: [Vec<Vector3<f64>>; 3],
+    /// An articulated stinger's hinges in the end node's frame, and the global DOF of the first hinge angle.
+    chain: Option<Chain>,
+    hinge_base: usize,
+    /// The hinge angles at the evaluated step's start and end (rad).
+    angles: [[f64; MAX_SECTIONS]; 2],
+    /// As `locals`, in each section's frame.
+    section_locals: Vec<[Vec<Vector3<f64>>; 3]>,
 }
 
 /// What one roller's residual is evaluated on: the spline's elements near it, the nodes that control them
@@ -175,6 +191,11 @@ impl RollerContact {
             .iter()
             .map(|r| LocalRoller::new(r, &to_end, &hold))
             .collect::<Vec<_>>();
+        let chain = lay
+            .articulation
+            .as_ref()
+            .map(|a| a.chain.in_frame(&to_end, &hold));
+        let sections = chain.as_ref().map_or(0, |c| c.hinges.len());
         Some(RollerContact {
             forces: vec![0.0; rollers.len()],
             reactions: vec![Vector3::zeros(); rollers.len()],
@@ -188,6 +209,12 @@ impl RollerContact {
             stiffness: lay.roller_stiffness,
             end_node,
             locals: std::array::from_fn(|_| Vec::with_capacity(elements.len() + 1)),
+            section_locals: (0..sections)
+                .map(|_| std::array::from_fn(|_| Vec::with_capacity(elements.len() + 1)))
+                .collect(),
+            chain,
+            hinge_base: 6 * rod.node_count(),
+            angles: [[0.0; MAX_SECTIONS]; 2],
             surfaces: Surfaces::new(rod),
             elements,
             energy_end: 0.0,
@@ -218,6 +245,42 @@ impl RollerContact {
         let locals = &mut self.locals[slot];
         locals.clear();
         locals.extend(nodes.map(local));
+    }
+
+    /// Section j's placement S(φ) = (R, t) at the step's start (`state` 1), end (0) or the mean of the two
+    /// angles (2).
+    fn placement(&self, section: usize, state: usize) -> (Matrix3<f64>, Vector3<f64>) {
+        let Some(chain) = &self.chain else {
+            return (Matrix3::identity(), Vector3::zeros());
+        };
+        let angles: [f64; MAX_SECTIONS] = match state {
+            2 => std::array::from_fn(|i| 0.5 * (self.angles[0][i] + self.angles[1][i])),
+            _ => self.angles[state],
+        };
+        chain.placement(&angles, section)
+    }
+
+    /// Fills each section's locals from the end node's: z = S(φ)⁻¹(y) at the end and start angles, and the
+    /// two's mean.
+    fn fill_section_locals(&mut self, stepping: bool) {
+        for j in 0..self.section_locals.len() {
+            let states = if stepping { 2 } else { 1 };
+            for state in 0..states {
+                let (rotation, translation) = self.placement(j, state);
+                let (locals, section_locals) = (&self.locals[state], &mut self.section_locals[j]);
+                section_locals[state].clear();
+                section_locals[state].extend(
+                    locals
+                        .iter()
+                        .map(|y| rotation.transpose() * (y - translation)),
+                );
+            }
+            if stepping {
+                let [end, start, mid] = &mut self.section_locals[j];
+                mid.clear();
+                mid.extend(end.iter().zip(start.iter()).map(|(a, b)| 0.5 * (a + b)));
+            }
+        }
     }
 
     /// V and ∂V/∂y_j over the spline's `segments` (nodes' local coordinates `y`, in the roller's node order),
@@ -324,17 +387,18 @@ impl RollerContact {
         (segments, count, nodes, node_count)
     }
 
-    /// Adds the rollers' residual at the state `start` + `increments` (all DOFs, node-major [Δx, θ]; `None`:
-    /// zero), and
-    /// with `sink` their tangent. Statics (`ContactRule::Static`): the forces at that state, with rotations
-    /// updated by exp(θ); the energy–momentum step: the discrete gradient over the step from `start`, with the
-    /// Cayley update. Sets `forces` and `energy_end` at the end state; returns the largest nodal force (N).
+    /// Adds the rollers' residual at the state `start` + `increments` (all DOFs, node-major [Δx, θ], then the
+    /// hinge angles' Δφ; `None`: zero), and with `sink` their tangent. Statics (`ContactRule::Static`): the
+    /// forces at that state, with rotations updated by exp(θ); the energy–momentum step: the discrete
+    /// gradient over the step from `start`, with the Cayley update. `hinge_angles` are the start's. Sets
+    /// `forces` and `energy_end` at the end state.
     #[allow(clippy::too_many_arguments)]
     pub fn evaluate(
         &mut self,
         rule: ContactRule,
         positions: &[Vector3<f64>],
         rotations: &[UnitQuaternion<f64>],
+        hinge_angles: &[f64],
         increments: Option<&[f64]>,
         residual: &mut [f64],
         magnitude: Option<&mut [f64]>,
@@ -349,6 +413,11 @@ impl RollerContact {
         let theta = increments.map_or_else(Vector3::zeros, |inc| {
             Vector3::from_column_slice(&inc[6 * n + 3..6 * n + 6])
         });
+        let hinges = self.section_locals.len();
+        for (i, &angle) in hinge_angles.iter().enumerate().take(hinges) {
+            self.angles[1][i] = angle;
+            self.angles[0][i] = angle + increments.map_or(0.0, |inc| inc[self.hinge_base + i]);
+        }
         let update = |theta: &Vector3<f64>| match rule {
             ContactRule::Static => exp(theta),
             ContactRule::EnergyMomentum { .. } => cayley(theta),
@@ -375,31 +444,45 @@ impl RollerContact {
             self.fill_locals(1, start_local);
             self.fill_locals(2, |node| 0.5 * (start_local(node) + end_local(node)));
         }
+        self.fill_section_locals(stepping);
         let first = self.elements.start;
         for k in 0..self.rollers.len() {
+            // The roller's frame: the end node's, or its section's.
+            let section = self.rollers[k].section;
+            let placements = section.map(|j| [self.placement(j, 0), self.placement(j, 1)]);
+            let to_frame = |state: usize, y: Vector3<f64>| match &placements {
+                Some(p) => p[state].0.transpose() * (y - p[state].1),
+                None => y,
+            };
+            let frame_end = |node: usize| to_frame(0, end_local(node));
+            let frame_start = |node: usize| to_frame(1, start_local(node));
+            let frame_mid = |node: usize| 0.5 * (frame_start(node) + frame_end(node));
+            let locals = match section {
+                Some(j) => &self.section_locals[j],
+                None => &self.locals,
+            };
             // The nodes R: elements nearest at the end (and, in a step, at the start and midpoint).
             let roller = &self.rollers[k];
             let diameters = &self.surfaces.half_diameters;
-            let mut chords = [nearest(roller, diameters, first, &self.locals[0]); 3];
-            let mut elements = [self.nearest_segment(k, chords[0], &end_local); 3];
+            let mut chords = [nearest(roller, diameters, first, &locals[0]); 3];
+            let mut elements = [self.nearest_segment(k, chords[0], &frame_end); 3];
             let states = if stepping { 3 } else { 1 };
             if stepping {
-                chords[1] = nearest(roller, diameters, first, &self.locals[1]);
-                chords[2] = nearest(roller, diameters, first, &self.locals[2]);
-                elements[1] = self.nearest_segment(k, chords[1], &start_local);
-                let mid_local = |node: usize| 0.5 * (start_local(node) + end_local(node));
-                elements[2] = self.nearest_segment(k, chords[2], &mid_local);
+                chords[1] = nearest(roller, diameters, first, &locals[1]);
+                chords[2] = nearest(roller, diameters, first, &locals[2]);
+                elements[1] = self.nearest_segment(k, chords[1], &frame_start);
+                elements[2] = self.nearest_segment(k, chords[2], &frame_mid);
             }
             let (segments, segment_count, nodes, count) = self.segments(&elements[..states]);
             let (segments, nodes) = (&segments[..segment_count], &nodes[..count]);
             // The energy and the contact at the step's start do not depend on the unknowns: once per roller.
             let (value_start, touch_start) = if stepping {
-                let y_start: [Vector3<f64>; MAX_NODES] = std::array::from_fn(|i| {
+                let z_start: [Vector3<f64>; MAX_NODES] = std::array::from_fn(|i| {
                     nodes
                         .get(i)
-                        .map_or_else(Vector3::zeros, |&node| start_local(node))
+                        .map_or_else(Vector3::zeros, |&node| frame_start(node))
                 });
-                let (value, _, touch) = self.potential(k, segments, &y_start[..count]);
+                let (value, _, touch) = self.potential(k, segments, &z_start[..count]);
                 (value, touch)
             } else {
                 (0.0, None)
@@ -419,14 +502,19 @@ impl RollerContact {
                 value_start,
                 friction,
             };
-            let variables = 3 * count + 6;
-            // Unknowns: Δx of each node of R, then Δx and θ of N; residual in the same order.
+            let angle_count = section.map_or(0, |j| j + 1);
+            let variables = 3 * count + 6 + angle_count;
+            // Unknowns: Δx of each node of R, then Δx and θ of N, then the angles of the section's hinges;
+            // residual in the same order.
             let mut base = [0.0; MAX_VARIABLES];
             for (i, &node) in nodes.iter().enumerate() {
                 base[3 * i..3 * i + 3].copy_from_slice(step_of(node).as_slice());
             }
             base[3 * count..3 * count + 3].copy_from_slice(step_of(n).as_slice());
-            base[3 * count + 3..variables].copy_from_slice(theta.as_slice());
+            base[3 * count + 3..3 * count + 6].copy_from_slice(theta.as_slice());
+            for i in 0..angle_count {
+                base[3 * count + 6 + i] = self.angles[0][i] - self.angles[1][i];
+            }
             let RollerStep {
                 residual: forces,
                 energy: value,
@@ -438,7 +526,8 @@ impl RollerContact {
             self.dissipated += dissipated;
             // The reaction in the end node's frame at the end state, turned to the body frame.
             let (reaction, offset) = touch.map_or((Vector3::zeros(), f64::NAN), |touch| {
-                (self.to_end.transpose() * touch.reaction, touch.along)
+                let turn = placements.map_or_else(Matrix3::identity, |p| p[0].0);
+                (self.to_end.transpose() * turn * touch.reaction, touch.along)
             });
             let normal_force = reaction.norm();
             self.forces[k] = normal_force;
@@ -449,11 +538,14 @@ impl RollerContact {
             if normal_force == 0.0 && forces[..variables].iter().all(|f| *f == 0.0) {
                 continue;
             }
+            let hinge_base = self.hinge_base;
             let dof = |i: usize| {
                 if i < 3 * count {
                     6 * nodes[i / 3] + i % 3
-                } else {
+                } else if i < 3 * count + 6 {
                     6 * n + (i - 3 * count)
+                } else {
+                    hinge_base + (i - 3 * count - 6)
                 }
             };
             for (i, f) in forces[..variables].iter().enumerate() {
@@ -528,8 +620,29 @@ impl RollerContact {
             y_start[i] = start.local(&positions[node]);
             y_end[i] = end.local(&x_end[i]);
         }
+        // In the roller's frame: the end node's, or its section's at the step's start and end angles.
+        let hinged = self.rollers[k].section.zip(self.chain.as_ref());
+        let mut angles = self.angles;
+        if let Some((j, _)) = hinged {
+            for i in 0..=j {
+                angles[0][i] = angles[1][i] + step[3 * count + 6 + i];
+            }
+        }
+        let placements = hinged.map(|(j, chain)| {
+            [
+                chain.placement(&angles[0], j),
+                chain.placement(&angles[1], j),
+            ]
+        });
+        let (mut z_start, mut z_end) = (y_start, y_end);
+        if let Some([(r_end, t_end), (r_start, t_start)]) = &placements {
+            for i in 0..count {
+                z_end[i] = r_end.transpose() * (y_end[i] - t_end);
+                z_start[i] = r_start.transpose() * (y_start[i] - t_start);
+            }
+        }
         let (value_end, mut gradient_end, touch) =
-            self.potential(k, contact.segments, &y_end[..count]);
+            self.potential(k, contact.segments, &z_end[..count]);
         let roller = &self.rollers[k];
         let mut slip = Vector2::zeros();
         let mut dissipated = 0.0;
@@ -539,8 +652,8 @@ impl RollerContact {
             ContactRule::Static => {
                 // The pipe slides out over the rollers: held back toward the hold point with the limit force.
                 if let Some(touch) = touch.filter(|_| !roller.friction.is_frictionless()) {
-                    let y = |slot: usize| y_end[touch.control[slot]];
-                    let toward_hold = if self.end_node == 0 { -1.0 } else { 1.0 } * (y(2) - y(1));
+                    let z = |slot: usize| z_end[touch.control[slot]];
+                    let toward_hold = if self.end_node == 0 { -1.0 } else { 1.0 } * (z(2) - z(1));
                     let force = roller_friction::static_force(
                         &roller.friction,
                         &touch.normal,
@@ -551,24 +664,38 @@ impl RollerContact {
                         gradient_end[*i] -= w * force;
                     }
                 }
+                // ∂V/∂y = R g_z and ∂V/∂φ_i = −e·Σ_j (y_j − H_i) × R g_z,j.
+                if let (Some((j, chain)), Some([(rotation, _), _])) = (hinged, &placements) {
+                    let hinges = chain.hinge_positions(&angles[0], j);
+                    for g in &mut gradient_end[..count] {
+                        *g = rotation * *g;
+                    }
+                    for (h, hinge) in hinges[..=j].iter().enumerate() {
+                        out[3 * count + 6 + h] = -chain.axis.dot(
+                            &(0..count)
+                                .map(|i| (y_end[i] - hinge).cross(&gradient_end[i]))
+                                .sum::<Vector3<f64>>(),
+                        );
+                    }
+                }
                 let arms: [Vector3<f64>; MAX_NODES] =
                     std::array::from_fn(|i| x_end[i] - end.position);
                 (gradient_end, end.rotation, arms)
             }
             ContactRule::EnergyMomentum { .. } => {
-                let mut y_mid = [Vector3::zeros(); MAX_NODES];
+                let mut z_mid = [Vector3::zeros(); MAX_NODES];
                 let mut change2 = 0.0;
                 for i in 0..count {
-                    y_mid[i] = 0.5 * (y_start[i] + y_end[i]);
-                    change2 += (y_end[i] - y_start[i]).norm_squared();
+                    z_mid[i] = 0.5 * (z_start[i] + z_end[i]);
+                    change2 += (z_end[i] - z_start[i]).norm_squared();
                 }
                 let value_start = contact.value_start;
-                let (_, mut gradient, _) = self.potential(k, contact.segments, &y_mid[..count]);
+                let (_, mut gradient, _) = self.potential(k, contact.segments, &z_mid[..count]);
                 let along: f64 = (0..count)
-                    .map(|i| gradient[i].dot(&(y_end[i] - y_start[i])))
+                    .map(|i| gradient[i].dot(&(z_end[i] - z_start[i])))
                     .sum();
                 // The correction where it rises above the round-off of V (positions known to ε|y|): below,
-                // dividing by |Δy|² would turn that round-off into force.
+                // dividing by |Δz|² would turn that round-off into force.
                 let extent = y_end[..count].iter().map(|y| y.norm()).fold(1.0, f64::max);
                 let force: f64 = gradient[..count].iter().map(|g| g.norm()).sum();
                 let noise = 64.0 * f64::EPSILON * (value_end + value_start + force * extent);
@@ -576,16 +703,16 @@ impl RollerContact {
                 if change2 > 0.0 && mismatch.abs() > noise {
                     let c = mismatch / change2;
                     for i in 0..count {
-                        gradient[i] += c * (y_end[i] - y_start[i]);
+                        gradient[i] += c * (z_end[i] - z_start[i]);
                     }
                 }
-                // Friction on the material point's move Δu = Σ w_j Δy_j, in the directions of the step's start.
+                // Friction on the material point's move Δu = Σ w_j Δz_j, in the directions of the step's start.
                 if let Some(frame) = &contact.friction {
                     let moved: Vector3<f64> = frame
                         .control
                         .iter()
                         .zip(frame.weights)
-                        .map(|(&i, w)| w * (y_end[i] - y_start[i]))
+                        .map(|(&i, w)| w * (z_end[i] - z_start[i]))
                         .sum();
                     let normal_force = touch.map_or(0.0, |t| t.reaction.norm());
                     let step = roller_friction::step(
@@ -600,6 +727,24 @@ impl RollerContact {
                         gradient[*i] -= w * step.force;
                     }
                     (slip, dissipated, friction_energy) = (step.slip, step.dissipated, step.energy);
+                }
+                if let (Some((j, chain)), Some([(r_end, _), (r_start, _)])) = (hinged, &placements)
+                {
+                    let u: [Vector3<f64>; MAX_NODES] =
+                        std::array::from_fn(|i| 0.5 * (y_start[i] + y_end[i]));
+                    let torques = section_gradient(
+                        chain,
+                        j,
+                        &angles,
+                        &gradient[..count],
+                        &u[..count],
+                        value_end + value_start + force * extent,
+                    );
+                    out[3 * count + 6..3 * count + 7 + j].copy_from_slice(&torques[..=j]);
+                    let mean = 0.5 * (r_start + r_end);
+                    for g in &mut gradient[..count] {
+                        *g = mean * *g;
+                    }
                 }
                 // w_j = (I + ½θ̂)⁻¹ d_j,{n+1}.
                 let solve = (Matrix3::identity() + 0.5 * skew(&theta))
@@ -628,6 +773,51 @@ impl RollerContact {
             dissipated,
         }
     }
+}
+
+/// The discrete gradient over a step of the section's hinge angles (0..=`section`) of
+/// ψ(φ) = Σ_j g_j·S(φ)⁻¹(u_j), for the section's gradient `gradient` (g_z) and the nodes' mean local
+/// coordinates `u`, from the start (`angles[1]`) to the end (`angles[0]`): ∇ψ(φ̄) + [Δψ − ∇ψ(φ̄)·Δφ]Δφ/|Δφ|²,
+/// the correction left out below the round-off `scale`·ε. ∂S⁻¹(u)/∂φ_i = −Rᵀ(e × (u − H_i)).
+fn section_gradient(
+    chain: &Chain,
+    section: usize,
+    angles: &[[f64; MAX_SECTIONS]; 2],
+    gradient: &[Vector3<f64>],
+    u: &[Vector3<f64>],
+    scale: f64,
+) -> [f64; MAX_SECTIONS] {
+    let psi = |phi: &[f64; MAX_SECTIONS]| {
+        let (rotation, translation) = chain.placement(phi, section);
+        gradient
+            .iter()
+            .zip(u)
+            .map(|(g, u)| g.dot(&(rotation.transpose() * (u - translation))))
+            .sum::<f64>()
+    };
+    let mid: [f64; MAX_SECTIONS] = std::array::from_fn(|i| 0.5 * (angles[0][i] + angles[1][i]));
+    let (rotation, _) = chain.placement(&mid, section);
+    let hinges = chain.hinge_positions(&mid, section);
+    let mut result = [0.0; MAX_SECTIONS];
+    for (i, hinge) in hinges[..=section].iter().enumerate() {
+        result[i] = -chain.axis.dot(
+            &gradient
+                .iter()
+                .zip(u)
+                .map(|(g, u)| (u - hinge).cross(&(rotation * g)))
+                .sum::<Vector3<f64>>(),
+        );
+    }
+    let change: [f64; MAX_SECTIONS] = std::array::from_fn(|i| angles[0][i] - angles[1][i]);
+    let change2: f64 = change[..=section].iter().map(|c| c * c).sum();
+    let along: f64 = (0..=section).map(|i| result[i] * change[i]).sum();
+    let mismatch = psi(&angles[0]) - psi(&angles[1]) - along;
+    if change2 > 0.0 && mismatch.abs() > 64.0 * f64::EPSILON * scale {
+        for i in 0..=section {
+            result[i] += mismatch / change2 * change[i];
+        }
+    }
+    result
 }
 
 #[cfg(test)]

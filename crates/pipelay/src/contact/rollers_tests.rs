@@ -23,6 +23,7 @@ pub(in crate::contact) fn evaluate_static(
         ContactRule::Static,
         positions,
         rotations,
+        &[],
         None,
         &mut residual,
         None,
@@ -105,6 +106,7 @@ fn a_pipe_sliding_over_a_roller_is_pressed_in_evenly() {
         half_length: f64::INFINITY,
         radius,
         friction: crate::vessel::lay::RollerFriction::default(),
+        section: None,
     }];
     contact.forces = vec![0.0];
     contact.reactions = vec![Vector3::zeros()];
@@ -206,7 +208,16 @@ fn step_tangent_matches(
         .collect();
     let residual = |contact: &mut RollerContact, inc: &[f64]| {
         let mut r = vec![0.0; dofs];
-        contact.evaluate(rule, positions, rotations, Some(inc), &mut r, None, None);
+        contact.evaluate(
+            rule,
+            positions,
+            rotations,
+            &[],
+            Some(inc),
+            &mut r,
+            None,
+            None,
+        );
         r
     };
     let mut dense = Dense(HashMap::new());
@@ -215,6 +226,7 @@ fn step_tangent_matches(
         rule,
         positions,
         rotations,
+        &[],
         Some(&increments),
         &mut r,
         None,

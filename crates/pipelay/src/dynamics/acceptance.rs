@@ -70,6 +70,7 @@ impl Integrator {
             + energy.vessel_potential.abs()
             + energy.seabed.abs()
             + energy.rollers.abs()
+            + energy.stinger.abs()
             + booked;
         let within = error.abs() <= LEDGER_TOLERANCE * worked.max(1.0);
         if !within {

@@ -35,6 +35,8 @@ pub struct Snapshot<'a> {
     /// With rollers: each roller's normal force (N) and its force on the pipe (body frame, N).
     pub roller_forces: Option<&'a [f64]>,
     pub roller_vectors: Option<&'a [Vector3<f64>]>,
+    /// An articulated stinger's hinge angles (rad; empty without).
+    pub hinge_angles: &'a [f64],
     /// With a vessel: the lay summary.
     pub lay: Option<LaySummary>,
     /// Work supplied and energy dissipated since the integrator started (J).
@@ -97,6 +99,12 @@ pub struct History {
     pub seabed: Vec<f64>,
     /// Energy stored in the roller contacts (J).
     pub rollers: Vec<f64>,
+    /// An articulated stinger's sections' energy (J): kinetic, weight less buoyancy's potential, hinges'.
+    pub stinger: Vec<f64>,
+    /// An articulated stinger's hinge angles, (T, h) (rad); empty without.
+    pub hinge_angles: Vec<f64>,
+    /// Number of hinges h.
+    pub hinges_count: usize,
     /// With rollers: each roller's normal force, (T, k) (N), and its force on the pipe in the body frame,
     /// (T, k, 3) (N); empty without (the vectors also in files written before they were recorded).
     pub roller_reactions: Vec<f64>,
@@ -184,7 +192,7 @@ impl History {
         let seabed = !self.touchdown_arc_length.is_empty();
         let six = |series: &Vec<f64>| if series.is_empty() { 0 } else { 6 };
         let k = self.thrusters_count;
-        let fields: [(&str, usize, usize); 36] = [
+        let fields: [(&str, usize, usize); 38] = [
             (
                 "eta_low_frequency",
                 self.eta_low_frequency.len(),
@@ -207,6 +215,8 @@ impl History {
             ("pay_out_energy", self.pay_out_energy.len(), 1),
             ("seabed_energy", self.seabed.len(), 1),
             ("roller_energy", self.rollers.len(), 1),
+            ("stinger_energy", self.stinger.len(), 1),
+            ("hinge_angles", self.hinge_angles.len(), self.hinges_count),
             (
                 "roller_reactions",
                 self.roller_reactions.len(),
@@ -287,6 +297,7 @@ impl History {
             + self.vessel_potential[i]
             + self.seabed[i]
             + self.rollers[i]
+            + self.stinger[i]
     }
 
     /// Number of records T.
@@ -378,6 +389,9 @@ impl History {
         self.vessel_potential.push(energy.vessel_potential);
         self.seabed.push(energy.seabed);
         self.rollers.push(energy.rollers);
+        self.stinger.push(energy.stinger);
+        self.hinges_count = snapshot.hinge_angles.len();
+        self.hinge_angles.extend_from_slice(snapshot.hinge_angles);
         if let Some(forces) = snapshot.roller_forces {
             self.rollers_count = forces.len();
             self.roller_reactions.extend_from_slice(forces);

@@ -16,6 +16,8 @@ pub struct Energy {
     pub seabed: f64,
     /// Energy stored in the roller contacts.
     pub rollers: f64,
+    /// An articulated stinger's sections: kinetic, weight less buoyancy's potential and the hinges'.
+    pub stinger: f64,
 }
 
 impl Energy {
@@ -28,6 +30,7 @@ impl Energy {
             + self.vessel_potential
             + self.seabed
             + self.rollers
+            + self.stinger
     }
 }
 

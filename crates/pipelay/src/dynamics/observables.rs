@@ -13,6 +13,7 @@ use crate::model::Model;
 use crate::response::lay_summary::{lay_summary, LaySummary, RollerContacts};
 use crate::vessel::coupling::{eta_of, low_frequency_pose, vessel_pose};
 use crate::vessel::rigid_body::kinetic_energy;
+use crate::vessel::stinger_sections::StingerSections;
 use crate::vessel::wave_motion::WaveOffset;
 use crate::vessel::VesselAttachment;
 use nalgebra::{Matrix3, Vector3, Vector6};
@@ -30,6 +31,8 @@ pub struct Observables<'a> {
     pub rollers: Option<&'a RollerContact>,
     /// The vessel's wave-frequency offset at the state's time, in waves with RAOs.
     pub wave_offset: Option<&'a WaveOffset>,
+    /// An articulated stinger's sections, if the vessel has one.
+    pub sections: Option<&'a StingerSections>,
 }
 
 impl<'a> Observables<'a> {
@@ -113,7 +116,22 @@ impl<'a> Observables<'a> {
                 contact.energy(&state.configuration.positions, &state.slips)
             }),
             rollers: self.rollers.map_or(0.0, |r| r.energy_end),
+            stinger: self.stinger_energy(),
         }
+    }
+
+    /// The articulated stinger's sections' energy (J; 0 without).
+    fn stinger_energy(&self) -> f64 {
+        let (Some(sections), Some(attachment)) = (self.sections, &self.model.vessel) else {
+            return 0.0;
+        };
+        let config = &self.state.configuration;
+        sections.energy(
+            &config.positions[attachment.node],
+            &config.rotations[attachment.node],
+            &config.hinge_angles,
+            &self.state.section_velocities,
+        )
     }
 
     /// Where the pipe leaves the seabed in the current state; `None` without a seabed.
@@ -135,6 +153,7 @@ impl<'a> Observables<'a> {
             self.model,
             &state.configuration.positions,
             &state.configuration.rotations,
+            &state.configuration.hinge_angles,
             section_forces,
             self.rollers.map(|r| RollerContacts {
                 forces: &r.forces,

@@ -29,6 +29,11 @@ pub struct DynamicState {
     pub vessel: Option<VesselMotion>,
     /// Elastic seabed-friction slip (axial, lateral) of each node (m); zero without a seabed.
     pub slips: Vec<Vector2<f64>>,
+    /// An articulated stinger's hinge rates over the last step, Δφ/Δt (rad/s; zero at a start), from which the
+    /// next step's predictor extrapolates.
+    pub hinge_rates: Vec<f64>,
+    /// Velocity of each of its sections' mass points (m/s, two per section; [`crate::vessel::stinger_sections`]).
+    pub section_velocities: Vec<Vector3<f64>>,
 }
 
 /// Velocity and controller state of an attached vessel.
@@ -103,6 +108,8 @@ impl DynamicState {
             slips: vec![Vector2::zeros(); model.rod.node_count()],
             body_angular_velocities: vec![Vector3::zeros(); model.rod.node_count()],
             accelerations: vec![Vector3::zeros(); model.rod.node_count()],
+            hinge_rates: vec![0.0; model.hinge_count()],
+            section_velocities: vec![Vector3::zeros(); 2 * model.hinge_count()],
             configuration,
             velocities,
             gauss,

@@ -4,8 +4,10 @@
 // Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
 #![allow(clippy::indexing_slicing)]
 use crate::assembly::dofs::NODE_DOFS;
+use crate::assembly::scatter::Entries;
 use crate::contact::rule::ContactRule;
 use crate::contact::seabed::{NodeStep, PARALLEL_NODES as PARALLEL_CONTACT_NODES};
+use crate::contact::sinks::EntrySink;
 use crate::dynamics::integrator::Integrator;
 use crate::dynamics::ledger::StepWork;
 use crate::dynamics::rod_step::{ElementOutputs, RodStep};
@@ -17,6 +19,7 @@ use crate::rod::element::ElementMatrix;
 use crate::so3::{cayley, cayley_parameter, cayley_tangent};
 use crate::vessel::coupling::{predicted_node_increment, DynamicVessel};
 use crate::vessel::hull_loads::HullStep;
+use crate::vessel::stinger_sections::{SectionStep, Water};
 use nalgebra::{Vector3, Vector6};
 use rayon::prelude::*;
 
@@ -52,6 +55,9 @@ impl Integrator {
             );
             let base = NODE_DOFS * node;
             self.increments[base..base + 6].copy_from_slice(increment.as_slice());
+        }
+        for (i, rate) in state.hinge_rates.iter().enumerate() {
+            self.increments[self.model.hinge_dof(i)] = rate * dt;
         }
         for target in targets {
             let base = NODE_DOFS * target.node;
@@ -215,10 +221,12 @@ impl Integrator {
             let theta = Vector3::from_column_slice(&self.increments[base + 3..base + 6]);
             work.supplied += force.dot(&dphi) + moment.dot(&theta);
         }
-        // Before the vessel's: what the attachments put on the vessel's node is the line's force on it.
+        // Before the vessel's: what the attachments put on the vessel's node is the line's force on it, and
+        // the sections' loads join the rollers' there.
         if !model.attachments.is_empty() {
             self.add_attachments(time_mid, dt, with_tangent, &mut work);
         }
+        self.add_sections(time_mid, dt, with_tangent, &mut work);
         let (model, state) = (&self.model, &self.state);
         self.vessel_step = None;
         if let (Some(attachment), Some(motion)) = (&model.vessel, &state.vessel) {
@@ -261,6 +269,56 @@ impl Integrator {
         }
         self.work = work;
         Ok(())
+    }
+
+    /// An articulated stinger's sections over the step ([`crate::vessel::stinger_sections`]), in the current at
+    /// the step's mid-time.
+    fn add_sections(&mut self, time_mid: f64, dt: f64, with_tangent: bool, work: &mut StepWork) {
+        let model = &self.model;
+        let (Some(sections), Some(attachment)) = (&self.assembler.sections, &model.vessel) else {
+            return;
+        };
+        let current = |z: f64| {
+            model
+                .sea
+                .as_ref()
+                .map_or_else(Vector3::zeros, |sea| sea.current_at(z, time_mid).0)
+        };
+        let water = Water {
+            density: model.water_density(),
+            surface: attachment.surface,
+            current: &current,
+        };
+        let config = &self.state.configuration;
+        let node = attachment.node;
+        let step = SectionStep {
+            position: config.positions[node],
+            rotation: config.rotations[node],
+            angles: &config.hinge_angles,
+            velocities: &self.state.section_velocities,
+            increments: &self.increments,
+            dt,
+        };
+        let mut entries = Entries {
+            values: &mut self.assembler.values,
+            dofs: &self.assembler.dofs,
+            lu: &self.assembler.lu,
+        };
+        let sink: Option<&mut dyn EntrySink> = if with_tangent {
+            Some(&mut entries)
+        } else {
+            None
+        };
+        let section_work = sections.add_step(
+            &step,
+            &water,
+            &mut self.assembler.residual,
+            Some(&mut self.magnitude),
+            sink,
+        );
+        work.supplied += section_work.supplied;
+        work.dissipated += section_work.dissipated;
+        self.section_work = section_work;
     }
 
     /// The attachments' weight less buoyancy (a dead load, its work the gravity potential's change) and drag

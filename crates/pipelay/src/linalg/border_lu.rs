@@ -1,17 +1,18 @@
 //! Block elimination of a bordered system. A vessel's rollers couple its node to every node within their
 //! reach. A sparse LU analysed on AᵀA (as faer's is) sees those few dense rows as a dense block and fills
-//! hundreds of columns. Given the border unknowns (at most six, the vessel node's), the system
+//! hundreds of columns. Given the border unknowns (the vessel node's six, and an articulated stinger's
+//! hinge angles, whose sections carry rollers too), the system
 //! [A B; C D][x; z] = [r; s] is solved by block elimination instead: A (the rod with the border held) by the
 //! interior's own factorisation, X = A⁻¹B once per factorisation, the Schur complement D − C X (at most
-//! 6×6) densely, then x = A⁻¹r − X z. Cost stays linear in the unknowns.
+//! [`BORDER_MAX`] square) densely, then x = A⁻¹r − X z. Cost stays linear in the unknowns.
 // Indexing cannot go out of bounds here: Row and column indices of the pattern the assembler built.
 #![allow(clippy::indexing_slicing)]
 use crate::linalg::factorisation::{Factorisation, Singular};
 use crate::linalg::partition::Partition;
 use crate::linalg::pattern::Pattern;
 
-/// Most border unknowns (one node's).
-pub const BORDER_MAX: usize = 6;
+/// Most border unknowns: one node's and an articulated stinger's hinges.
+pub const BORDER_MAX: usize = 6 + crate::vessel::articulation::MAX_SECTIONS;
 
 /// The block elimination of a bordered system around the factorisation `I` of its interior (module docs).
 pub struct BorderLu<I> {
@@ -27,9 +28,10 @@ pub struct BorderLu<I> {
     right: Vec<Vec<f64>>,
     solved: Vec<Vec<f64>>,
     below: Vec<Vec<f64>>,
-    corner: nalgebra::Matrix6<f64>,
-    /// LU of the Schur complement D − C X (padded with the identity to 6×6).
-    schur: Option<nalgebra::LU<f64, nalgebra::Const<6>, nalgebra::Const<6>>>,
+    corner: nalgebra::DMatrix<f64>,
+    /// LU of the Schur complement D − C X.
+    schur: Option<nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>>,
+    reduced: nalgebra::DVector<f64>,
     work: Vec<f64>,
 }
 
@@ -58,7 +60,8 @@ impl<I: Factorisation> BorderLu<I> {
             right: vec![vec![0.0; count]; border.len()],
             solved: vec![vec![0.0; count]; border.len()],
             below: vec![vec![0.0; count]; border.len()],
-            corner: nalgebra::Matrix6::identity(),
+            corner: nalgebra::DMatrix::zeros(border.len(), border.len()),
+            reduced: nalgebra::DVector::zeros(border.len()),
             schur: None,
             work: vec![0.0; count],
         }
@@ -71,12 +74,7 @@ impl<I: Factorisation> Factorisation for BorderLu<I> {
         for column in self.right.iter_mut().chain(self.below.iter_mut()) {
             column.iter_mut().for_each(|v| *v = 0.0);
         }
-        self.corner = nalgebra::Matrix6::identity();
-        for r in 0..m {
-            for c in 0..m {
-                self.corner[(r, c)] = 0.0;
-            }
-        }
+        self.corner.fill(0.0);
         let partition = &self.partition;
         partition.gathers[0].copy(values, &mut self.interior_values);
         partition.gathers[1].copy(values, &mut self.corner_values);
@@ -97,7 +95,7 @@ impl<I: Factorisation> Factorisation for BorderLu<I> {
             }
         }
         self.interior.factorise(&self.interior_values)?;
-        let mut schur = self.corner;
+        let mut schur = self.corner.clone();
         for c in 0..m {
             self.solved[c].copy_from_slice(&self.right[c]);
             self.interior.solve_in_place(&mut self.solved[c])?;
@@ -110,8 +108,9 @@ impl<I: Factorisation> Factorisation for BorderLu<I> {
                 schur[(r, c)] -= product;
             }
         }
+        let finite = schur.iter().all(|v| v.is_finite());
         let lu = schur.lu();
-        if !lu.is_invertible() || !schur.iter().all(|v| v.is_finite()) {
+        if !lu.is_invertible() || !finite {
             self.schur = None;
             return Err(Singular);
         }
@@ -128,7 +127,7 @@ impl<I: Factorisation> Factorisation for BorderLu<I> {
         }
         self.interior.solve_in_place(&mut self.work)?;
         let m = self.unknowns.len();
-        let mut reduced = nalgebra::Vector6::zeros();
+        let reduced = &mut self.reduced;
         for r in 0..m {
             let product: f64 = self.below[r]
                 .iter()
@@ -137,7 +136,7 @@ impl<I: Factorisation> Factorisation for BorderLu<I> {
                 .sum();
             reduced[r] = rhs[self.unknowns[r]] - product;
         }
-        let z = schur.solve(&reduced).ok_or(Singular)?;
+        let z = schur.solve(reduced).ok_or(Singular)?;
         for (i, slot) in self.partition.group(false) {
             let correction: f64 = (0..m).map(|c| self.solved[c][slot] * z[c]).sum();
             rhs[i] = self.work[slot] - correction;

@@ -11,6 +11,7 @@
 use crate::contact::roller_geometry::roller_gap;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
+use crate::vessel::lay::Roller;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 
 /// What the roller contact reports of a configuration, per roller: its normal force (N), the element
@@ -63,14 +64,15 @@ pub fn roller_lines(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
+    hinge_angles: &[f64],
 ) -> Vec<[Vector3<f64>; 2]> {
-    let tops = roller_tops(model, positions, rotations);
+    let tops = roller_tops(model, positions, rotations, hinge_angles);
     let Some(attachment) = model.vessel.as_ref() else {
         return Vec::new();
     };
     let body = crate::vessel::coupling::body_rotation(attachment, &rotations[attachment.node]);
     attachment
-        .rollers()
+        .placed_rollers(hinge_angles)
         .iter()
         .zip(tops)
         .map(|(roller, top)| {
@@ -84,11 +86,38 @@ pub fn roller_lines(
         .collect()
 }
 
+/// Where an articulated stinger's sections are in a configuration (in e, m): each section's hinge and far
+/// end on the stinger's top line. Empty without.
+pub fn section_lines(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+    hinge_angles: &[f64],
+) -> Vec<[Vector3<f64>; 2]> {
+    let Some((attachment, articulation)) = model.vessel.as_ref().and_then(|attachment| {
+        let articulation = attachment.lay.as_ref()?.articulation.as_ref()?;
+        Some((attachment, articulation))
+    }) else {
+        return Vec::new();
+    };
+    let node = attachment.node;
+    let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
+    let origin = positions[node] - body * attachment.hang_off();
+    (0..articulation.sections.len())
+        .map(|j| {
+            let (rotation, translation) = articulation.chain.placement(hinge_angles, j);
+            [articulation.chain.hinges[j], articulation.ends[j]]
+                .map(|p| origin + body * (rotation * p + translation))
+        })
+        .collect()
+}
+
 /// Where the rollers' top points are in a configuration (in e, m); empty without rollers.
 pub fn roller_tops(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
+    hinge_angles: &[f64],
 ) -> Vec<Vector3<f64>> {
     let Some(attachment) = model.vessel.as_ref() else {
         return Vec::new();
@@ -96,7 +125,7 @@ pub fn roller_tops(
     let node = attachment.node;
     let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
     attachment
-        .rollers()
+        .placed_rollers(hinge_angles)
         .iter()
         .map(|r| positions[node] + body * (r.centre + r.radius * r.normal - attachment.hang_off()))
         .collect()
@@ -146,6 +175,7 @@ pub fn lay_summary(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
+    hinge_angles: &[f64],
     section_forces: &[Vector6<f64>],
     rollers: Option<RollerContacts>,
     touchdown: Option<&Touchdown>,
@@ -230,8 +260,9 @@ pub fn lay_summary(
             }
         }
     }
-    let tip_clearance = tip_clearance(model, positions, rotations, rollers);
-    let tip_offset = tip_offset(model, positions, rotations);
+    let placed = attachment.placed_rollers(hinge_angles);
+    let tip_clearance = tip_clearance(model, positions, rotations, &placed, rollers);
+    let tip_offset = tip_offset(model, positions, rotations, &placed);
     let boxes_left = rollers.map_or(0, |contacts| boxes_left(attachment.rollers(), contacts));
     let nan_if_empty = |v: f64| if v.is_finite() { v } else { f64::NAN };
     Some(LaySummary {
@@ -267,16 +298,22 @@ fn boxes_left(rollers: &[crate::vessel::lay::Roller], contacts: RollerContacts) 
 /// The lateral offset (m) of the line's centreline from the last support's station, in the vessel's body
 /// frame, where the centreline crosses the support's plane (through the station, normal to the stinger's
 /// tangent there, the plane of the outward normal and b2); NaN without rollers or where it does not cross it.
-fn tip_offset(model: &Model, positions: &[Vector3<f64>], rotations: &[UnitQuaternion<f64>]) -> f64 {
+fn tip_offset(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+    placed: &[Roller],
+) -> f64 {
     let Some(attachment) = model.vessel.as_ref() else {
         return f64::NAN;
     };
-    let Some(&(station, up)) = crate::vessel::lay::supports(attachment.rollers()).last() else {
+    let Some(&(station, up)) = crate::vessel::lay::supports(placed).last() else {
         return f64::NAN;
     };
     let node = attachment.node;
     let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
     let origin = positions[node] - body * attachment.hang_off();
+    // The plane of the outward normal and b2 (an articulated stinger turns only about b2).
     let tangent = Vector3::y().cross(&up);
     let local = |x: &Vector3<f64>| body.transpose() * (x - origin) - station;
     // The crossing nearest the station, between consecutive nodes on either side of the plane.
@@ -295,13 +332,14 @@ fn tip_offset(model: &Model, positions: &[Vector3<f64>], rotations: &[UnitQuater
     best.1
 }
 
-/// The gap between the line and the last support (m): the least over its rollers (a lone roller, or a box's),
+/// The gap between the line and the last support (m; `placed`: the rollers where they are): the least over its rollers (a lone roller, or a box's),
 /// as the roller contact measures it, from the element nearest each that the contact reports (`rollers`:
 /// forces and nearest elements); NaN without rollers.
 fn tip_clearance(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
+    placed: &[Roller],
     rollers: Option<RollerContacts>,
 ) -> f64 {
     let (Some(attachment), Some(RollerContacts { elements, .. })) =
@@ -309,15 +347,14 @@ fn tip_clearance(
     else {
         return f64::NAN;
     };
-    let Some(last) = attachment.rollers().last().map(|r| r.support) else {
+    let Some(last) = placed.last().map(|r| r.support) else {
         return f64::NAN;
     };
     let node = attachment.node;
     let body = crate::vessel::coupling::body_rotation(attachment, &rotations[node]);
     // The body frame's origin as the rollers place it: the hold point at the end node.
     let origin = positions[node] - body * attachment.hang_off();
-    attachment
-        .rollers()
+    placed
         .iter()
         .zip(elements)
         .filter(|(roller, _)| roller.support == last)

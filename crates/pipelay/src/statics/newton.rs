@@ -164,7 +164,7 @@ pub fn residual_norms(assembler: &Assembler) -> (f64, f64) {
     (free_norm2.sqrt(), fixed_norm2.sqrt())
 }
 
-/// The largest nodal rotation (rad) and translation (m) of a correction `delta` on the free DOFs.
+/// The largest nodal rotation or hinge angle (rad) and translation (m) of a correction `delta` on the free DOFs.
 pub fn largest_increments(model: &Model, assembler: &Assembler, delta: &[f64]) -> (f64, f64) {
     let mut largest_rotation: f64 = 0.0;
     let mut largest_translation: f64 = 0.0;
@@ -179,6 +179,11 @@ pub fn largest_increments(model: &Model, assembler: &Assembler, delta: &[f64]) -
             }
         }
         largest_rotation = largest_rotation.max(spin.norm());
+    }
+    for i in 0..model.hinge_count() {
+        if let Some(eq) = assembler.dofs.equation[model.hinge_dof(i)] {
+            largest_rotation = largest_rotation.max(delta[eq].abs());
+        }
     }
     (largest_rotation, largest_translation)
 }
@@ -252,7 +257,7 @@ pub fn free_norm(assembler: &Assembler) -> f64 {
         .sqrt()
 }
 
-/// Moves the free DOFs of `config` by `factor` times the Newton correction `delta`.
+/// Moves the free DOFs of `config` (its hinge angles too) by `factor` times the Newton correction `delta`.
 pub fn apply_correction(
     model: &Model,
     assembler: &Assembler,
@@ -272,6 +277,11 @@ pub fn apply_correction(
         }
         if spin != Vector3::zeros() {
             config.rotations[node] = exp_quat(&spin) * config.rotations[node];
+        }
+    }
+    for (i, angle) in config.hinge_angles.iter_mut().enumerate() {
+        if let Some(eq) = assembler.dofs.equation[model.hinge_dof(i)] {
+            *angle += factor * delta[eq];
         }
     }
 }

@@ -116,6 +116,7 @@ pub fn check(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
+    hinge_angles: &[f64],
     nearest_elements: &[usize],
 ) -> Option<Unphysical> {
     let attachment = model.vessel.as_ref()?;
@@ -128,7 +129,7 @@ pub fn check(
             pitch: angles.y,
         });
     }
-    let rollers = attachment.rollers();
+    let rollers = attachment.placed_rollers(hinge_angles);
     if rollers.is_empty() {
         return None;
     }
@@ -154,7 +155,7 @@ pub fn check(
     // The rollers' line: the hold point, then each support's station.
     let line: Vec<Vector3<f64>> = std::iter::once(hang_off)
         .chain(
-            crate::vessel::lay::supports(rollers)
+            crate::vessel::lay::supports(&rollers)
                 .into_iter()
                 .map(|s| s.0),
         )
@@ -191,9 +192,13 @@ pub fn check(
 /// pipe (`reactions`, body frame): one whose force points against its support's outward normal by more than
 /// 60° ([`crate::vessel::lay::supports`]). A lone roller cannot (its contact pushes along its normal); a box's
 /// roller does where the pipe has left the box under it.
-pub fn pushed_down(model: &Model, reactions: &[Vector3<f64>]) -> Option<Unphysical> {
-    let rollers = model.vessel.as_ref()?.rollers();
-    let supports = crate::vessel::lay::supports(rollers);
+pub fn pushed_down(
+    model: &Model,
+    hinge_angles: &[f64],
+    reactions: &[Vector3<f64>],
+) -> Option<Unphysical> {
+    let rollers = model.vessel.as_ref()?.placed_rollers(hinge_angles);
+    let supports = crate::vessel::lay::supports(&rollers);
     rollers
         .iter()
         .zip(reactions)

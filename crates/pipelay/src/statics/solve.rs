@@ -153,9 +153,10 @@ fn verdict(model: &Model, solution: &StaticSolution) -> Option<Unphysical> {
         model,
         &configuration.positions,
         &configuration.rotations,
+        &configuration.hinge_angles,
         nearest,
     )
-    .or_else(|| physical::pushed_down(model, reactions))
+    .or_else(|| physical::pushed_down(model, &configuration.hinge_angles, reactions))
 }
 
 /// Static equilibrium of `model` found from `start`, a configuration near it (the state a stage of a lay starts

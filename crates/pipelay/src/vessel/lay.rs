@@ -8,6 +8,7 @@
 //! whose supports are lone rollers across it or roller boxes ([`crate::vessel::roller_box`], which builds on
 //! this module).
 use crate::error::{finite, positive, Error, Result};
+use crate::vessel::articulation::Articulation;
 use nalgebra::{Matrix3, Vector3};
 
 /// What a roller's surface resists along the contact ([`crate::contact::roller_friction`]).
@@ -70,6 +71,9 @@ pub struct Roller {
     /// The index of the roller's support (a lone roller or a box) among the stinger's, from the hold point.
     pub support: usize,
     pub friction: RollerFriction,
+    /// The articulated stinger's section the roller rides on ([`crate::vessel::articulation`]); None on the
+    /// vessel.
+    pub section: Option<usize>,
 }
 
 /// Default roller radius (m) and contact stiffness (N/m): a stiff steel roller on its bearing.
@@ -86,6 +90,8 @@ pub struct LayEquipment {
     pub rollers: Vec<Roller>,
     /// Contact stiffness of every roller (N per m of overlap).
     pub roller_stiffness: f64,
+    /// The stinger's hinged sections, if it is articulated.
+    pub articulation: Option<Articulation>,
 }
 
 /// Checks a stinger arc of `radius` and `length` (at most half a circle) from `origin` at the slope `angle`,
@@ -150,6 +156,7 @@ pub fn stinger_rollers(
                 station: top,
                 support: k,
                 friction: RollerFriction::default(),
+                section: None,
             }
         })
         .collect();
@@ -236,6 +243,7 @@ pub fn rollers_at(
                 station: *top,
                 support,
                 friction: RollerFriction::default(),
+                section: None,
             })
         })
         .collect()
@@ -252,6 +260,7 @@ impl LayEquipment {
             end_frame: Matrix3::identity(),
             rollers,
             roller_stiffness: stiffness,
+            articulation: None,
         })
     }
 
@@ -276,7 +285,36 @@ impl LayEquipment {
             end_frame,
             rollers: Vec::new(),
             roller_stiffness: ROLLER_STIFFNESS,
+            articulation: None,
         })
+    }
+
+    /// How many hinge angles the stinger has (0 unless articulated).
+    pub fn hinge_count(&self) -> usize {
+        self.articulation.as_ref().map_or(0, |a| a.sections.len())
+    }
+
+    /// The rollers where the hinge `angles` put them (body frame): each section's turned with it.
+    pub fn placed_rollers(&self, angles: &[f64]) -> Vec<Roller> {
+        let Some(articulation) = &self.articulation else {
+            return self.rollers.clone();
+        };
+        self.rollers
+            .iter()
+            .map(|roller| match roller.section {
+                Some(j) => {
+                    let (rotation, translation) = articulation.chain.placement(angles, j);
+                    Roller {
+                        centre: rotation * roller.centre + translation,
+                        axis: rotation * roller.axis,
+                        normal: rotation * roller.normal,
+                        station: rotation * roller.station + translation,
+                        ..*roller
+                    }
+                }
+                None => *roller,
+            })
+            .collect()
     }
 
     /// Length of the roller path from the hold point to the farthest roller (m): how far along the pipe

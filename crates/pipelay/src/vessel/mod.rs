@@ -5,6 +5,7 @@
 //!
 //! May use: the basics and [`crate::environment`] (the waves that move it).
 pub mod allocation;
+pub mod articulation;
 pub mod capability;
 pub mod control;
 pub mod coupling;
@@ -16,6 +17,7 @@ pub mod raos;
 pub mod rigid_body;
 pub mod roller_box;
 pub mod route_path;
+pub mod stinger_sections;
 pub mod thrusters;
 pub mod wave_motion;
 pub mod winch;
@@ -78,8 +80,18 @@ impl VesselAttachment {
         self.winch.as_ref().filter(|w| w.holds)
     }
 
-    /// The rollers (empty without lay equipment).
+    /// The rollers (empty without lay equipment), an articulated stinger's where its hinges are at φ = 0.
     pub fn rollers(&self) -> &[lay::Roller] {
         self.lay.as_ref().map_or(&[], |lay| &lay.rollers)
+    }
+
+    /// The rollers where the hinge `angles` put them (body frame): an articulated stinger's sections turned.
+    pub fn placed_rollers(&self, angles: &[f64]) -> std::borrow::Cow<'_, [lay::Roller]> {
+        match &self.lay {
+            Some(lay) if lay.articulation.is_some() => {
+                std::borrow::Cow::Owned(lay.placed_rollers(angles))
+            }
+            _ => std::borrow::Cow::Borrowed(self.rollers()),
+        }
     }
 }

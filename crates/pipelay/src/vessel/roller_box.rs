@@ -90,6 +90,7 @@ impl RollerBox {
                 station,
                 support,
                 friction: self.friction,
+                section: None,
             };
         // Where the rising rollers (the V's, or a U's sides) start: at P, or at the bottom roller's ends.
         let foot = |side: f64| {

@@ -30,11 +30,14 @@ pub fn flooded_section() -> Section {
     .expect("pipe")
 }
 
-/// `config` with global DOF `dof` moved by `step`: a position component, or a spatial spin exp(step e_k).
+/// `config` with global DOF `dof` moved by `step`: a position component, a spatial spin exp(step e_k), or a
+/// hinge angle.
 pub fn perturbed(config: &Configuration, dof: usize, step: f64) -> Configuration {
     let mut c = config.clone();
     let (node, k) = (dof / NODE_DOFS, dof % NODE_DOFS);
-    if k < 3 {
+    if node >= c.positions.len() {
+        c.hinge_angles[dof - NODE_DOFS * c.positions.len()] += step;
+    } else if k < 3 {
         c.positions[node][k] += step;
     } else {
         let mut spin = Vector3::zeros();
