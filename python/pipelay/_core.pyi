@@ -603,7 +603,7 @@ class StingerSection:
         mass: float,
         buoyancy: float,
         hinge_stiffness: float = 0.0,
-        hinge_limits: tuple[float, float] = ...,
+        hinge_limits: Sequence[float] = ...,
         drag_area: float = 0.0,
     ) -> StingerSection: ...
     @property

@@ -257,21 +257,28 @@ pub struct StingerSection(pub articulation::StingerSection);
 #[pymethods]
 impl StingerSection {
     #[new]
-    #[pyo3(signature = (length, mass, buoyancy, hinge_stiffness=0.0, hinge_limits=(-0.5, 0.5), drag_area=0.0))]
+    #[pyo3(signature = (length, mass, buoyancy, hinge_stiffness=0.0, hinge_limits=vec![-0.5, 0.5], drag_area=0.0))]
     fn new(
         length: f64,
         mass: f64,
         buoyancy: f64,
         hinge_stiffness: f64,
-        hinge_limits: (f64, f64),
+        hinge_limits: Vec<f64>,
         drag_area: f64,
     ) -> PyResult<Self> {
+        let limits: [f64; 2] = hinge_limits.as_slice().try_into().map_err(|_| {
+            input(
+                "hinge_limits",
+                format!("{} values", hinge_limits.len()),
+                "must be [min, max] (rad)",
+            )
+        })?;
         articulation::StingerSection::new(
             length,
             mass,
             buoyancy,
             hinge_stiffness,
-            [hinge_limits.0, hinge_limits.1],
+            limits,
             drag_area,
         )
         .map(StingerSection)

@@ -321,12 +321,7 @@ def _lay(lay: models.SLay | models.JLay) -> pl.SLay | pl.JLay:
                 if arc.sections is None:
                     stinger = pl.Stinger(**arc.given("box", "boxes", "sections"), boxes=placed)
                 else:
-                    sections = [
-                        pl.StingerSection(
-                            **s.given("hinge_limits"), hinge_limits=tuple(s.hinge_limits or (-0.5, 0.5))
-                        )
-                        for s in arc.sections
-                    ]
+                    sections = [pl.StingerSection(**s.given()) for s in arc.sections]
                     fixed = arc.length - sum(s.length for s in arc.sections)
                     stinger = pl.Stinger.articulated(
                         sections,
