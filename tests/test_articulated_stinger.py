@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pipelay as pl
 import pytest
+from pipelay.plots.replay import prepare
 from pipelay.scenario import parse_scenario
 
 EXAMPLE = Path(__file__).parent.parent / "examples" / "s_lay_articulated.toml"
@@ -133,3 +134,24 @@ def test_bad_sections_are_refused_naming_the_key() -> None:
     data = _example(length=80.0)
     with pytest.raises(pl.InputError, match="vessel.lay.stinger.sections"):
         parse_scenario(data, "too long")
+
+
+def test_the_replay_turns_the_sections_with_their_hinge_angles() -> None:
+    """The replay draws the articulated stinger's sections and rollers where each frame's hinge angles put
+    them: a section's end lies at its length's chord from its hinge, and the rollers move with the sections."""
+    data = _example()
+    data["sea"]["current"] = {"kind": "uniform", "velocity": [1.5, 0.0, 0.0], "start": 0.0}
+    scenario = parse_scenario(data, "current along")
+    simulation = scenario.model.simulation(dt=0.2)
+    results = simulation.run(2.0, progress=False)
+    scene = prepare(results, scenario.model, "tension", 5)
+    assert scene.equipment is not None and scene.equipment[0] == "rollers and hinged sections"
+    first, last = scene.equipment[1][0], scene.equipment[1][-1]
+    lines = last[15:].reshape(2, 3, 3)
+    assert np.all(np.isnan(lines[:, 2]))
+    chord = 2 * 200.0 * np.sin(30.0 / 400.0)
+    assert np.allclose(np.linalg.norm(lines[:, 1] - lines[:, 0], axis=1), chord, rtol=1e-9)
+    # The sections' last end sits where the state's section lines put it (plot coordinates flip z).
+    end = simulation.state.section_lines[-1, 1] * np.array([1.0, 1.0, -1.0])
+    assert np.allclose(lines[-1, 1], end, atol=1e-6)
+    assert np.linalg.norm(last[:15] - first[:15]) > 0.0

@@ -93,7 +93,9 @@ class Scene:
             the run (in `unit`; the nodes' averages lie within).
         hull: each frame's hull outline (P, 3), one path, or None without a vessel.
         equipment: "rollers", "roller boxes", "tower" or None, and each frame's points (k, 3) (roller boxes:
-            each roller's top line's ends and a NaN row; the tower: its two ends).
+            each roller's top line's ends and a NaN row; the tower: its two ends); for an articulated stinger
+            "rollers and hinged sections" (or "roller boxes and …"), the rollers turned with their sections
+            followed by each section's hinge and end and a NaN row.
         touchdown: each frame's touchdown point (1, 3) or (0, 3) where the record has none; None without a seabed.
         grid_x, grid_y: the seabed's and sea's grid (nx,), (ny,) (m).
         seabed: the seabed's elevation on the grid (ny, nx) (m).
@@ -279,6 +281,36 @@ def _lay_equipment(model: Model | None) -> tuple[str, _FloatArray] | None:
     return "tower", np.array([body, body + TOWER_LENGTH * direction])
 
 
+def _sections(model: Model | None) -> tuple[_FloatArray, _FloatArray] | None:
+    """An articulated stinger's hinges and sections' ends (h, 3) each, in the body frame at rest; None
+    without."""
+    if model is None or model.vessel is None:
+        return None
+    rest = model.rest()
+    lines = rest.section_lines
+    if lines is None or rest.eta is None:
+        return None
+    eta = np.asarray(rest.eta, dtype=np.float64)
+    body = (np.asarray(lines, dtype=np.float64) - eta[:3]) @ rotation(eta)
+    return body[:, 0], body[:, 1]
+
+
+def _hinged(points: _FloatArray, hinges: _FloatArray, angles: _FloatArray) -> _FloatArray:
+    """Body-frame points (n, 3) of an articulated stinger at rest, turned by the hinge `angles` (h,): a point
+    aft of hinge j and not of hinge j + 1 (its x below the first's, the stinger running aft) rides on section
+    j and turns about each hinge from j back to the first (about b2; positive: aft end down)."""
+    out = np.array(points, dtype=np.float64, copy=True)
+    section = np.full(len(out), -1)
+    for j, hinge in enumerate(hinges):
+        section[out[:, 0] < hinge[0] - 1e-9] = j
+    for i in range(len(hinges) - 1, -1, -1):
+        c, s = math.cos(angles[i]), math.sin(angles[i])
+        turn = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+        moving = section >= i
+        out[moving] = hinges[i] + (out[moving] - hinges[i]) @ turn.T
+    return out
+
+
 def _flip(points: _FloatArray) -> _FloatArray:
     """Points of frame e (…, 3) in plot coordinates (x, y, −z)."""
     out = np.array(points, dtype=np.float64, copy=True)
@@ -348,7 +380,18 @@ def prepare(
         gear = _lay_equipment(model)
         if gear is not None:
             kind, body = gear
-            equipment = (kind, [_flip(e[:3] + body @ r.T) for e, r in zip(eta, turns, strict=True)])
+            angles = results.hinge_angles
+            sections = _sections(model)
+            if angles is not None and sections is not None:
+                # An articulated stinger: its sections (hinge to end, NaN apart) and rollers turned by each
+                # frame's hinge angles.
+                hinges, ends = sections
+                lines = np.stack([hinges, ends, np.full_like(hinges, np.nan)], axis=1).reshape(-1, 3)
+                shapes = [_hinged(np.vstack([body, lines]), hinges, a) for a in np.asarray(angles)[records]]
+                kind = f"{kind} and hinged sections"
+            else:
+                shapes = [body] * len(eta)
+            equipment = (kind, [_flip(e[:3] + b @ r.T) for e, r, b in zip(eta, turns, shapes, strict=True)])
 
     touchdown = None
     if results.touchdown is not None:
@@ -513,6 +556,13 @@ def _traces(scene: Scene) -> tuple[list[Any], list[int]]:
             "rollers": {"mode": "markers", "marker": {"color": "#e8590c", "size": 3}},
             "roller boxes": {"mode": "lines", "line": {"color": "#e8590c", "width": 5}, "connectgaps": False},
         }
+        # An articulated stinger's rollers run into its sections' lines: all drawn as lines, gaps kept.
+        if kind.endswith("hinged sections"):
+            styles[kind] = {
+                "mode": "lines+markers",
+                "line": {"color": "#e8590c", "width": 4},
+                "marker": {"size": 2},
+            }
         style = styles.get(kind, {"mode": "lines", "line": {"color": "#7a7a7a", "width": 8}})
         traces.append(
             go.Scatter3d(x=gear["x"], y=gear["y"], z=gear["z"], name=kind, hoverinfo="skip", **style)

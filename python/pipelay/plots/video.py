@@ -75,7 +75,7 @@ class _Panel:
         self.gear: Line2D | None = None
         if scene.equipment is not None:
             rollers = scene.equipment[0] == "rollers"
-            roller_like = scene.equipment[0] in ("rollers", "roller boxes")
+            roller_like = scene.equipment[0].startswith("roller")
             self.gear = Line2D(
                 [], [], color="#e8590c" if roller_like else "#7a7a7a", marker="o" if rollers else "",
                 markersize=2.5, linestyle="none" if rollers else "-", linewidth=3.0, zorder=5,
