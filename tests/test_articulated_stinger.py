@@ -61,7 +61,9 @@ def test_free_hinges_balance_the_moments_of_the_pipe_and_the_sections() -> None:
     arc = data["vessel"]["lay"]["stinger"]
     sections = [pl.StingerSection(**s) for s in arc["sections"]]
     fixed = arc["length"] - sum(s.length for s in sections)
-    stinger = pl.Stinger.articulated(sections, arc["radius"], arc["rollers"], fixed_length=fixed, origin=arc["origin"])
+    stinger = pl.Stinger.articulated(
+        sections, arc["radius"], arc["rollers"], fixed_length=fixed, origin=arc["origin"]
+    )
     angles = state.hinge_angles
     hinges = stinger.hinges
     assert len(angles) == 2 and np.all(np.abs(angles) < 0.29), angles
@@ -155,3 +157,16 @@ def test_the_replay_turns_the_sections_with_their_hinge_angles() -> None:
     end = simulation.state.section_lines[-1, 1] * np.array([1.0, 1.0, -1.0])
     assert np.allclose(lines[-1, 1], end, atol=1e-6)
     assert np.linalg.norm(last[:15] - first[:15]) > 0.0
+
+
+def test_pipelay_static_prints_the_hinge_angles() -> None:
+    """`pipelay static` on the example prints each section's hinge angle, as the state gives it."""
+    import subprocess
+    import sys
+
+    out = subprocess.run(
+        [sys.executable, "-m", "pipelay", "static", str(EXAMPLE)], capture_output=True, text=True, check=True
+    ).stdout
+    state = parse_scenario(_example(), "example").model.static()
+    expected = ", ".join(f"{np.degrees(a):.2f}°" for a in state.hinge_angles)
+    assert f"lay: hinge angles        {expected}" in out

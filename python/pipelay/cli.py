@@ -292,6 +292,11 @@ def _summary(state: pl.State, checks: dict[str, Any]) -> str:
         lines.append(f"laid length             {state.laid_length:12.2f} m")
     if summary is not None:
         lines.extend(_lay_lines(summary, state.roller_reactions, pl.support_loads(state)))
+        if len(state.hinge_angles) > 0:
+            angles = ", ".join(f"{np.degrees(a):.2f}°" for a in state.hinge_angles)
+            lines.append(
+                f"lay: hinge angles        {angles} (sections 1 to {len(state.hinge_angles)}, + aft end down)"
+            )
     if state.section.wall_thickness is not None and len(state.tension):
         lines.extend(_check_lines(state, checks))
     if state.eta is not None and state.tau is not None:

@@ -120,7 +120,7 @@ impl Stinger {
             .unwrap_or_else(nalgebra::Vector3::zeros);
         let articulation =
             Articulation::new(radius, origin, angle, fixed_length, sections).map_err(to_py)?;
-        articulation.assign(&mut placed);
+        lay::assign_sections(&articulation, &mut placed);
         Ok(Stinger(placed, Some(articulation)))
     }
 

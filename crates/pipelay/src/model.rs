@@ -12,6 +12,9 @@ use crate::vessel::{EnvironmentForce, VesselAttachment};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use std::fmt;
 
+/// Degrees of freedom per node: position (3) and spatial spin (3).
+pub const NODE_DOFS: usize = 6;
+
 /// How a node is held.
 #[derive(Clone)]
 pub enum SupportKind {
@@ -999,7 +1002,7 @@ impl Model {
 
     /// The global DOF of hinge `i`'s angle: after the nodes' (see [`crate::assembly::dofs`]).
     pub fn hinge_dof(&self, i: usize) -> usize {
-        crate::assembly::dofs::NODE_DOFS * self.rod.node_count() + i
+        NODE_DOFS * self.rod.node_count() + i
     }
 
     /// The seabed, if the model has one.

@@ -28,13 +28,13 @@ fn articulated(vessel_x: f64, sections: &[StingerSection]) -> Model {
     let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
     model.pin("A", None).expect("pin");
     let (radius, origin, angle) = (100.0, Vector3::new(-40.0, 0.0, -6.0), 0.0);
-    let mut rollers = stinger_rollers(radius, 80.0, 12, origin, angle, 0.25).expect("stinger");
+    let rollers = stinger_rollers(radius, 80.0, 12, origin, angle, 0.25).expect("stinger");
     let fixed = 80.0 - sections.iter().map(|s| s.length).sum::<f64>();
     let articulation =
         Articulation::new(radius, origin, angle, fixed, sections.to_vec()).expect("sections");
-    articulation.assign(&mut rollers);
     let mut lay = LayEquipment::s_lay(Vector3::new(10.0, 0.0, -6.3), rollers, 1e7).expect("lay");
     lay.articulation = Some(articulation);
+    lay.assign_sections();
     let eta = Vector6::new(vessel_x, 0.0, -150.0, 0.0, 0.0, 0.0);
     model
         .attach_vessel(

@@ -5,8 +5,7 @@
 #![allow(clippy::indexing_slicing)]
 use crate::model::Model;
 
-/// Degrees of freedom per node: position (3) and spatial spin (3).
-pub const NODE_DOFS: usize = 6;
+pub use crate::model::NODE_DOFS;
 
 /// Which DOFs are free, and their equation numbers.
 #[derive(Debug, Clone)]

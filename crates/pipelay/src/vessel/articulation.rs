@@ -14,7 +14,7 @@
 // Indexing cannot go out of bounds here: section indices of the articulation's own lists.
 #![allow(clippy::indexing_slicing)]
 use crate::error::{finite, positive, Error, Result};
-use crate::vessel::lay::{stinger_station, Roller};
+use crate::vessel::stinger_arc::stinger_station;
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 
 /// Most sections of an articulated stinger: their hinge angles join the vessel's node in the border of the
@@ -250,13 +250,6 @@ impl Articulation {
             self.origin + self.radius * Vector3::new(self.angle.sin(), 0.0, self.angle.cos());
         let v = station - centre;
         self.radius * ((-v.x).atan2(-v.z) - self.angle)
-    }
-
-    /// Puts each of `rollers` on the section that carries its station.
-    pub fn assign(&self, rollers: &mut [Roller]) {
-        for roller in rollers {
-            roller.section = self.section_at(self.arc_length_of(&roller.station));
-        }
     }
 
     /// Section j's mass points at φ = 0 (body frame, m): ±c/(2√3) about the chord's middle.

@@ -9,6 +9,7 @@
 //! this module).
 use crate::error::{finite, positive, Error, Result};
 use crate::vessel::articulation::Articulation;
+pub use crate::vessel::stinger_arc::stinger_station;
 use nalgebra::{Matrix3, Vector3};
 
 /// What a roller's surface resists along the contact ([`crate::contact::roller_friction`]).
@@ -163,29 +164,6 @@ pub fn stinger_rollers(
     Ok(rollers)
 }
 
-/// The stinger's top line at arc length `s` (m) from its start `origin`, for a stinger of `radius` starting
-/// with the slope `angle` (rad below the horizontal): the point, the outward normal (toward the pipe: up and
-/// forward of the arc, away from its centre) and the unit tangent (aft and down), body frame.
-pub fn stinger_station(
-    radius: f64,
-    origin: Vector3<f64>,
-    angle: f64,
-    s: f64,
-) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-    let slope = angle + s / radius;
-    // p(s) = origin + R(−(sin φ − sin φ0), 0, −(cos φ − cos φ0)) with φ the slope below the horizontal.
-    let top = origin
-        + radius
-            * Vector3::new(
-                -(slope.sin() - angle.sin()),
-                0.0,
-                -(slope.cos() - angle.cos()),
-            );
-    let normal = Vector3::new(-slope.sin(), 0.0, -slope.cos());
-    let tangent = Vector3::new(-slope.cos(), 0.0, slope.sin());
-    (top, normal, tangent)
-}
-
 /// Each support's station and the stinger's outward normal there (body frame, m and unit), in the supports'
 /// order: see [`Roller::station`]. The normal is the mean of its rollers' resting sides (a box's V and side
 /// rollers' lateral parts cancel).
@@ -247,6 +225,13 @@ pub fn rollers_at(
             })
         })
         .collect()
+}
+
+/// Puts each of `rollers` on the section of `articulation` that carries its station.
+pub fn assign_sections(articulation: &Articulation, rollers: &mut [Roller]) {
+    for roller in rollers {
+        roller.section = articulation.section_at(articulation.arc_length_of(&roller.station));
+    }
 }
 
 impl LayEquipment {
@@ -315,6 +300,13 @@ impl LayEquipment {
                 None => *roller,
             })
             .collect()
+    }
+
+    /// Puts each roller on the articulated stinger's section that carries its station (none without one).
+    pub fn assign_sections(&mut self) {
+        if let Some(articulation) = &self.articulation {
+            assign_sections(articulation, &mut self.rollers);
+        }
     }
 
     /// Length of the roller path from the hold point to the farthest roller (m): how far along the pipe

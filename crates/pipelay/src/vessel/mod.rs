@@ -17,6 +17,7 @@ pub mod raos;
 pub mod rigid_body;
 pub mod roller_box;
 pub mod route_path;
+pub mod stinger_arc;
 pub mod stinger_sections;
 pub mod thrusters;
 pub mod wave_motion;

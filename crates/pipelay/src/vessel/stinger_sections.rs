@@ -442,14 +442,14 @@ pub(crate) mod tests {
         let mut model = Model::new(rod, Some(sea), 9.81).expect("model");
         model.pin("A", None).expect("pin");
         let (radius, origin) = (100.0, Vector3::new(-40.0, 0.0, -6.0));
-        let mut rollers = stinger_rollers(radius, 80.0, 12, origin, 0.0, 0.25).expect("stinger");
+        let rollers = stinger_rollers(radius, 80.0, 12, origin, 0.0, 0.25).expect("stinger");
         let hinged = StingerSection::new(25.0, 3e4, 2e5, 1e6, [-0.5, 0.5], 20.0).expect("section");
         let articulation =
             Articulation::new(radius, origin, 0.0, 30.0, vec![hinged; 2]).expect("sections");
-        articulation.assign(&mut rollers);
         let mut lay =
             LayEquipment::s_lay(Vector3::new(10.0, 0.0, -6.3), rollers, 1e7).expect("lay");
         lay.articulation = Some(articulation);
+        lay.assign_sections();
         let eta = Vector6::new(600.0, 0.0, -150.0, 0.0, 0.0, 0.0);
         model
             .attach_vessel(
