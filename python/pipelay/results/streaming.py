@@ -107,6 +107,7 @@ class _Writer:
         self.nodes = 0
         self.rollers = 0
         self.thrusters = 0  # k, the width of the thrusters' series (set before the first append)
+        self.hinges = 0  # h, an articulated stinger's hinges (set before the first append)
         self.created = False
         self.broken = False
         self.attributes: dict[str, Any] = {}  # further global attributes (the run's stages)
@@ -165,6 +166,7 @@ class _Writer:
             "dof": 6,
             "roller": self.rollers,
             "thruster": self.thrusters,
+            "hinge": self.hinges,
         }
         return (records, *(sizes[dim] for dim in LAYOUT[name][0][1:]))
 
@@ -196,6 +198,8 @@ class _Writer:
             dimensions["roller"] = rollers
         if "thrust" in names:
             dimensions["thruster"] = self.thrusters
+        if "hinge_angles" in names:
+            dimensions["hinge"] = self.hinges
         file.dimensions = dimensions
         file.attrs.update({**_file_attributes(), "recorded_groups": " ".join(self.groups), **self.attributes})
         time = file.create_variable(
@@ -391,6 +395,8 @@ def _append(
     rollers = small["roller_reactions"].shape[1] if "roller_reactions" in small else 0
     if not writer.created and "thrust" in small:
         writer.thrusters = small["thrust"].shape[1]
+    if not writer.created and "hinge_angles" in small:
+        writer.hinges = small["hinge_angles"].shape[1]
     nodes = segment.nodes
     if len(time) > skip:
         with writer.appending(time[skip:], nodes, names, rollers) as put:

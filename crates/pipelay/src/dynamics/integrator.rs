@@ -815,11 +815,10 @@ impl Integrator {
             self.state.configuration.hinge_angles[i] += change;
             *rate = change / dt;
         }
-        if self.assembler.sections.is_some() {
-            self.state
-                .section_velocities
-                .clone_from(&self.section_work.velocities);
-        }
+        let points = self.state.section_velocities.len();
+        self.state
+            .section_velocities
+            .copy_from_slice(&self.section_work.velocities[..points]);
         if let Some(contact) = &self.contact {
             self.state.slips.copy_from_slice(contact.slips());
         }

@@ -26,6 +26,8 @@ use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// Unknowns of the sections' residual: the end node's Δx and θ, then the hinge angles' Δφ.
 const MAX_UNKNOWNS: usize = 6 + MAX_SECTIONS;
+/// Most mass points: two per section.
+const MAX_POINTS: usize = 2 * MAX_SECTIONS;
 
 /// Central differences' steps of the tangent: on the end node's position (m, times 1 + |x_N|), and on its
 /// rotation and the hinge angles (rad).
@@ -76,11 +78,12 @@ pub struct SectionStep<'a> {
 }
 
 /// What a step of the sections gives: their energy at its end (kinetic, potential of weight less buoyancy,
-/// hinges'; J), the points' velocities there, and the drag's work supplied and dissipated over it (J).
-#[derive(Debug, Clone, Default)]
+/// hinges'; J), the points' velocities there (the first [`StingerSections::point_count`]), and the drag's work
+/// supplied and dissipated over it (J).
+#[derive(Debug, Clone, Copy, Default)]
 pub struct SectionWork {
     pub energy: f64,
-    pub velocities: Vec<Vector3<f64>>,
+    pub velocities: [Vector3<f64>; MAX_POINTS],
     pub supplied: f64,
     pub dissipated: f64,
 }
@@ -265,18 +268,13 @@ impl StingerSections {
         });
         // The current at each point's start, once.
         let start_rotation = step.rotation.to_rotation_matrix().into_inner();
-        let currents: Vec<Vector3<f64>> = self
-            .points
-            .iter()
-            .map(|p| {
-                let x = step.position + start_rotation * self.place(p, step.angles);
-                if x.z >= water.surface {
-                    (water.current)(x.z)
-                } else {
-                    Vector3::zeros()
-                }
-            })
-            .collect();
+        let mut currents = [Vector3::zeros(); MAX_POINTS];
+        for (current, p) in currents.iter_mut().zip(&self.points) {
+            let x = step.position + start_rotation * self.place(p, step.angles);
+            if x.z >= water.surface {
+                *current = (water.current)(x.z);
+            }
+        }
         let evaluate = |u: &[f64; MAX_UNKNOWNS]| self.step_residual(step, water, &currents, u);
         let h = TANGENT_STEP * (1.0 + step.position.norm());
         let before: [f64; MAX_UNKNOWNS] = std::array::from_fn(|i| {
@@ -318,11 +316,10 @@ impl StingerSections {
             .try_inverse()
             .unwrap_or_else(Matrix3::identity);
         let mut residual = [0.0; MAX_UNKNOWNS];
-        let mut work = SectionWork {
-            velocities: Vec::with_capacity(self.points.len()),
-            ..SectionWork::default()
-        };
-        for ((p, v_start), current) in self.points.iter().zip(step.velocities).zip(currents) {
+        let mut work = SectionWork::default();
+        for (a, ((p, v_start), current)) in
+            self.points.iter().zip(step.velocities).zip(currents).enumerate()
+        {
             let d = [self.place(p, &angles[0]), self.place(p, &angles[1])];
             let moved = (x_end + end * d[1]) - (x_start + start * d[0]);
             let v_end = 2.0 * moved / dt - v_start;
@@ -333,7 +330,7 @@ impl StingerSections {
             work.dissipated += dt * drag.dot(&flow);
             work.energy +=
                 0.5 * p.mass * v_end.norm_squared() - p.net_weight * (x_end + end * d[1]).z;
-            work.velocities.push(v_end);
+            work.velocities[a] = v_end;
             // w = (I + ½θ̂)⁻¹ Λ₁ d̄.
             let arm = solve * (end * (0.5 * (d[0] + d[1])));
             let moment = arm.cross(&force);
