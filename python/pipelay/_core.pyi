@@ -595,7 +595,7 @@ class Stinger:
 class StingerSection:
     """A hinged section of an articulated stinger: `length` (m) of the arc, `mass` (kg), constant `buoyancy`
     (N, up), a hinge spring `hinge_stiffness` (N·m/rad) within `hinge_limits` (rad, min ≤ 0 ≤ max; positive:
-    the aft end down), drag area `drag_area` (C_d A, m²)."""
+    the aft end down), drag area `drag_area` (C_d A, m²), added mass `added_mass` (kg)."""
 
     def __new__(
         cls,
@@ -605,6 +605,7 @@ class StingerSection:
         hinge_stiffness: float = 0.0,
         hinge_limits: Sequence[float] = ...,
         drag_area: float = 0.0,
+        added_mass: float = 0.0,
     ) -> StingerSection: ...
     @property
     def length(self) -> float: ...
@@ -618,6 +619,8 @@ class StingerSection:
     def hinge_limits(self) -> tuple[float, float]: ...
     @property
     def drag_area(self) -> float: ...
+    @property
+    def added_mass(self) -> float: ...
 
 @final
 class RollerBox:

@@ -249,7 +249,8 @@ impl Stinger {
 /// line, a rigid body of `mass` (kg) with a constant `buoyancy` (N, upward: its displaced water with its
 /// ballast set), hinged at its start with a spring of `hinge_stiffness` (N·m/rad, about the angle 0 where it
 /// lies on the stinger's arc; 0: a free hinge) within `hinge_limits` (min ≤ 0 ≤ max, rad; a positive angle
-/// turns its aft end down), against drag of area `drag_area` (C_d A, m²).
+/// turns its aft end down), against drag of area `drag_area` (C_d A, m²), its inertia that of its mass and
+/// its `added_mass` (kg, the water it carries along).
 #[pyclass(module = "pipelay", name = "StingerSection", frozen)]
 #[derive(Clone)]
 pub struct StingerSection(pub articulation::StingerSection);
@@ -257,7 +258,7 @@ pub struct StingerSection(pub articulation::StingerSection);
 #[pymethods]
 impl StingerSection {
     #[new]
-    #[pyo3(signature = (length, mass, buoyancy, hinge_stiffness=0.0, hinge_limits=vec![-0.5, 0.5], drag_area=0.0))]
+    #[pyo3(signature = (length, mass, buoyancy, hinge_stiffness=0.0, hinge_limits=vec![-0.5, 0.5], drag_area=0.0, added_mass=0.0))]
     fn new(
         length: f64,
         mass: f64,
@@ -265,6 +266,7 @@ impl StingerSection {
         hinge_stiffness: f64,
         hinge_limits: Vec<f64>,
         drag_area: f64,
+        added_mass: f64,
     ) -> PyResult<Self> {
         let limits: [f64; 2] = hinge_limits.as_slice().try_into().map_err(|_| {
             input(
@@ -281,6 +283,7 @@ impl StingerSection {
             limits,
             drag_area,
         )
+        .and_then(|section| section.with_added_mass(added_mass))
         .map(StingerSection)
         .map_err(to_py)
     }
@@ -314,6 +317,11 @@ impl StingerSection {
     #[getter]
     fn drag_area(&self) -> f64 {
         self.0.drag_area
+    }
+    /// Added mass (kg).
+    #[getter]
+    fn added_mass(&self) -> f64 {
+        self.0.added_mass
     }
 
     fn __repr__(&self) -> String {

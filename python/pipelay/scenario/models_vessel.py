@@ -121,6 +121,9 @@ class StingerSection(Table):
         "the hinge's angle limits [min, max], min ≤ 0 ≤ max (positive: the aft end down)", [-0.5, 0.5]
     )
     drag_area: Annotated[float | None, Number("m²", ge=0)] = api("the section's drag area C_d A", 0)
+    added_mass: Annotated[float | None, Number("kg", ge=0)] = api(
+        "the water the section carries along as it moves (its inertia, not its weight)", 0
+    )
 
 
 class ArcStinger(Table):

@@ -177,15 +177,15 @@ impl Assembler {
             return;
         };
         let current_scale = self.current_scale;
-        let current = |z: f64| {
+        let current = |x: &Vector3<f64>| {
             model.sea.as_ref().map_or_else(Vector3::zeros, |sea| {
-                current_scale * sea.current_at(z, 0.0).0
+                current_scale * sea.current_at(x.z, 0.0).0
             })
         };
         let water = Water {
             density: model.water_density(),
             surface: attachment.surface,
-            current: &current,
+            velocity: &current,
         };
         let node = attachment.node;
         let mut entries = Entries {

@@ -278,16 +278,22 @@ impl Integrator {
         let (Some(sections), Some(attachment)) = (&self.assembler.sections, &model.vessel) else {
             return;
         };
-        let current = |z: f64| {
-            model
+        // The current and the waves' particle velocity at a point.
+        let velocity = |x: &Vector3<f64>| {
+            let current = model
                 .sea
                 .as_ref()
-                .map_or_else(Vector3::zeros, |sea| sea.current_at(z, time_mid).0)
+                .map_or_else(Vector3::zeros, |sea| sea.current_at(x.z, time_mid).0);
+            let waves = model
+                .waves
+                .as_ref()
+                .map_or_else(Vector3::zeros, |w| w.kinematics(x, time_mid).velocity);
+            current + waves
         };
         let water = Water {
             density: model.water_density(),
             surface: attachment.surface,
-            current: &current,
+            velocity: &velocity,
         };
         let config = &self.state.configuration;
         let node = attachment.node;

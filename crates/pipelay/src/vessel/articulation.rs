@@ -8,9 +8,9 @@
 //! ∂S_j(p)/∂φ_i = e × (S_j(p) − H_i) for i ≤ j, where H_i = S_{i−1}(h_i) is where hinge i is.
 //!
 //! **Each section** is a rigid body: its mass as two points on its chord at ±c/(2√3) from the chord's middle
-//! (c the chord; the pair has the section's mass and moment of inertia about its middle, m c²/12); a
-//! constant buoyancy (its ballast set, N) at those points; drag there; a hinge spring k(φ − φ₀) and stiff
-//! springs beyond the hinge's limits.
+//! (c the chord; the pair has the section's mass and moment of inertia about its middle, m c²/12), their
+//! inertia with the section's added mass; a constant buoyancy (its ballast set, N) at those points; drag
+//! there; a hinge spring k φ and stiff springs beyond the hinge's limits.
 // Indexing cannot go out of bounds here: section indices of the articulation's own lists.
 #![allow(clippy::indexing_slicing)]
 use crate::error::{finite, positive, Error, Result};
@@ -41,6 +41,9 @@ pub struct StingerSection {
     pub limits: [f64; 2],
     /// Drag area C_d A (m²) of the section across the flow.
     pub drag_area: f64,
+    /// Added mass (kg): the water it carries along as it moves, isotropic, joining its mass's inertia (not its
+    /// weight).
+    pub added_mass: f64,
 }
 
 impl StingerSection {
@@ -83,7 +86,21 @@ impl StingerSection {
             hinge_stiffness,
             limits,
             drag_area,
+            added_mass: 0.0,
         })
+    }
+
+    /// The section with `added_mass` (kg, finite, ≥ 0).
+    pub fn with_added_mass(mut self, added_mass: f64) -> Result<Self> {
+        if !(added_mass.is_finite() && added_mass >= 0.0) {
+            return Err(Error::input(
+                "added_mass",
+                added_mass,
+                "must be finite and ≥ 0 (kg)",
+            ));
+        }
+        self.added_mass = added_mass;
+        Ok(self)
     }
 
     /// The hinge's potential (J) at angle φ: its spring and the limit springs.

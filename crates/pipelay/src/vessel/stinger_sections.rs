@@ -12,8 +12,8 @@
 //! The point's velocity follows the trapezoidal rule, v₁ = 2Δx_a/Δt − v₀, and its inertia
 //! F = m_a (v₁ − v₀)/Δt does work ½m_a(|v₁|² − |v₀|²) exactly. Weight less buoyancy is a dead load (its work
 //! the potential's change). Drag ½ρ C_dA |u|u on the flow u = U − Δx_a/Δt relative to the point's mean
-//! velocity (U the current at the point's start, at the step's mid-time) splits exactly into Δt F·U supplied
-//! and Δt F·u dissipated. The hinge springs' moment is their discrete gradient ΔU/Δφ. So the sections'
+//! velocity (U the water's velocity at the point's start at the step's mid-time: the current and the waves'
+//! particle velocity) splits exactly into Δt F·U supplied and Δt F·u dissipated. The hinge springs' moment is their discrete gradient ΔU/Δφ. So the sections'
 //! energy — kinetic, potential and the hinges' — changes by the work supplied less that dissipated, to
 //! round-off.
 // Indexing cannot go out of bounds here: section, point and DOF indices of the articulation's own lists.
@@ -40,18 +40,19 @@ struct MassPoint {
     section: usize,
     /// Where the point is at φ = 0, in the end node's frame (m).
     place: Vector3<f64>,
-    /// Its share of the section's mass (kg), weight less buoyancy (N, down) and drag area C_dA (m²).
+    /// Its share of the section's mass with its added mass (kg), weight less buoyancy (N, down) and drag area
+    /// C_dA (m²).
     mass: f64,
     net_weight: f64,
     drag_area: f64,
 }
 
 /// The water the sections move in: density (kg/m³), the calm surface's z (the sea below it, z down), and the
-/// current U(z, t) there (m/s).
+/// water's velocity at a point (m/s): the current, and in a step the waves' particle velocity.
 pub struct Water<'a> {
     pub density: f64,
     pub surface: f64,
-    pub current: &'a dyn Fn(f64) -> Vector3<f64>,
+    pub velocity: &'a dyn Fn(&Vector3<f64>) -> Vector3<f64>,
 }
 
 /// The sections of an articulated stinger on the end node `node`.
@@ -107,7 +108,7 @@ impl StingerSections {
                 articulation.mass_points(j).map(|p| MassPoint {
                     section: j,
                     place: local(&p),
-                    mass: 0.5 * section.mass,
+                    mass: 0.5 * (section.mass + section.added_mass),
                     net_weight: 0.5 * (section.mass * gravity - section.buoyancy),
                     drag_area: 0.5 * section.drag_area,
                 })
@@ -225,7 +226,7 @@ impl StingerSections {
             let x = x_n + rotation * d;
             let mut force = Vector3::z() * p.net_weight;
             if x.z >= water.surface {
-                let current = (water.current)(x.z);
+                let current = (water.velocity)(&x);
                 force += current * (0.5 * water.density * p.drag_area * current.norm());
             }
             let moment = (x - x_n).cross(&force);
@@ -272,7 +273,7 @@ impl StingerSections {
         for (current, p) in currents.iter_mut().zip(&self.points) {
             let x = step.position + start_rotation * self.place(p, step.angles);
             if x.z >= water.surface {
-                *current = (water.current)(x.z);
+                *current = (water.velocity)(&x);
             }
         }
         let evaluate = |u: &[f64; MAX_UNKNOWNS]| self.step_residual(step, water, &currents, u);
@@ -317,8 +318,12 @@ impl StingerSections {
             .unwrap_or_else(Matrix3::identity);
         let mut residual = [0.0; MAX_UNKNOWNS];
         let mut work = SectionWork::default();
-        for (a, ((p, v_start), current)) in
-            self.points.iter().zip(step.velocities).zip(currents).enumerate()
+        for (a, ((p, v_start), current)) in self
+            .points
+            .iter()
+            .zip(step.velocities)
+            .zip(currents)
+            .enumerate()
         {
             let d = [self.place(p, &angles[0]), self.place(p, &angles[1])];
             let moved = (x_end + end * d[1]) - (x_start + start * d[0]);
