@@ -26,6 +26,7 @@ __all__ = [
     "HullCoefficients",
     "InputError",
     "JLay",
+    "Material",
     "Model",
     "Observer",
     "Raos",
@@ -130,10 +131,19 @@ class Section:
         grade: str | None = None,
         coatings: Sequence[Coating] | None = None,
         lining: Coating | None = None,
+        material: Material | None = None,
     ) -> Section:
         """A pipe from its geometry (m) and material; drag and added mass default to (0, 1). `grade` (a key of
         `pipelay.analysis.checks.GRADES`) is what the design checks take by default; `coatings` (from the
-        steel outwards) and `lining` add their mass and set the hydrodynamic diameter, not the steel's."""
+        steel outwards) and `lining` add their mass and set the hydrodynamic diameter, not the steel's;
+        `material` is the steel's law beyond yield (its E replaces `youngs_modulus`)."""
+    def moment_curvature(
+        self, curvatures: Sequence[float] | _ArrayLike, axial_strain: float = 0.0
+    ) -> _FloatArray:
+        """The wall's bending moments (N·m) along a path of curvatures (1/m) from rest (history-dependent)."""
+    @property
+    def material(self) -> Material | None:
+        """The steel's law beyond yield, or None (linear elastic)."""
     @staticmethod
     def cable(
         diameter: float,
@@ -590,6 +600,27 @@ class Stinger:
     def lengths(self) -> list[float]:
         """Each roller's length (k,) (m; inf for lone rollers)."""
     def __len__(self) -> int: ...
+
+@final
+class Material:
+    """The pipe steel's uniaxial law (Pa), unloading by Masing's rule."""
+
+    @staticmethod
+    def elastic(E: float) -> Material: ...
+    @staticmethod
+    def elastic_perfectly_plastic(E: float, yield_stress: float) -> Material: ...
+    @staticmethod
+    def ramberg_osgood(E: float, yield_stress: float, n: float) -> Material: ...
+    @staticmethod
+    def table(strain: Sequence[float], stress: Sequence[float]) -> Material: ...
+    @staticmethod
+    def grade(name: str, n: float = ..., E: float = ...) -> Material: ...
+    @property
+    def youngs_modulus(self) -> float: ...
+    @property
+    def kind(self) -> str: ...
+    def stress_strain(self, strain: Sequence[float]) -> _FloatArray:
+        """The stresses (Pa) along a path of strains from rest."""
 
 @final
 class StingerSection:

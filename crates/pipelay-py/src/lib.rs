@@ -4,6 +4,7 @@ mod capability;
 mod convert;
 mod errors;
 mod lay;
+mod material;
 mod model;
 mod raos;
 mod results;
@@ -52,6 +53,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vessel::PyTensionControl>()?;
     m.add_class::<lay::Stinger>()?;
     m.add_class::<lay::StingerSection>()?;
+    m.add_class::<material::Material>()?;
     m.add_class::<lay::RollerBox>()?;
     m.add_class::<lay::SLay>()?;
     m.add_class::<lay::JLay>()?;

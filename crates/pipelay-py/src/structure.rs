@@ -181,7 +181,7 @@ impl Section {
     /// contents density (kg/m³, adds to the mass), Morison drag and added-mass coefficients (axial, normal),
     /// the steel's grade (for the design checks), external coatings (from the steel outwards) and a lining.
     #[staticmethod]
-    #[pyo3(signature = (outer_diameter, wall_thickness, density=7850.0, youngs_modulus=207e9, poisson_ratio=0.3, contents_density=0.0, drag=None, added_mass=None, *, grade=None, coatings=None, lining=None))]
+    #[pyo3(signature = (outer_diameter, wall_thickness, density=7850.0, youngs_modulus=207e9, poisson_ratio=0.3, contents_density=0.0, drag=None, added_mass=None, *, grade=None, coatings=None, lining=None, material=None))]
     #[allow(clippy::too_many_arguments)]
     fn pipe(
         py: Python<'_>,
@@ -196,7 +196,12 @@ impl Section {
         grade: Option<String>,
         coatings: Option<Vec<Coating>>,
         lining: Option<Coating>,
+        material: Option<crate::material::Material>,
     ) -> PyResult<Self> {
+        // With a material, its Young's modulus is the wall's.
+        let youngs_modulus = material
+            .as_ref()
+            .map_or(youngs_modulus, |m| m.0.youngs_modulus);
         let drag = coefficients(drag, "drag", [0.0, 1.0])?;
         let added_mass = coefficients(added_mass, "added_mass", [0.0, 1.0])?;
         if let Some(grade) = &grade {
@@ -219,8 +224,32 @@ impl Section {
         .map_err(to_py)?;
         if let Some(wall) = pipe.wall.as_mut() {
             wall.grade = grade;
+            wall.material = material.map(|m| m.0);
         }
         Ok(Section(pipe))
+    }
+
+    /// The bending moments m₂ (N·m) of a pipe's steel wall along a path of curvatures κ₂ (1/m) from rest, at
+    /// the axial strain `axial_strain`: integrated over the wall's fibres of its material (history-dependent:
+    /// unloading shows the hysteresis). Linear (EI κ) for an elastic wall.
+    #[pyo3(signature = (curvatures, axial_strain=0.0))]
+    fn moment_curvature<'py>(
+        &self,
+        py: Python<'py>,
+        curvatures: &Bound<'py, PyAny>,
+        axial_strain: f64,
+    ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+        crate::material::moment_curvature(py, &self.0, curvatures, axial_strain)
+    }
+
+    /// The steel's stress–strain law beyond yield (a Material), or None: linear elastic.
+    #[getter]
+    fn material(&self) -> Option<crate::material::Material> {
+        self.0
+            .wall
+            .as_ref()
+            .and_then(|w| w.material.clone())
+            .map(crate::material::Material)
     }
 
     /// A cable (wire rope, chain) of nominal `diameter` (m), `mass` (kg/m, in air) and axial stiffness `EA`

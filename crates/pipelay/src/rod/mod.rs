@@ -10,6 +10,8 @@ pub mod attachment;
 pub mod cable;
 pub mod dynamic_element;
 pub mod element;
+pub mod fibre_section;
+pub mod material;
 pub mod section;
 
 use crate::error::{finite, Error, Result};

@@ -1,5 +1,7 @@
 //! Cross-section properties: stiffness (eqs. 29–30), mass, inertia (19) and hydrodynamic coefficients.
 use crate::error::{finite, non_negative, positive, Result};
+use crate::rod::fibre_section::FibreSection;
+use crate::rod::material::Material;
 use nalgebra::{Matrix3, Vector3};
 
 /// A cross-section, constant along a segment of the line. Axis 1 is the rod axis (t1); 2 and 3 the principal axes.
@@ -48,6 +50,9 @@ pub struct PipeWall {
     pub contents_density: f64,
     /// The steel's grade (e.g. "X65"), for the design checks; the engine does not read it.
     pub grade: Option<String>,
+    /// The steel's stress–strain law beyond yield ([`crate::rod::material`]); None: linear elastic. Its
+    /// Young's modulus is the wall's.
+    pub material: Option<Material>,
     /// The external coatings, from the steel outwards, and the internal lining.
     pub coatings: Vec<Coating>,
     pub lining: Option<Coating>,
@@ -354,8 +359,27 @@ impl Section {
             grade: None,
             coatings: coatings.to_vec(),
             lining,
+            material: None,
         });
         Ok(section)
+    }
+
+    /// The pipe's steel wall as fibres of its material ([`crate::rod::fibre_section`]); None for a section
+    /// without a wall.
+    pub fn fibre_section(&self) -> Option<Result<FibreSection>> {
+        let wall = self.wall.as_ref()?;
+        let material = match &wall.material {
+            Some(material) => material.clone(),
+            None => match Material::elastic(wall.youngs_modulus) {
+                Ok(material) => material,
+                Err(error) => return Some(Err(error)),
+            },
+        };
+        Some(FibreSection::pipe(
+            self.outer_diameter,
+            wall.thickness,
+            material,
+        ))
     }
 
     /// Largest longitudinal strain of a section carrying material force and moment `forces`
