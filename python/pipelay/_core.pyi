@@ -511,6 +511,12 @@ class State:
         """The ends of each roller's top line (k, 2, 3) in e (m): a box's roller's, its length long; a lone
         roller's top point twice. None without rollers."""
     @property
+    def plastic_strain(self) -> _FloatArray | None:
+        """Each element's largest plastic strain over its wall (n,); None without a yielding wall."""
+    @property
+    def residual_curvature(self) -> _FloatArray | None:
+        """Each element's residual curvature |κ − m/EI| (n,) (1/m); None without a yielding wall."""
+    @property
     def hinge_angles(self) -> _FloatArray:
         """An articulated stinger's hinge angles (h,) (rad; positive: the aft end down); empty without."""
     @property

@@ -43,6 +43,8 @@ pub struct State {
     /// What lay engineers read: strain per element, roller forces, the lay summary; and the section and sea
     /// that design checks need.
     lay: LayState,
+    /// Where a wall yields (statics): each element's largest plastic strain and residual curvature.
+    plastic: Option<pipelay::response::configuration::PlasticResponse>,
     /// Time (s): 0 for static states.
     #[pyo3(get)]
     time: f64,
@@ -206,6 +208,7 @@ impl State {
                 rollers: response.rollers.as_ref().map_or(0.0, |r| r.energy),
                 stinger,
             },
+            plastic: response.plastic.clone(),
             seabed: response.seabed.as_ref().map(|s| SeabedState {
                 forces: s.forces.clone(),
                 touchdown: s.touchdown,
@@ -249,6 +252,8 @@ impl State {
             reactions: integrator.reactions().to_vec(),
             energy: observables.energy(),
             vessel: observables.vessel_values(),
+            // Runs are elastic: a yielding wall is refused by the integrator.
+            plastic: None,
             seabed: match (observables.seabed_forces(), observables.touchdown()) {
                 (Some(forces), Some(touchdown)) => Some(SeabedState {
                     forces: forces.to_vec(),
@@ -471,6 +476,22 @@ impl State {
             .roller_forces
             .as_ref()
             .map(|_| points_to_numpy(py, &self.lay.roller_tops))
+    }
+    /// Each element's largest plastic strain over its steel wall (n,) (0 where elastic): where a section's
+    /// material yields (`Section.pipe(..., material=)`); None without one.
+    #[getter]
+    fn plastic_strain<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.plastic
+            .as_ref()
+            .map(|p| to_numpy(py, &p.plastic_strain))
+    }
+    /// Each element's residual curvature (n,) (1/m): the bending curvature it would keep unloaded
+    /// elastically, |κ − m/EI|; None without a yielding wall.
+    #[getter]
+    fn residual_curvature<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        self.plastic
+            .as_ref()
+            .map(|p| to_numpy(py, &p.residual_curvature))
     }
     /// An articulated stinger's hinge angles (h,) (rad; positive: a section's aft end turned down from the
     /// stinger's arc). Empty without.

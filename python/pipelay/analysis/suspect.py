@@ -58,8 +58,12 @@ Suspect = tuple[str, float, str]
 
 
 def _yield_strain(section: Any) -> tuple[float, str] | None:
-    """SMYS/E of the section's steel and its grade; None for a section without a steel wall."""
+    """SMYS/E of the section's steel and its grade; None for a section without a steel wall, or whose wall's
+    material yields (its stresses beyond yield are computed)."""
     if section.wall_thickness is None:
+        return None
+    material = getattr(section, "material", None)
+    if material is not None and material.kind != "elastic":
         return None
     grade = section.grade or DEFAULT_GRADE
     return GRADES[grade][0] / section.youngs_modulus, grade

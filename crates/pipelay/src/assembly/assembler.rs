@@ -14,6 +14,7 @@ use crate::linalg::largest::largest_magnitude;
 use crate::linalg::tangent_lu::TangentLu;
 use crate::model::Model;
 use crate::rod::element::ElementMatrix;
+use crate::rod::plastic_state::PlasticState;
 use crate::vessel::stinger_sections::StingerSections;
 use nalgebra::{Matrix6, Vector2, Vector3, Vector6};
 
@@ -64,6 +65,8 @@ pub struct Assembler {
     pub rollers: Option<RollerContact>,
     /// An articulated stinger's sections, if the vessel has one.
     pub sections: Option<StingerSections>,
+    /// The yielding elements' plastic state, if any segment's wall yields.
+    pub plastic: Option<PlasticState>,
     /// Whether statics' Newton corrections are kept from carrying the line through the rollers
     /// ([`crate::statics::newton::roller_step_factor`]).
     pub limit_roller_steps: bool,
@@ -145,6 +148,7 @@ impl Assembler {
             StingerSections::new(attachment, model.rod.node_count(), model.gravity)
         });
         Assembler {
+            plastic: PlasticState::new(&model.rod),
             rollers,
             sections,
             bending_scale: 1.0,

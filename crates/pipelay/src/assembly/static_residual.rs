@@ -12,7 +12,7 @@ use crate::contact::sinks::EntrySink;
 use crate::environment::drag::{element_current_drag, quadratic_jacobian};
 use crate::model::Model;
 use crate::rod::cable;
-use crate::rod::element::{evaluate, ElementMatrix};
+use crate::rod::element::{elastic_law, evaluate_with, ElementMatrix};
 use crate::so3::exp_quat;
 use crate::vessel::coupling::{static_forces, StaticTarget};
 use crate::vessel::stinger_sections::Water;
@@ -70,18 +70,28 @@ impl Assembler {
                 strain_energy += response.energy;
                 response.forces
             } else {
-                let response = evaluate(
+                let c_t = section.c_t();
+                let c_r = Matrix3::from_diagonal(
+                    &section
+                        .rotational_stiffness
+                        .component_mul(&rotational_scale),
+                );
+                let bending_scale = self.bending_scale;
+                let plastic = &mut self.plastic;
+                // A yielding wall's law from its fibres, else the elastic one.
+                let mut law = |strain: &Vector3<f64>, curvature: &Vector3<f64>| {
+                    plastic
+                        .as_mut()
+                        .and_then(|p| p.law(e, strain, curvature, bending_scale))
+                        .unwrap_or_else(|| elastic_law(&c_t, &c_r, strain, curvature))
+                };
+                let response = evaluate_with(
                     x1,
                     x2,
                     &config.rotations[e],
                     &config.rotations[e + 1],
                     reference,
-                    &section.c_t(),
-                    &Matrix3::from_diagonal(
-                        &section
-                            .rotational_stiffness
-                            .component_mul(&rotational_scale),
-                    ),
+                    &mut law,
                     with_tangent.then_some(&mut k),
                 );
                 strain_energy += response.energy;

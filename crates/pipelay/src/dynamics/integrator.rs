@@ -194,6 +194,14 @@ impl Integrator {
     /// An integrator starting from `state`.
     pub fn new(model: Model, state: DynamicState, options: DynamicOptions) -> Result<Self> {
         positive("dt", options.time_step, "s")?;
+        if let Some(segment) = model.rod.sections.iter().position(|s| s.yields()) {
+            return Err(Error::input(
+                "material",
+                format!("segment {segment}'s wall yields"),
+                "must be linear elastic in a run: a run's energy–momentum step with plasticity is not built \
+                 yet (statics and Section.moment_curvature take it); give the section no material",
+            ));
+        }
         let count = model.rod.node_count();
         if state.configuration.positions.len() != count
             || state.gauss.len() != model.rod.element_count()

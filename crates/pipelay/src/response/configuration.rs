@@ -7,7 +7,7 @@ use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
 use crate::rod::cable;
-use crate::rod::element::evaluate;
+use crate::rod::element::{elastic_law, evaluate_with, midpoint_frame_and_strains};
 use crate::vessel::coupling::{eta_of, pipe_force_on_vessel, vessel_pose};
 use nalgebra::{Vector2, Vector3, Vector6};
 
@@ -29,6 +29,17 @@ pub struct Response {
     pub seabed: Option<SeabedResponse>,
     /// With rollers: their contact.
     pub rollers: Option<RollerResponse>,
+    /// Where a segment's wall yields: each element's largest plastic strain over its wall (0 for an elastic
+    /// element), and its residual curvature |κ − m/EI| (1/m): the bending curvature it keeps unloaded
+    /// elastically.
+    pub plastic: Option<PlasticResponse>,
+}
+
+/// The plastic strain and residual curvature of each element (see [`Response::plastic`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlasticResponse {
+    pub plastic_strain: Vec<f64>,
+    pub residual_curvature: Vec<f64>,
 }
 
 /// Roller contact of a configuration.
@@ -79,7 +90,7 @@ impl Response {
         config: &Configuration,
         assembler: &mut Assembler,
     ) -> Self {
-        let section_forces = model
+        let section_forces: Vec<Vector6<f64>> = model
             .rod
             .elements
             .iter()
@@ -92,14 +103,21 @@ impl Response {
                     let tension = cable::evaluate(x1, x2, reference, ea, None).tension;
                     return Vector6::new(tension, 0.0, 0.0, 0.0, 0.0, 0.0);
                 }
-                let r = evaluate(
+                let (c_t, c_r) = (section.c_t(), section.c_r());
+                let plastic = &mut assembler.plastic;
+                let mut law = |strain: &Vector3<f64>, curvature: &Vector3<f64>| {
+                    plastic
+                        .as_mut()
+                        .and_then(|p| p.law(e, strain, curvature, 1.0))
+                        .unwrap_or_else(|| elastic_law(&c_t, &c_r, strain, curvature))
+                };
+                let r = evaluate_with(
                     &config.positions[e],
                     &config.positions[e + 1],
                     &config.rotations[e],
                     &config.rotations[e + 1],
                     reference,
-                    &section.c_t(),
-                    &section.c_r(),
+                    &mut law,
                     None,
                 );
                 Vector6::new(
@@ -116,6 +134,7 @@ impl Response {
         let mut nodal_reactions: Vec<Vector6<f64>> = assembler
             .residual
             .chunks_exact(NODE_DOFS)
+            .take(model.rod.node_count())
             .map(|r| -Vector6::from_column_slice(r))
             .collect();
         // At a vessel's node the "support" is the vessel: the rod pushes on it with −(vessel's force on the rod).
@@ -156,7 +175,44 @@ impl Response {
             elements: r.nearest_elements.clone(),
             energy: r.energy_end,
         });
+        let plastic = assembler.plastic.as_ref().map(|state| {
+            let (plastic_strain, residual_curvature) = model
+                .rod
+                .elements
+                .iter()
+                .enumerate()
+                .map(|(e, reference)| {
+                    if !state.yields(e) {
+                        return (0.0, 0.0);
+                    }
+                    let (_, strain, curvature) = midpoint_frame_and_strains(
+                        &config.positions[e],
+                        &config.positions[e + 1],
+                        &config.rotations[e],
+                        &config.rotations[e + 1],
+                        reference,
+                    );
+                    let (strain, curvature) =
+                        (strain - reference.strain, curvature - reference.curvature);
+                    let bending = model.rod.section(e).rotational_stiffness;
+                    let moments = section_forces[e];
+                    let kept = nalgebra::Vector2::new(
+                        curvature.y - moments[4] / bending.y,
+                        curvature.z - moments[5] / bending.z,
+                    );
+                    (
+                        state.largest_plastic_strain(e, &strain, &curvature),
+                        kept.norm(),
+                    )
+                })
+                .unzip();
+            PlasticResponse {
+                plastic_strain,
+                residual_curvature,
+            }
+        });
         Response {
+            plastic,
             rollers,
             seabed,
             vessel,

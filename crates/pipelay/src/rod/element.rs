@@ -5,7 +5,7 @@
 //! rotation R_a; variations and increments are spatial spins δθ_a (δR = δθ̂ R). Node-major ordering
 //! [x1, θ1, x2, θ2].
 use crate::so3::{exp, log_quat, skew, tangent_left_inv, tangent_right_inv};
-use nalgebra::{Matrix3, SMatrix, SVector, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Matrix6, SMatrix, SVector, UnitQuaternion, Vector3};
 
 /// 12-vector of element nodal forces [f_x1, m_1, f_x2, m_2].
 pub type ElementVector = SVector<f64, 12>;
@@ -161,9 +161,38 @@ fn q_and_derivative(psi: f64) -> (f64, f64) {
     }
 }
 
-/// Evaluates the element: resultants, energy, internal forces and, if `tangent` is given, the
-/// consistent tangent K = ∂f_int/∂[x1, θ1, x2, θ2] (material and geometric parts, formulary §4b,
-/// "energy-consistent (BG) objective element").
+/// A section's response at the Gauss point to the changes of strain and curvature (Γ − Γ₀, K − K₀): the
+/// material force and moment, the stored energy per unit length (J/m) and the tangent
+/// ∂(n, m)/∂(Γ − Γ₀, K − K₀) (blocks [C_TT C_TR; C_RT C_RR]).
+#[derive(Debug, Clone, Copy)]
+pub struct SectionLaw {
+    pub force: Vector3<f64>,
+    pub moment: Vector3<f64>,
+    pub energy: f64,
+    pub stiffness: Matrix6<f64>,
+}
+
+/// The linear elastic law n = C_T (Γ − Γ₀), m = C_R (K − K₀) (eqs. 29–30).
+pub fn elastic_law(
+    c_t: &Matrix3<f64>,
+    c_r: &Matrix3<f64>,
+    strain_change: &Vector3<f64>,
+    curvature_change: &Vector3<f64>,
+) -> SectionLaw {
+    let force = c_t * strain_change;
+    let moment = c_r * curvature_change;
+    let mut stiffness = Matrix6::zeros();
+    stiffness.fixed_view_mut::<3, 3>(0, 0).copy_from(c_t);
+    stiffness.fixed_view_mut::<3, 3>(3, 3).copy_from(c_r);
+    SectionLaw {
+        force,
+        moment,
+        energy: 0.5 * (strain_change.dot(&force) + curvature_change.dot(&moment)),
+        stiffness,
+    }
+}
+
+/// Evaluates the element of a linear elastic section (C_T, C_R): see [`evaluate_with`].
 #[allow(clippy::too_many_arguments)]
 pub fn evaluate(
     x1: &Vector3<f64>,
@@ -175,15 +204,32 @@ pub fn evaluate(
     c_r: &Matrix3<f64>,
     tangent: Option<&mut ElementMatrix>,
 ) -> ElementResponse {
+    let mut law =
+        |strain: &Vector3<f64>, curvature: &Vector3<f64>| elastic_law(c_t, c_r, strain, curvature);
+    evaluate_with(x1, x2, r1, r2, reference, &mut law, tangent)
+}
+
+/// Evaluates the element: resultants, energy, internal forces and, if `tangent` is given, the
+/// consistent tangent K = ∂f_int/∂[x1, θ1, x2, θ2] (material and geometric parts, formulary §4b,
+/// "energy-consistent (BG) objective element"), the section's response given by `law` (a yielding
+/// section's couples the axial force and the bending moments: its tangent's C_TR block).
+pub fn evaluate_with(
+    x1: &Vector3<f64>,
+    x2: &Vector3<f64>,
+    r1: &UnitQuaternion<f64>,
+    r2: &UnitQuaternion<f64>,
+    reference: &ElementReference,
+    law: &mut dyn FnMut(&Vector3<f64>, &Vector3<f64>) -> SectionLaw,
+    tangent: Option<&mut ElementMatrix>,
+) -> ElementResponse {
     let kin = Kinematics::new(x1, x2, r1, r2, reference);
     let l0 = kin.length;
     let (strain, curvature) = kin.strains();
     let strain_change = strain - reference.strain;
     let curvature_change = curvature - reference.curvature;
-    let material_force = c_t * strain_change;
-    let material_moment = c_r * curvature_change;
-    let energy =
-        0.5 * l0 * (strain_change.dot(&material_force) + curvature_change.dot(&material_moment));
+    let section = law(&strain_change, &curvature_change);
+    let (material_force, material_moment) = (section.force, section.moment);
+    let energy = l0 * section.energy;
 
     let rm = &kin.midpoint_rotation;
     let n = rm * material_force;
@@ -237,14 +283,17 @@ pub fn evaluate(
             .fixed_view_mut::<3, 3>(0, 9)
             .copy_from(&tangent_left_inv(&psi_vec));
 
-        let c_t_spatial = rm * c_t * rm.transpose();
-        let c_r_spatial = rm * c_r * rm.transpose();
+        let block = |row: usize, column: usize| {
+            rm * section.stiffness.fixed_view::<3, 3>(row, column) * rm.transpose()
+        };
         let xprime_hat = skew(&x_prime);
         let n_hat = skew(&n);
         let m_hat = skew(&m);
-        // Δn = c_T(Δx′ + x̂′Δθ_m) − n̂Δθ_m, Δm = c_R Δκ − m̂Δθ_m, Δa = Δn × x′ + n × Δx′.
-        let d_n = c_t_spatial * (d_xprime + xprime_hat * d_theta_m) - n_hat * d_theta_m;
-        let d_m = c_r_spatial * d_kappa - m_hat * d_theta_m;
+        // With the strain's change Δγ = Δx′ + x̂′Δθ_m and the curvature's Δκ (spatial):
+        // Δn = c_TT Δγ + c_TR Δκ − n̂Δθ_m, Δm = c_RT Δγ + c_RR Δκ − m̂Δθ_m, Δa = Δn × x′ + n × Δx′.
+        let d_gamma = d_xprime + xprime_hat * d_theta_m;
+        let d_n = block(0, 0) * d_gamma + block(0, 3) * d_kappa - n_hat * d_theta_m;
+        let d_m = block(3, 0) * d_gamma + block(3, 3) * d_kappa - m_hat * d_theta_m;
         let d_a = -xprime_hat * d_n + n_hat * d_xprime;
         // Terms from differentiating V_a and Q with respect to ψ.
         let d_tau_term =
@@ -413,6 +462,61 @@ mod tests {
                 k.abs().max()
             );
         }
+    }
+
+    /// A law that couples the axial force with the bending moments (a yielding section's tangent has the C_TR
+    /// block): a quadratic energy of a full symmetric 6×6 C, its gradient and tangent checked by differences.
+    #[test]
+    fn a_coupled_law_is_differentiated_consistently() {
+        let stiffness = Matrix6::from_fn(|i, j| {
+            if i == j {
+                3.0 + i as f64
+            } else {
+                0.3 / (1.0 + (i + j) as f64)
+            }
+        });
+        let mut law = |g: &Vector3<f64>, k: &Vector3<f64>| {
+            let strains = nalgebra::Vector6::new(g.x, g.y, g.z, k.x, k.y, k.z);
+            let resultants = stiffness * strains;
+            SectionLaw {
+                force: resultants.fixed_rows::<3>(0).into_owned(),
+                moment: resultants.fixed_rows::<3>(3).into_owned(),
+                energy: 0.5 * strains.dot(&resultants),
+                stiffness,
+            }
+        };
+        let case = Case::new(1.0);
+        let mut eval = |state: (
+            Vector3<f64>,
+            Vector3<f64>,
+            UnitQuaternion<f64>,
+            UnitQuaternion<f64>,
+        ),
+                        k: Option<&mut ElementMatrix>| {
+            evaluate_with(
+                &state.0,
+                &state.1,
+                &state.2,
+                &state.3,
+                &case.reference,
+                &mut law,
+                k,
+            )
+        };
+        let mut k = ElementMatrix::zeros();
+        let f = eval(case.perturbed(0, 0.0), Some(&mut k)).forces;
+        let h = 1e-6;
+        let (mut worst_force, mut worst_tangent): (f64, f64) = (0.0, 0.0);
+        for dof in 0..12 {
+            let plus = eval(case.perturbed(dof, h), None);
+            let minus = eval(case.perturbed(dof, -h), None);
+            worst_force =
+                worst_force.max(((plus.energy - minus.energy) / (2.0 * h) - f[dof]).abs());
+            let column = (plus.forces - minus.forces) / (2.0 * h);
+            worst_tangent = worst_tangent.max((column - k.column(dof)).abs().max());
+        }
+        assert!(worst_force < 1e-8 * f.norm(), "{worst_force:e}");
+        assert!(worst_tangent < 1e-7 * k.abs().max(), "{worst_tangent:e}");
     }
 
     #[test]

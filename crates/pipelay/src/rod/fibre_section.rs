@@ -14,8 +14,9 @@
 // Indexing cannot go out of bounds here: fibre and state indices of the section's own lists.
 #![allow(clippy::indexing_slicing)]
 use crate::error::{positive, Error, Result};
+use crate::rod::element::SectionLaw;
 use crate::rod::material::Material;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Matrix6, Vector3};
 
 /// Fibres around the wall, and Gauss–Legendre radii through it.
 pub const AROUND: usize = 64;
@@ -34,6 +35,12 @@ struct Fibre {
 pub struct FibreSection {
     fibres: Vec<Fibre>,
     pub material: Material,
+    /// What the rest of the section adds, elastically: the shear stiffnesses GA₂, GA₃ (N), the torsional GJ
+    /// (N·m²), and the coatings' axial EA and bending EI (N, N·m²) beyond the wall's.
+    pub shear: [f64; 2],
+    pub torsion: f64,
+    pub extra_axial: f64,
+    pub extra_bending: f64,
 }
 
 /// A section's response to (ε₀, κ₂, κ₃) from a plastic state ([`FibreSection::respond`]).
@@ -77,7 +84,88 @@ impl FibreSection {
                 });
             }
         }
-        Ok(FibreSection { fibres, material })
+        Ok(FibreSection {
+            fibres,
+            material,
+            shear: [0.0; 2],
+            torsion: 0.0,
+            extra_axial: 0.0,
+            extra_bending: 0.0,
+        })
+    }
+
+    /// The whole section's law at the changes of strain and curvature (Γ − Γ₀, K − K₀): the wall's axial force
+    /// and bending moments from its fibres (and the coatings' elastic share), shear and torsion elastic; from
+    /// the plastic state `plastic`, the state after it into `plastic_end`. Also the energy dissipated per unit
+    /// length.
+    pub fn law(
+        &self,
+        strain: &Vector3<f64>,
+        curvature: &Vector3<f64>,
+        plastic: &[f64],
+        plastic_end: &mut [f64],
+    ) -> (SectionLaw, f64) {
+        let wall = self.respond(
+            &Vector3::new(strain.x, curvature.y, curvature.z),
+            plastic,
+            plastic_end,
+        );
+        let force = Vector3::new(
+            wall.resultants.x + self.extra_axial * strain.x,
+            self.shear[0] * strain.y,
+            self.shear[1] * strain.z,
+        );
+        let moment = Vector3::new(
+            self.torsion * curvature.x,
+            wall.resultants.y + self.extra_bending * curvature.y,
+            wall.resultants.z + self.extra_bending * curvature.z,
+        );
+        // (ε₀, κ₂, κ₃) are the 0th, 4th and 5th of (Γ, K).
+        let mut stiffness = Matrix6::zeros();
+        let places = [0, 4, 5];
+        for (i, &row) in places.iter().enumerate() {
+            for (j, &column) in places.iter().enumerate() {
+                stiffness[(row, column)] = wall.tangent[(i, j)];
+            }
+        }
+        stiffness[(0, 0)] += self.extra_axial;
+        stiffness[(1, 1)] = self.shear[0];
+        stiffness[(2, 2)] = self.shear[1];
+        stiffness[(3, 3)] = self.torsion;
+        stiffness[(4, 4)] += self.extra_bending;
+        stiffness[(5, 5)] += self.extra_bending;
+        let energy = wall.free_energy
+            + 0.5 * self.extra_axial * strain.x * strain.x
+            + 0.5 * (self.shear[0] * strain.y * strain.y + self.shear[1] * strain.z * strain.z)
+            + 0.5 * self.torsion * curvature.x * curvature.x
+            + 0.5 * self.extra_bending * (curvature.y * curvature.y + curvature.z * curvature.z);
+        (
+            SectionLaw {
+                force,
+                moment,
+                energy,
+                stiffness,
+            },
+            wall.dissipated,
+        )
+    }
+
+    /// The largest plastic strain |ε − σ/E| over the wall's fibres at the strains (ε₀, κ₂, κ₃) and the plastic
+    /// state `plastic` (read, not advanced).
+    pub fn largest_plastic_strain(&self, strains: &Vector3<f64>, plastic: &[f64]) -> f64 {
+        let size = self.material.state_size();
+        let mut scratch = vec![0.0; size];
+        self.fibres
+            .iter()
+            .enumerate()
+            .map(|(k, fibre)| {
+                let strain = Vector3::new(1.0, fibre.z, -fibre.y).dot(strains);
+                let response =
+                    self.material
+                        .respond(strain, &plastic[k * size..(k + 1) * size], &mut scratch);
+                (strain - response.stress / self.material.youngs_modulus).abs()
+            })
+            .fold(0.0, f64::max)
     }
 
     /// How many plastic strains the section's state holds.

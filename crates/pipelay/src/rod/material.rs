@@ -21,6 +21,8 @@ use crate::error::{finite, positive, Error, Result};
 
 /// Breakpoints a Ramberg–Osgood backbone is sampled at.
 pub const RO_BREAKPOINTS: usize = 64;
+/// Relative round-off within which an element's trial stress counts as on its yield stress, not beyond.
+const YIELD_ROUND_OFF: f64 = 1e-12;
 /// The largest strain a Ramberg–Osgood backbone is sampled to; beyond, its last slope holds.
 const RO_LAST_STRAIN: f64 = 0.05;
 
@@ -207,9 +209,13 @@ impl Material {
         for (i, &(modulus, yield_strain)) in self.elements.iter().enumerate() {
             let trial = modulus * (strain - plastic[i]);
             let limit = modulus * yield_strain;
-            let (element_stress, plastic_strain) = if trial.abs() <= limit {
+            // An element on its yield stress to round-off (where the last step left it) is taken as elastic:
+            // its stress is the limit either way, and the elastic tangent is the one that unloading needs
+            // (with the plastic one, Newton's first correction of an unloading overshoots without bound).
+            let (element_stress, plastic_strain) = if trial.abs() <= limit * (1.0 + YIELD_ROUND_OFF)
+            {
                 tangent += modulus;
-                (trial, plastic[i])
+                (trial.clamp(-limit, limit), plastic[i])
             } else {
                 let element_stress = limit.copysign(trial);
                 (element_stress, strain - element_stress / modulus)

@@ -12,6 +12,7 @@ pub mod dynamic_element;
 pub mod element;
 pub mod fibre_section;
 pub mod material;
+pub mod plastic_state;
 pub mod section;
 
 use crate::error::{finite, Error, Result};

@@ -375,11 +375,31 @@ impl Section {
                 Err(error) => return Some(Err(error)),
             },
         };
-        Some(FibreSection::pipe(
-            self.outer_diameter,
-            wall.thickness,
-            material,
-        ))
+        let d = self.outer_diameter;
+        let inner = d - 2.0 * wall.thickness;
+        let area = std::f64::consts::PI / 4.0 * (d * d - inner * inner);
+        let inertia = std::f64::consts::PI / 64.0 * (d.powi(4) - inner.powi(4));
+        let e = material.youngs_modulus;
+        Some(
+            FibreSection::pipe(d, wall.thickness, material).map(|mut fibres| {
+                fibres.shear = [
+                    self.translational_stiffness.y,
+                    self.translational_stiffness.z,
+                ];
+                fibres.torsion = self.rotational_stiffness.x;
+                fibres.extra_axial = (self.translational_stiffness.x - e * area).max(0.0);
+                fibres.extra_bending = (self.rotational_stiffness.y - e * inertia).max(0.0);
+                fibres
+            }),
+        )
+    }
+
+    /// Whether the section's wall can yield (a pipe with a material beyond elastic).
+    pub fn yields(&self) -> bool {
+        self.wall
+            .as_ref()
+            .and_then(|w| w.material.as_ref())
+            .is_some_and(|m| !m.is_elastic())
     }
 
     /// Largest longitudinal strain of a section carrying material force and moment `forces`
