@@ -565,6 +565,14 @@ impl Simulation {
                 2,
             )?;
         }
+        // The yielding walls' fibres' plastic strains, element after element.
+        if state.plastic.iter().any(|p| !p.is_empty()) {
+            rows(
+                "plastic",
+                state.plastic.iter().flatten().copied().collect(),
+                1,
+            )?;
+        }
         // An articulated stinger's hinge angles and rates, and its sections' points' velocities.
         if !state.hinge_rates.is_empty() {
             rows(
@@ -755,6 +763,33 @@ impl Simulation {
                     .collect()
             },
         );
+        // The yielding walls' plastic strains, each element's as many as its wall's state holds (checkpoints
+        // of elastic lines, and older ones, have none: the state is then the unyielded one).
+        let sizes: Vec<usize> = pipelay::rod::plastic_state::PlasticState::new(&model.rod)
+            .map_or_else(
+                || vec![0; nodes - 1],
+                |state| state.start.iter().map(Vec::len).collect(),
+            );
+        let total: usize = sizes.iter().sum();
+        let plastic = match optional_values(
+            arrays,
+            "plastic",
+            total,
+            "must hold every yielding element's plastic strains",
+        )? {
+            Some(data) => {
+                let mut rest = &data[..];
+                sizes
+                    .iter()
+                    .map(|&size| {
+                        let (head, tail) = rest.split_at(size);
+                        rest = tail;
+                        head.to_vec()
+                    })
+                    .collect()
+            }
+            None => sizes.iter().map(|&size| vec![0.0; size]).collect(),
+        };
         let hinge_count = model.hinge_count();
         let hinges = optional_values(
             arrays,
@@ -786,6 +821,7 @@ impl Simulation {
                 hinge_angles: hinges.iter().step_by(2).copied().collect(),
             },
             hinge_rates: hinges.iter().skip(1).step_by(2).copied().collect(),
+            plastic,
             section_velocities,
             velocities: vectors("velocities", nodes)?,
             body_angular_velocities: vectors("body_angular_velocities", nodes)?,

@@ -11,6 +11,7 @@ use crate::dynamics::nodal::NodalProperties;
 use crate::dynamics::state::DynamicState;
 use crate::model::Model;
 use crate::response::lay_summary::{lay_summary, LaySummary, RollerContacts};
+use crate::rod::plastic_state::PlasticState;
 use crate::vessel::coupling::{eta_of, low_frequency_pose, vessel_pose};
 use crate::vessel::rigid_body::kinetic_energy;
 use crate::vessel::stinger_sections::StingerSections;
@@ -33,6 +34,8 @@ pub struct Observables<'a> {
     pub wave_offset: Option<&'a WaveOffset>,
     /// An articulated stinger's sections, if the vessel has one.
     pub sections: Option<&'a StingerSections>,
+    /// The yielding elements' wall fibres, if any wall yields.
+    pub plastic: Option<&'a PlasticState>,
 }
 
 impl<'a> Observables<'a> {
@@ -90,6 +93,15 @@ impl<'a> Observables<'a> {
             .zip(&rod.elements)
             .enumerate()
             .map(|(e, (g, reference))| {
+                // A yielding wall stores its fibres' free energy.
+                if let Some(fibres) = self.plastic.and_then(|p| p.fibres(e)) {
+                    return reference.length
+                        * fibres.energy(
+                            &(g.strain - reference.strain),
+                            &(g.curvature - reference.curvature),
+                            &state.plastic[e],
+                        );
+                }
                 let section = rod.section(e);
                 g.energy(reference, &section.c_t(), &section.c_r())
             })

@@ -17,8 +17,11 @@ use crate::environment::waves::Kinematics;
 use crate::linalg::pool;
 use crate::model::Model;
 use crate::rod::cable::{damping_step as cable_damping_step, step as cable_step};
-use crate::rod::dynamic_element::{step as element_step, GaussPoint, StressRule};
+use crate::rod::dynamic_element::{
+    step as element_step, step_with as element_step_with, GaussPoint, StepStrains, StressRule,
+};
 use crate::rod::element::{ElementMatrix, ElementVector};
+use crate::rod::plastic_state::PlasticState;
 use crate::so3::{cayley, cayley_tangent, skew};
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 use std::ops::{AddAssign, Range};
@@ -102,6 +105,10 @@ pub struct RodStep<'a> {
     /// With pay-out: the growing element and its length at the step's start (m).
     pub growth: Option<(usize, f64)>,
     pub stress_rule: StressRule,
+    /// The yielding elements' wall fibres (None: no wall yields), and each element's fibres' plastic strains
+    /// at the step's start (empty where it does not yield).
+    pub fibres: Option<&'a PlasticState>,
+    pub plastic: &'a [Vec<f64>],
     /// Elements and nodes assembled in one run ([`pool::SERIAL_RUN`]; the result does not depend on it).
     pub serial_run: usize,
     /// Time step and the step's mid-time (s).
@@ -121,6 +128,8 @@ struct ElementShare {
 pub struct ElementOutputs<'a> {
     pub next_gauss: &'a mut [GaussPoint],
     pub work: &'a mut [ElementWork],
+    /// A yielding element's fibres' plastic strains at the step's end.
+    pub next_plastic: &'a mut [Vec<f64>],
 }
 
 impl RodStep<'_> {
@@ -142,11 +151,14 @@ impl RodStep<'_> {
         // The element tangent of the run, written whole by each element that asks for it.
         let mut tangent = ElementMatrix::zeros();
         if range.len() <= self.serial_run.max(1) {
-            for (e, (next, work)) in range
-                .clone()
-                .zip(outputs.next_gauss.iter_mut().zip(outputs.work.iter_mut()))
-            {
-                let share = self.element(e, with_tangent.then_some(&mut tangent));
+            for (e, ((next, work), plastic)) in range.clone().zip(
+                outputs
+                    .next_gauss
+                    .iter_mut()
+                    .zip(outputs.work.iter_mut())
+                    .zip(outputs.next_plastic.iter_mut()),
+            ) {
+                let share = self.element(e, with_tangent.then_some(&mut tangent), plastic);
                 sink.add_element(e, &share.forces, &share.magnitude, &tangent);
                 *next = share.next;
                 *work = share.work;
@@ -160,21 +172,29 @@ impl RodStep<'_> {
         let (next_split, next_right) = next_rest.split_at_mut(1);
         let (work_left, work_rest) = outputs.work.split_at_mut(local);
         let (work_split, work_right) = work_rest.split_at_mut(1);
+        let (plastic_left, plastic_rest) = outputs.next_plastic.split_at_mut(local);
+        let (plastic_split, plastic_right) = plastic_rest.split_at_mut(1);
         let share = {
             let (mut left, mut right) = sink.split_at_node(split + 1);
             let left_outputs = ElementOutputs {
                 next_gauss: next_left,
                 work: work_left,
+                next_plastic: plastic_left,
             };
             let right_outputs = ElementOutputs {
                 next_gauss: next_right,
                 work: work_right,
+                next_plastic: plastic_right,
             };
             let (_, share) = pool::join(
                 true,
                 || self.add_element_run(range.start..split, &mut left, left_outputs, with_tangent),
                 || {
-                    let share = self.element(split, with_tangent.then_some(&mut tangent));
+                    let share = self.element(
+                        split,
+                        with_tangent.then_some(&mut tangent),
+                        &mut plastic_split[0],
+                    );
                     self.add_element_run(
                         split + 1..range.end,
                         &mut right,
@@ -191,8 +211,14 @@ impl RodStep<'_> {
         work_split[0] = share.work;
     }
 
-    /// Element `e`'s terms, and with `tangent` its tangent (all 144 entries written).
-    fn element(&self, e: usize, mut tangent: Option<&mut ElementMatrix>) -> ElementShare {
+    /// Element `e`'s terms, and with `tangent` its tangent (all 144 entries written); a yielding element's
+    /// plastic state at the step's end into `plastic_end`.
+    fn element(
+        &self,
+        e: usize,
+        mut tangent: Option<&mut ElementMatrix>,
+        plastic_end: &mut [f64],
+    ) -> ElementShare {
         let model = self.model;
         let reference = &model.rod.elements[e];
         let section = model.rod.section(e);
@@ -213,6 +239,7 @@ impl RodStep<'_> {
             .growth
             .filter(|&(element, _)| element == e)
             .map_or(reference.length, |(_, length)| length);
+        let mut plastic_dissipated = 0.0;
         let step = if cable {
             cable_step(
                 &chord,
@@ -221,6 +248,24 @@ impl RodStep<'_> {
                 reference,
                 c_t[(0, 0)],
                 self.stress_rule,
+                tangent.as_deref_mut(),
+            )
+        } else if let Some(fibres) = self.fibres.and_then(|p| p.fibres(e)) {
+            // A yielding wall: its resultants averaged over its fibres' strain paths; its dissipation booked.
+            let start = &self.plastic[e];
+            let mut law = |strains: &StepStrains| {
+                let law = fibres.step_law(&strains.start, &strains.end, start, plastic_end);
+                plastic_dissipated = reference.length * law.dissipated;
+                law
+            };
+            element_step_with(
+                &chord,
+                &increments,
+                &self.gauss[e],
+                length_start,
+                reference,
+                self.stress_rule,
+                &mut law,
                 tangent.as_deref_mut(),
             )
         } else {
@@ -238,6 +283,7 @@ impl RodStep<'_> {
         };
         let mut work = ElementWork {
             internal: step.forces.dot(&increments),
+            dissipated: plastic_dissipated,
             ..ElementWork::default()
         };
         let mut forces = step.forces;

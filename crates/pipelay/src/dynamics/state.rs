@@ -8,6 +8,8 @@ use crate::model::Model;
 use crate::response::configuration::Response;
 use crate::rod::cable::gauss_point as cable_gauss_point;
 use crate::rod::dynamic_element::GaussPoint;
+use crate::rod::element::midpoint_frame_and_strains;
+use crate::rod::plastic_state::PlasticState;
 use nalgebra::{Vector2, Vector3, Vector6};
 
 /// The state of the rod at one time.
@@ -34,6 +36,9 @@ pub struct DynamicState {
     pub hinge_rates: Vec<f64>,
     /// Velocity of each of its sections' mass points (m/s, two per section; [`crate::vessel::stinger_sections`]).
     pub section_velocities: Vec<Vector3<f64>>,
+    /// Each element's wall fibres' plastic strains ([`crate::rod::plastic_state`]; empty where its wall does
+    /// not yield).
+    pub plastic: Vec<Vec<f64>>,
 }
 
 /// Velocity and controller state of an attached vessel.
@@ -57,6 +62,34 @@ pub struct VesselMotion {
     pub setpoint_offset: f64,
     /// The lay-tension loop's filtered top tension (N).
     pub filtered_tension: f64,
+}
+
+/// The yielding elements' plastic state in `configuration` reached from the unyielded one along a monotonic
+/// path, as statics reach it; each element's empty where its wall does not yield.
+fn plastic_at_rest(model: &Model, configuration: &Configuration) -> Vec<Vec<f64>> {
+    let elements = model.rod.element_count();
+    let Some(mut state) = PlasticState::new(&model.rod) else {
+        return vec![Vec::new(); elements];
+    };
+    for (e, reference) in model.rod.elements.iter().enumerate() {
+        if !state.yields(e) {
+            continue;
+        }
+        let (_, strain, curvature) = midpoint_frame_and_strains(
+            &configuration.positions[e],
+            &configuration.positions[e + 1],
+            &configuration.rotations[e],
+            &configuration.rotations[e + 1],
+            reference,
+        );
+        state.law(
+            e,
+            &(strain - reference.strain),
+            &(curvature - reference.curvature),
+            1.0,
+        );
+    }
+    state.end
 }
 
 impl DynamicState {
@@ -108,6 +141,7 @@ impl DynamicState {
             slips: vec![Vector2::zeros(); model.rod.node_count()],
             body_angular_velocities: vec![Vector3::zeros(); model.rod.node_count()],
             accelerations: vec![Vector3::zeros(); model.rod.node_count()],
+            plastic: plastic_at_rest(model, &configuration),
             hinge_rates: vec![0.0; model.hinge_count()],
             section_velocities: vec![Vector3::zeros(); 2 * model.hinge_count()],
             configuration,

@@ -118,6 +118,8 @@ impl Integrator {
         self.ensure_wave_kinematics(time_mid);
         let model = &self.model;
         let state = &self.state;
+        // The yielding walls' fibres, held apart from the assembler while the rod's sink writes into it.
+        let plastic = self.assembler.plastic.take();
         let rod = RodStep {
             model,
             constants: &self.segment_constants,
@@ -132,17 +134,21 @@ impl Integrator {
             waves: &self.wave_kinematics,
             growth: self.growth.map(|g| (g.element, g.length_start)),
             stress_rule: self.options.stress_rule,
+            fibres: plastic.as_ref(),
+            plastic: &state.plastic,
             serial_run: self.serial_run,
             dt,
             time_mid,
         };
         let mut sink = self.assembler.rod_sink(&mut self.magnitude, with_tangent);
         let outputs = ElementOutputs {
+            next_plastic: &mut self.next_plastic,
             next_gauss: &mut self.next_gauss,
             work: &mut self.element_work,
         };
         rod.add_elements(&mut sink, outputs, with_tangent);
         rod.add_nodes(&mut sink, &mut self.node_dissipation, with_tangent);
+        self.assembler.plastic = plastic;
         for element in &self.element_work {
             work.supplied += element.supplied;
             work.dissipated += element.dissipated;

@@ -14,6 +14,7 @@
 // Indexing cannot go out of bounds here: fibre and state indices of the section's own lists.
 #![allow(clippy::indexing_slicing)]
 use crate::error::{positive, Error, Result};
+use crate::rod::dynamic_element::StepLaw;
 use crate::rod::element::SectionLaw;
 use crate::rod::material::Material;
 use nalgebra::{Matrix3, Matrix6, Vector3};
@@ -148,6 +149,86 @@ impl FibreSection {
             },
             wall.dissipated,
         )
+    }
+
+    /// A time step's section law from the changes of strain and curvature at the step's start (`start`:
+    /// (Γ − Γ₀, K − K₀)) to its end (`end`), from the plastic state `plastic` (consistent with the start),
+    /// the state after it into `plastic_end`: the wall's resultants averaged over each fibre's straight strain
+    /// path ([`Material::respond_over`]) and the rest's over the average strain, their derivative with respect
+    /// to the end's (Γ, K), the free energy per unit length at the end and the energy dissipated per unit
+    /// length. Its work over the step, N̄·ΔΓ + M̄·ΔK, is the free energy's change and the dissipation.
+    pub fn step_law(
+        &self,
+        start: &(Vector3<f64>, Vector3<f64>),
+        end: &(Vector3<f64>, Vector3<f64>),
+        plastic: &[f64],
+        plastic_end: &mut [f64],
+    ) -> StepLaw {
+        let size = self.material.state_size();
+        let wall_start = Vector3::new(start.0.x, start.1.y, start.1.z);
+        let wall_end = Vector3::new(end.0.x, end.1.y, end.1.z);
+        let mut resultants = Vector3::zeros();
+        let mut derivative = Matrix3::zeros();
+        let mut free_energy = 0.0;
+        let mut dissipated = 0.0;
+        for (k, fibre) in self.fibres.iter().enumerate() {
+            let g = Vector3::new(1.0, fibre.z, -fibre.y);
+            let state = k * size..(k + 1) * size;
+            let response = self.material.respond_over(
+                g.dot(&wall_start),
+                g.dot(&wall_end),
+                &plastic[state.clone()],
+                &mut plastic_end[state],
+            );
+            resultants += fibre.area * response.mean * g;
+            derivative += (fibre.area * response.mean_tangent) * g * g.transpose();
+            free_energy += fibre.area * response.free_energy;
+            dissipated += fibre.area * response.dissipated;
+        }
+        let strain = 0.5 * (start.0 + end.0);
+        let curvature = 0.5 * (start.1 + end.1);
+        let force = Vector3::new(
+            resultants.x + self.extra_axial * strain.x,
+            self.shear[0] * strain.y,
+            self.shear[1] * strain.z,
+        );
+        let moment = Vector3::new(
+            self.torsion * curvature.x,
+            resultants.y + self.extra_bending * curvature.y,
+            resultants.z + self.extra_bending * curvature.z,
+        );
+        let mut stiffness = Matrix6::zeros();
+        let places = [0, 4, 5];
+        for (i, &row) in places.iter().enumerate() {
+            for (j, &column) in places.iter().enumerate() {
+                stiffness[(row, column)] = derivative[(i, j)];
+            }
+        }
+        stiffness[(0, 0)] += 0.5 * self.extra_axial;
+        stiffness[(1, 1)] = 0.5 * self.shear[0];
+        stiffness[(2, 2)] = 0.5 * self.shear[1];
+        stiffness[(3, 3)] = 0.5 * self.torsion;
+        stiffness[(4, 4)] += 0.5 * self.extra_bending;
+        stiffness[(5, 5)] += 0.5 * self.extra_bending;
+        let (g, k) = end;
+        StepLaw {
+            force,
+            moment,
+            derivative: stiffness,
+            energy_end: free_energy
+                + 0.5 * self.extra_axial * g.x * g.x
+                + 0.5 * (self.shear[0] * g.y * g.y + self.shear[1] * g.z * g.z)
+                + 0.5 * self.torsion * k.x * k.x
+                + 0.5 * self.extra_bending * (k.y * k.y + k.z * k.z),
+            dissipated,
+        }
+    }
+
+    /// The section's stored energy per unit length (J/m) at the changes of strain and curvature (Γ − Γ₀,
+    /// K − K₀) and the plastic state `plastic` consistent with them.
+    pub fn energy(&self, strain: &Vector3<f64>, curvature: &Vector3<f64>, plastic: &[f64]) -> f64 {
+        let mut scratch = plastic.to_vec();
+        self.law(strain, curvature, plastic, &mut scratch).0.energy
     }
 
     /// The largest plastic strain |ε − σ/E| over the wall's fibres at the strains (ε₀, κ₂, κ₃) and the plastic

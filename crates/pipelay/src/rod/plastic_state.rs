@@ -59,6 +59,11 @@ impl PlasticState {
         })
     }
 
+    /// Element `element`'s wall fibres, if it yields.
+    pub fn fibres(&self, element: usize) -> Option<&FibreSection> {
+        self.sections[self.segment_of[element]].as_ref()
+    }
+
     /// Whether element `element` yields.
     pub fn yields(&self, element: usize) -> bool {
         self.sections[self.segment_of[element]].is_some()
