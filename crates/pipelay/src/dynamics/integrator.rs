@@ -811,6 +811,9 @@ impl Integrator {
         self.magnitude = vec![0.0; self.model.dof_count()];
         self.correction = vec![0.0; self.assembler.dofs.free];
         self.next_gauss.clone_from(&self.state.gauss);
+        // A mesh that changes has no yielding wall (refused with pay-out): its elements' plastic states are
+        // empty.
+        self.state.plastic.resize(count - 1, Vec::new());
         self.next_plastic.clone_from(&self.state.plastic);
         self.element_work = vec![ElementWork::default(); count - 1];
         self.node_dissipation = vec![0.0; count];
