@@ -188,3 +188,49 @@ def test_a_run_bending_the_wall_back_and_forth_books_its_dissipation_exactly(tmp
 def _rotation_about_e2(rotation: np.ndarray) -> float:
     """The angle (rad) of a rotation matrix about e2 (the cantilever bends in the e1–e3 plane)."""
     return float(np.arctan2(rotation[0, 2], rotation[0, 0]))
+
+
+def test_an_s_lay_whose_overbend_yields_reports_computed_strains_and_the_laid_pipes_residual_curvature() -> (
+    None
+):
+    """`examples/s_lay_yielding.toml` (the S-lay example's pipe of X65 beyond yield, at a lower tension): the
+    overbend strain is the one its shape gives, ε₀ + (D/2)|κ|, past the elastic estimate N/EA + (D/2)|M|/EI (the
+    wall yields: its moment lags its curvature); the DNV-ST-F101 displacement-controlled check takes the state's
+    strain; the laid pipe keeps a residual curvature from the overbend (from the history marched from the
+    tensioner), the elastic pipe none; `pipelay static` prints it; and a run starts from it."""
+    import subprocess
+    import sys
+    import tomllib
+    from pathlib import Path
+
+    from pipelay.scenario import load_scenario, parse_scenario
+
+    example = Path(__file__).parent.parent / "examples" / "s_lay_yielding.toml"
+    scenario = load_scenario(example)
+    state = scenario.model.static()
+    lay = state.lay_summary()
+    forces = state.section_forces
+    e = int(np.argmax(state.strain))
+    ea = 207e9 * np.pi / 4 * (0.6**2 - 0.54**2)
+    ei = 207e9 * np.pi / 64 * (0.6**4 - 0.54**4)
+    elastic_estimate = forces[e, 0] / ea + 0.3 * np.hypot(forces[e, 4], forces[e, 5]) / ei
+    print(f"overbend strain {lay['overbend_strain']:.5f}, elastic estimate {elastic_estimate:.5f}")
+    assert lay["overbend_strain"] == pytest.approx(state.strain[e], rel=1e-12)
+    assert lay["overbend_strain"] > 1.05 * elastic_estimate > 0.0
+    assert state.plastic_strain.max() > 1e-4
+    assert lay["residual_curvature"] > 1e-4
+    # The displacement-controlled check's demand is the computed strain: its worst element is the strain's.
+    checks = pl.checks.dnv_st_f101(state)
+    assert int(np.argmax(checks.displacement_controlled)) == e
+    elastic = tomllib.loads(example.read_text())
+    del elastic["pipe"]["material"]
+    assert np.isnan(parse_scenario(elastic, "elastic").model.static().lay_summary()["residual_curvature"])
+    out = subprocess.run(
+        [sys.executable, "-m", "pipelay", "static", str(example)], capture_output=True, text=True, check=True
+    ).stdout
+    assert f"lay: residual curvature {lay['residual_curvature']:12.4e} 1/m" in out
+    results = scenario.model.simulation(state, dt=0.2).run(2.0, progress=False)
+    energy = results.energy["total"]
+    balance = energy[-1] - energy[0] - (results.supplied_work[-1] - results.dissipated[-1])
+    assert abs(balance) < 1e-8 * abs(energy[0])
+    assert np.all(np.isfinite(results.lay_summary()["residual_curvature"]))

@@ -361,6 +361,10 @@ def _lay_lines(
         f"lay: sagbend strain     {100 * summary['sagbend_strain']:12.4f} %",
         f"lay: sagbend moment     {summary['sagbend_moment'] / 1e3:12.1f} kN m",
     ]
+    residual = summary.get("residual_curvature", float("nan"))
+    if np.isfinite(residual):
+        radius = f"radius {1 / residual:.4g} m" if residual > 0 else "straight"
+        lines.append(f"lay: residual curvature {residual:12.4e} 1/m of the laid pipe ({radius})")
     if rollers is not None:
         lines.append(
             f"lay: tip clearance      {summary['tip_clearance']:12.3f} m at {support} {count}, the stinger's tip "

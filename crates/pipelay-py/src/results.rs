@@ -568,7 +568,8 @@ impl Results {
                     if series.is_empty()
                         && (*name == "touchdown_arc_length"
                             || *name == "tip_clearance"
-                            || *name == "tip_offset") =>
+                            || *name == "tip_offset"
+                            || *name == "residual_curvature") =>
                 {
                     Ok(vec![f64::NAN; h.time.len()])
                 }

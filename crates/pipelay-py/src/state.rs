@@ -11,7 +11,8 @@ use pipelay::dynamics::state::DynamicState;
 use pipelay::model::Model;
 use pipelay::response::configuration::Response;
 use pipelay::response::lay_summary::{
-    lay_summary, roller_lines, roller_tops, section_lines, LaySummary, RollerContacts, LAY_FIELDS,
+    element_strains, lay_summary, roller_lines, roller_tops, section_lines, LaySummary,
+    RollerContacts, LAY_FIELDS,
 };
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -95,11 +96,12 @@ impl LayState {
     ) -> Self {
         let rod = &model.rod;
         LayState {
-            strain: section_forces
-                .iter()
-                .enumerate()
-                .map(|(e, f)| rod.section(e).strain(f))
-                .collect(),
+            strain: element_strains(
+                model,
+                &configuration.positions,
+                &configuration.rotations,
+                section_forces,
+            ),
             roller_forces: roller_forces.map(<[f64]>::to_vec),
             roller_vectors: roller_vectors.map(|(v, o)| (v.to_vec(), o.to_vec())),
             roller_supports: model
@@ -177,6 +179,7 @@ impl State {
             &response.section_forces,
             rollers,
             response.seabed.as_ref().map(|s| &s.touchdown),
+            None,
         );
         let lay = LayState::new(
             model,
@@ -252,8 +255,14 @@ impl State {
             reactions: integrator.reactions().to_vec(),
             energy: observables.energy(),
             vessel: observables.vessel_values(),
-            // Runs are elastic: a yielding wall is refused by the integrator.
-            plastic: None,
+            // A yielding wall's plastic strain and residual curvature from the run's plastic state.
+            plastic: pipelay::response::configuration::plastic_field(
+                integrator.model(),
+                &state.configuration.positions,
+                &state.configuration.rotations,
+                None,
+                Some(&state.plastic),
+            ),
             seabed: match (observables.seabed_forces(), observables.touchdown()) {
                 (Some(forces), Some(touchdown)) => Some(SeabedState {
                     forces: forces.to_vec(),
@@ -456,8 +465,9 @@ impl State {
     /// liftoff_arc_length, inflection_arc_length (the steepest point, where the overbend meets the sagbend),
     /// layback (horizontal, hold point to touchdown; NaN without one), touchdown_arc_length, overbend_strain
     /// (largest, hold point to inflection), sagbend_strain and sagbend_moment (largest, inflection to
-    /// touchdown), tip_clearance (m, the pipe to the stinger's last support; NaN without rollers). None
-    /// without a vessel.
+    /// touchdown), tip_clearance (m, the pipe to the stinger's last support; NaN without rollers),
+    /// tip_offset, boxes_left, residual_curvature (1/m, the laid pipe's largest, from its history through the
+    /// lay; NaN where no wall yields). None without a vessel.
     fn lay_summary<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
         let Some(summary) = &self.lay.summary else {
             return Ok(None);

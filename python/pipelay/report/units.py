@@ -89,6 +89,7 @@ QUANTITIES: dict[str, Quantity] = {
     "tip_clearance": _entry("stinger tip clearance", "m"),
     "tip_offset": _entry("lateral offset at the stinger tip", "m"),
     "boxes_left": _entry("roller boxes the pipe is leaving", "1", _PLAIN),
+    "residual_curvature": _entry("residual curvature of the laid pipe", "1/m"),
     # The extremes of a run and a sweep's statistics (pipelay.analysis.sweep.STATISTICS).
     "top_tension_max": _entry("largest top tension", "N", _KN),
     "top_tension_min": _entry("smallest top tension", "N", _KN),

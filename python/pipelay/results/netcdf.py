@@ -109,6 +109,11 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
         "m",
         "lateral offset (to starboard) of the line from the last support's station, NaN: none",
     ),
+    "residual_curvature": (
+        ("time",),
+        "1/m",
+        "the laid pipe's largest residual curvature from its history through the lay, NaN: no wall yields",
+    ),
     "boxes_left": (
         ("time",),
         "1",
@@ -211,6 +216,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "tip_clearance",
         "tip_offset",
         "boxes_left",
+        "residual_curvature",
     ),
 }
 # The groups ``load`` needs to build a Results (the engine's Results has no missing arrays).

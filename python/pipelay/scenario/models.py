@@ -109,6 +109,7 @@ __all__ = [
     "PayOut",
     "Pin",
     "Pipe",
+    "PipeMaterial",
     "PlaneBathymetry",
     "PointLoad",
     "ProfileCurrent",
@@ -172,6 +173,36 @@ class Lining(Layer):
     bore."""
 
 
+class PipeMaterial(Table):
+    """`[pipe.material]`: `pl.Material`, the steel's stress–strain law beyond yield (its Young's modulus the
+    pipe's)."""
+
+    kind: Annotated[
+        Literal["elastic_perfectly_plastic", "ramberg_osgood", "grade"],
+        Choice(("elastic_perfectly_plastic", "ramberg_osgood", "grade")),
+    ] = Field(description="the law: elastic–perfectly plastic, Ramberg–Osgood, or a line pipe grade's")
+    yield_stress: Annotated[float | None, Number("Pa", gt=0)] = api(
+        "the yield stress (Ramberg–Osgood: at 0.5 % total strain); not for a grade", words="none"
+    )
+    n: Annotated[float | None, Number(gt=1)] = api(
+        "Ramberg–Osgood's exponent (a grade's: 15 unless given)", words="none"
+    )
+    grade: Annotated[str | None, Text()] = api(
+        'the line pipe grade, "X52" … "X80" (kind "grade")', words="none"
+    )
+
+    @model_validator(mode="after")
+    def keys_of_the_kind(self) -> PipeMaterial:
+        """Each kind's keys."""
+        if self.kind in ("elastic_perfectly_plastic", "ramberg_osgood") and self.yield_stress is None:
+            raise rule(f"is needed by kind {self.kind!r}", "yield_stress")
+        if self.kind == "ramberg_osgood" and self.n is None:
+            raise rule("is needed by kind 'ramberg_osgood'", "n")
+        if self.kind == "grade" and self.grade is None:
+            raise rule("is needed by kind 'grade'", "grade")
+        return self
+
+
 class Pipe(Table):
     """`pl.Section.pipe`: a pipe from its geometry and material.
 
@@ -201,6 +232,9 @@ class Pipe(Table):
         [], description="external coatings, from the steel outwards: `[[pipe.coatings]]` tables"
     )
     lining: Lining | None = api("internal lining: a `[pipe.lining]` table")
+    material: PipeMaterial | None = api(
+        "the steel's law beyond yield: a `[pipe.material]` table", words="linear elastic"
+    )
 
     @model_validator(mode="after")
     def thin_wall(self) -> Pipe:

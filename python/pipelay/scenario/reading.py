@@ -204,6 +204,19 @@ def _harmonic_drive(
     return position, velocity
 
 
+def _material(pipe: models.Pipe) -> pl.Material | None:
+    """The steel's law of `[pipe.material]`, its Young's modulus the pipe's; None without one."""
+    law = pipe.material
+    if law is None:
+        return None
+    e = pipe.youngs_modulus if pipe.youngs_modulus is not None else 207e9
+    if law.kind == "elastic_perfectly_plastic":
+        return pl.Material.elastic_perfectly_plastic(e, law.yield_stress)
+    if law.kind == "ramberg_osgood":
+        return pl.Material.ramberg_osgood(e, law.yield_stress, law.n)
+    return pl.Material.grade(law.grade, E=e) if law.n is None else pl.Material.grade(law.grade, law.n, E=e)
+
+
 def _section(table: models.Pipe | models.Section | models.Cable, path: str, shown: str) -> pl.Section:
     """The cross-section of a `[pipe]`, `[section]` or `[cable]` table at `path` (in errors: `shown`)."""
     with _engine(shown, KEYS[path]):
@@ -212,7 +225,9 @@ def _section(table: models.Pipe | models.Section | models.Cable, path: str, show
                 "coatings": [pl.Coating(**layer.given()) for layer in table.coatings],
                 "lining": None if table.lining is None else pl.Coating(**table.lining.given()),
             }
-            return pl.Section.pipe(**table.given("coatings", "lining"), **layers)
+            return pl.Section.pipe(
+                **table.given("coatings", "lining", "material"), **layers, material=_material(table)
+            )
         if isinstance(table, models.Cable):
             return pl.Section.cable(**table.given())
         return pl.Section(**table.given())

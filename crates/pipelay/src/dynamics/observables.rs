@@ -173,6 +173,7 @@ impl<'a> Observables<'a> {
                 offsets: &r.offsets,
             }),
             self.touchdown().as_ref(),
+            Some(&state.plastic),
         )
     }
 
@@ -236,8 +237,25 @@ impl<'a> Observables<'a> {
             .zip(&rod.elements)
             .enumerate()
             .map(|(e, (g, reference))| {
-                let n = self.state.material_force(self.model, e);
-                let m = rod.section(e).c_r() * (g.curvature - reference.curvature);
+                let (strain, curvature) = (
+                    g.strain - reference.strain,
+                    g.curvature - reference.curvature,
+                );
+                // A yielding wall's from its fibres' state.
+                let (n, m) = match self.plastic.and_then(|p| p.fibres(e)) {
+                    Some(fibres) => {
+                        let (n, m, _) = fibres.resultants_and_energy(
+                            &strain,
+                            &curvature,
+                            &self.state.plastic[e],
+                        );
+                        (n, m)
+                    }
+                    None => (
+                        self.state.material_force(self.model, e),
+                        rod.section(e).c_r() * curvature,
+                    ),
+                };
                 Vector6::new(n.x, n.y, n.z, m.x, m.y, m.z)
             })
             .collect()

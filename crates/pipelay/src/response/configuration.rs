@@ -8,6 +8,7 @@ use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
 use crate::rod::cable;
 use crate::rod::element::{elastic_law, evaluate_with, midpoint_frame_and_strains};
+use crate::rod::plastic_state::PlasticState;
 use crate::vessel::coupling::{eta_of, pipe_force_on_vessel, vessel_pose};
 use nalgebra::{Vector2, Vector3, Vector6};
 
@@ -31,7 +32,7 @@ pub struct Response {
     pub rollers: Option<RollerResponse>,
     /// Where a segment's wall yields: each element's largest plastic strain over its wall (0 for an elastic
     /// element), and its residual curvature |κ − m/EI| (1/m): the bending curvature it keeps unloaded
-    /// elastically.
+    /// elastically; in a lay, with the pipe's history from the hold point ([`plastic_field`]).
     pub plastic: Option<PlasticResponse>,
 }
 
@@ -76,6 +77,71 @@ pub struct VesselResponse {
     pub thrust: Vector6<f64>,
     pub pipe_force: Vector6<f64>,
     pub restoring_energy: f64,
+}
+
+/// Each element's largest plastic strain and residual curvature in the configuration `positions`,
+/// `rotations` (see [`Response::plastic`]); None where no wall yields. In a lay (a vessel's lay equipment holds
+/// the line) from the pipe's steady-lay history: its fibres' state marched from the hold point through the
+/// configuration ([`PlasticState::march`]), so that the laid pipe carries the plastic strain and the residual
+/// curvature the overbend left; elsewhere from `state`'s starts (the unyielded state without one). In a run,
+/// from the run's plastic state `run` (each element's, consistent with the configuration).
+pub fn plastic_field(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[nalgebra::UnitQuaternion<f64>],
+    state: Option<&PlasticState>,
+    run: Option<&[Vec<f64>]>,
+) -> Option<PlasticResponse> {
+    let mut state = match state {
+        Some(state) => state.clone(),
+        None => PlasticState::new(&model.rod)?,
+    };
+    if let Some(run) = run {
+        state.start = run.to_vec();
+    }
+    let lay = model
+        .vessel
+        .as_ref()
+        .filter(|v| v.lay.is_some() && run.is_none())
+        .map(|v| v.node);
+    if let Some(hold) = lay {
+        state.march(&model.rod, positions, rotations, hold);
+        // The states each element ends with are the ones the residual curvature is read from.
+        state.commit();
+    }
+    let (plastic_strain, residual_curvature) = model
+        .rod
+        .elements
+        .iter()
+        .enumerate()
+        .map(|(e, reference)| {
+            if !state.yields(e) {
+                return (0.0, 0.0);
+            }
+            let (_, strain, curvature) = midpoint_frame_and_strains(
+                &positions[e],
+                &positions[e + 1],
+                &rotations[e],
+                &rotations[e + 1],
+                reference,
+            );
+            let (strain, curvature) = (strain - reference.strain, curvature - reference.curvature);
+            let plastic = state.largest_plastic_strain(e, &strain, &curvature);
+            let moment = state
+                .law(e, &strain, &curvature, 1.0)
+                .map_or_else(Vector3::zeros, |law| law.moment);
+            let bending = model.rod.section(e).rotational_stiffness;
+            let kept = nalgebra::Vector2::new(
+                curvature.y - moment.y / bending.y,
+                curvature.z - moment.z / bending.z,
+            );
+            (plastic, kept.norm())
+        })
+        .unzip();
+    Some(PlasticResponse {
+        plastic_strain,
+        residual_curvature,
+    })
 }
 
 impl Response {
@@ -175,41 +241,14 @@ impl Response {
             elements: r.nearest_elements.clone(),
             energy: r.energy_end,
         });
-        let plastic = assembler.plastic.as_ref().map(|state| {
-            let (plastic_strain, residual_curvature) = model
-                .rod
-                .elements
-                .iter()
-                .enumerate()
-                .map(|(e, reference)| {
-                    if !state.yields(e) {
-                        return (0.0, 0.0);
-                    }
-                    let (_, strain, curvature) = midpoint_frame_and_strains(
-                        &config.positions[e],
-                        &config.positions[e + 1],
-                        &config.rotations[e],
-                        &config.rotations[e + 1],
-                        reference,
-                    );
-                    let (strain, curvature) =
-                        (strain - reference.strain, curvature - reference.curvature);
-                    let bending = model.rod.section(e).rotational_stiffness;
-                    let moments = section_forces[e];
-                    let kept = nalgebra::Vector2::new(
-                        curvature.y - moments[4] / bending.y,
-                        curvature.z - moments[5] / bending.z,
-                    );
-                    (
-                        state.largest_plastic_strain(e, &strain, &curvature),
-                        kept.norm(),
-                    )
-                })
-                .unzip();
-            PlasticResponse {
-                plastic_strain,
-                residual_curvature,
-            }
+        let plastic = assembler.plastic.as_ref().and_then(|state| {
+            plastic_field(
+                model,
+                &config.positions,
+                &config.rotations,
+                Some(state),
+                None,
+            )
         });
         Response {
             plastic,

@@ -11,6 +11,7 @@
 use crate::contact::roller_geometry::roller_gap;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
+use crate::response::configuration::plastic_field;
 use crate::vessel::lay::Roller;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 
@@ -53,6 +54,9 @@ pub struct LaySummary {
     /// The pipe's centreline's lateral offset (m, to starboard) from the last support's station, where it
     /// crosses the support's plane (normal to the stinger); NaN without rollers or where it does not cross.
     pub tip_offset: f64,
+    /// The laid pipe's largest residual curvature (1/m): beyond the touchdown (beyond the inflection without a
+    /// seabed), from the pipe's history through the lay ([`plastic_field`]); NaN where no wall yields.
+    pub residual_curvature: f64,
     /// How many roller boxes the pipe is leaving: those with a contact at a roller's end (0: the pipe stays in
     /// its boxes; always 0 on lone rollers, which are endless).
     pub boxes_left: usize,
@@ -82,6 +86,73 @@ pub fn roller_lines(
                 Vector3::zeros()
             };
             [top - half, top + half]
+        })
+        .collect()
+}
+
+/// Each element's largest longitudinal strain in a configuration: the axial strain plus bending at the outer
+/// fibre, ε₀ + (D/2)|κ|, taken from the configuration's strains where the wall yields (computed, not
+/// estimated), from the section forces elastically elsewhere ([`crate::rod::section::Section::strain`]: the
+/// same where the wall stays elastic).
+pub fn element_strains(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+    section_forces: &[Vector6<f64>],
+) -> Vec<f64> {
+    section_forces
+        .iter()
+        .enumerate()
+        .map(|(e, forces)| {
+            let section = model.rod.section(e);
+            if !section.yields() {
+                return section.strain(forces);
+            }
+            let reference = &model.rod.elements[e];
+            let (_, strain, curvature) = crate::rod::element::midpoint_frame_and_strains(
+                &positions[e],
+                &positions[e + 1],
+                &rotations[e],
+                &rotations[e + 1],
+                reference,
+            );
+            let (strain, curvature) = (strain - reference.strain, curvature - reference.curvature);
+            strain.x + 0.5 * section.outer_diameter * curvature.yz().norm()
+        })
+        .collect()
+}
+
+/// Each element's residual curvature |κ − m/EI| (1/m) from the configuration's curvature and the section
+/// forces' moments (0 where the wall does not yield).
+fn residual_curvatures(
+    model: &Model,
+    positions: &[Vector3<f64>],
+    rotations: &[UnitQuaternion<f64>],
+    section_forces: &[Vector6<f64>],
+) -> Vec<f64> {
+    section_forces
+        .iter()
+        .enumerate()
+        .map(|(e, forces)| {
+            let section = model.rod.section(e);
+            if !section.yields() {
+                return 0.0;
+            }
+            let reference = &model.rod.elements[e];
+            let (_, _, curvature) = crate::rod::element::midpoint_frame_and_strains(
+                &positions[e],
+                &positions[e + 1],
+                &rotations[e],
+                &rotations[e + 1],
+                reference,
+            );
+            let curvature = curvature - reference.curvature;
+            let bending = section.rotational_stiffness;
+            nalgebra::Vector2::new(
+                curvature.y - forces[4] / bending.y,
+                curvature.z - forces[5] / bending.z,
+            )
+            .norm()
         })
         .collect()
 }
@@ -132,7 +203,7 @@ pub fn roller_tops(
 }
 
 /// Names of [`LaySummary::values`], in order (`liftoff_roller` as a number, NaN: none).
-pub const LAY_FIELDS: [&str; 13] = [
+pub const LAY_FIELDS: [&str; 14] = [
     "top_tension",
     "departure_angle",
     "liftoff_roller",
@@ -146,11 +217,12 @@ pub const LAY_FIELDS: [&str; 13] = [
     "tip_clearance",
     "tip_offset",
     "boxes_left",
+    "residual_curvature",
 ];
 
 impl LaySummary {
     /// The fields as numbers, in the order of [`LAY_FIELDS`].
-    pub fn values(&self) -> [f64; 13] {
+    pub fn values(&self) -> [f64; 14] {
         [
             self.top_tension,
             self.departure_angle,
@@ -165,12 +237,15 @@ impl LaySummary {
             self.tip_clearance,
             self.tip_offset,
             self.boxes_left as f64,
+            self.residual_curvature,
         ]
     }
 }
 
 /// The summary of a configuration of `model` (which must hold its end with a vessel; `None` otherwise):
-/// `rollers` as the roller contact reports them, `touchdown` from the seabed contact.
+/// `rollers` as the roller contact reports them, `touchdown` from the seabed contact, `run_plastic` a run's
+/// plastic state (statics: None, the pipe's history marched through the lay).
+#[allow(clippy::too_many_arguments)]
 pub fn lay_summary(
     model: &Model,
     positions: &[Vector3<f64>],
@@ -179,6 +254,7 @@ pub fn lay_summary(
     section_forces: &[Vector6<f64>],
     rollers: Option<RollerContacts>,
     touchdown: Option<&Touchdown>,
+    run_plastic: Option<&[Vec<f64>]>,
 ) -> Option<LaySummary> {
     let attachment = model.vessel.as_ref()?;
     let node = attachment.node;
@@ -237,9 +313,9 @@ pub fn lay_summary(
     let split = inflection_arc;
     let (mut overbend_strain, mut sagbend_strain, mut sagbend_moment) =
         (f64::NEG_INFINITY, f64::NEG_INFINITY, 0.0_f64);
-    for (e, forces) in section_forces.iter().enumerate() {
+    let strains = element_strains(model, positions, rotations, section_forces);
+    for (e, (forces, &strain)) in section_forces.iter().zip(&strains).enumerate() {
         let middle = 0.5 * (arc_of_node[e] + arc_of_node[e + 1]);
-        let strain = model.rod.section(e).strain(forces);
         let toward_hold = if node == 0 {
             middle <= split
         } else {
@@ -265,6 +341,40 @@ pub fn lay_summary(
     let tip_offset = tip_offset(model, positions, rotations, &placed);
     let boxes_left = rollers.map_or(0, |contacts| boxes_left(attachment.rollers(), contacts));
     let nan_if_empty = |v: f64| if v.is_finite() { v } else { f64::NAN };
+    // The laid pipe: beyond the touchdown, or beyond the inflection without one.
+    let laid_from = if touchdown_arc.is_finite() {
+        touchdown_arc
+    } else {
+        inflection_arc
+    };
+    // Statics: the pipe's history marched through the lay; a run: κ − m/EI of its section forces (its own
+    // plastic state made them).
+    let residuals = match run_plastic {
+        None => {
+            plastic_field(model, positions, rotations, None, None).map(|f| f.residual_curvature)
+        }
+        Some(_) => model
+            .rod
+            .sections
+            .iter()
+            .any(|s| s.yields())
+            .then(|| residual_curvatures(model, positions, rotations, section_forces)),
+    };
+    let residual_curvature = residuals.map_or(f64::NAN, |residuals| {
+        residuals
+            .iter()
+            .enumerate()
+            .filter(|&(e, _)| {
+                let middle = 0.5 * (arc_of_node[e] + arc_of_node[e + 1]);
+                if node == 0 {
+                    middle > laid_from
+                } else {
+                    middle < laid_from
+                }
+            })
+            .map(|(_, &c)| c)
+            .fold(f64::NEG_INFINITY, f64::max)
+    });
     Some(LaySummary {
         top_tension: section_forces[top_element][0],
         departure_angle,
@@ -279,6 +389,7 @@ pub fn lay_summary(
         tip_clearance,
         tip_offset,
         boxes_left,
+        residual_curvature: nan_if_empty(residual_curvature),
     })
 }
 

@@ -224,11 +224,49 @@ impl FibreSection {
         }
     }
 
-    /// The section's stored energy per unit length (J/m) at the changes of strain and curvature (Γ − Γ₀,
-    /// K − K₀) and the plastic state `plastic` consistent with them.
+    /// The section's material force and moment, and stored energy per unit length (J/m), at the changes of
+    /// strain and curvature (Γ − Γ₀, K − K₀) and the plastic state `plastic` consistent with them (where a step
+    /// left it): read, not advanced.
+    pub fn resultants_and_energy(
+        &self,
+        strain: &Vector3<f64>,
+        curvature: &Vector3<f64>,
+        plastic: &[f64],
+    ) -> (Vector3<f64>, Vector3<f64>, f64) {
+        let size = self.material.state_size();
+        let wall = Vector3::new(strain.x, curvature.y, curvature.z);
+        let mut resultants = Vector3::zeros();
+        let mut energy = 0.0;
+        for (k, fibre) in self.fibres.iter().enumerate() {
+            let g = Vector3::new(1.0, fibre.z, -fibre.y);
+            let (stress, free_energy) = self
+                .material
+                .stress_and_energy(g.dot(&wall), &plastic[k * size..(k + 1) * size]);
+            resultants += fibre.area * stress * g;
+            energy += fibre.area * free_energy;
+        }
+        let force = Vector3::new(
+            resultants.x + self.extra_axial * strain.x,
+            self.shear[0] * strain.y,
+            self.shear[1] * strain.z,
+        );
+        let moment = Vector3::new(
+            self.torsion * curvature.x,
+            resultants.y + self.extra_bending * curvature.y,
+            resultants.z + self.extra_bending * curvature.z,
+        );
+        let energy = energy
+            + 0.5 * self.extra_axial * strain.x * strain.x
+            + 0.5 * (self.shear[0] * strain.y * strain.y + self.shear[1] * strain.z * strain.z)
+            + 0.5 * self.torsion * curvature.x * curvature.x
+            + 0.5 * self.extra_bending * (curvature.y * curvature.y + curvature.z * curvature.z);
+        (force, moment, energy)
+    }
+
+    /// The section's stored energy per unit length (J/m) at the changes of strain and curvature and the plastic
+    /// state `plastic` consistent with them ([`Self::resultants_and_energy`]).
     pub fn energy(&self, strain: &Vector3<f64>, curvature: &Vector3<f64>, plastic: &[f64]) -> f64 {
-        let mut scratch = plastic.to_vec();
-        self.law(strain, curvature, plastic, &mut scratch).0.energy
+        self.resultants_and_energy(strain, curvature, plastic).2
     }
 
     /// The largest plastic strain |ε − σ/E| over the wall's fibres at the strains (ε₀, κ₂, κ₃) and the plastic

@@ -293,6 +293,20 @@ impl Material {
         }
     }
 
+    /// The stress (Pa) and free energy (J/m³) at `strain` of a state `plastic` consistent with it (where a
+    /// step left it): read, not advanced.
+    pub fn stress_and_energy(&self, strain: f64, plastic: &[f64]) -> (f64, f64) {
+        let mut stress = self.hardening * strain;
+        let mut free_energy = 0.5 * self.hardening * strain * strain;
+        for (&(modulus, yield_strain), &plastic_strain) in self.elements.iter().zip(plastic) {
+            let limit = modulus * yield_strain;
+            let element_stress = (modulus * (strain - plastic_strain)).clamp(-limit, limit);
+            stress += element_stress;
+            free_energy += 0.5 * element_stress * element_stress / modulus;
+        }
+        (stress, free_energy)
+    }
+
     /// The backbone's stress (Pa) at `strain` from rest (monotonic loading).
     pub fn backbone(&self, strain: f64) -> f64 {
         let mut plastic = vec![0.0; self.state_size()];
