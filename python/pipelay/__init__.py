@@ -34,6 +34,7 @@ from pipelay._core import (
     Model,
     Observer,
     Raos,
+    ReelLay,
     Results,
     Rod,
     RollerBox,
@@ -49,6 +50,7 @@ from pipelay._core import (
     State,
     Stinger,
     StingerSection,
+    Straightener,
     TensionControl,
     Thruster,
     Touchdown,
@@ -56,6 +58,7 @@ from pipelay._core import (
     Waves,
     Winch,
     Wind,
+    design_straightener,
 )
 from pipelay.analysis import checks, curve_lay, fatigue, lay, statistics, suspect
 from pipelay.analysis import stages as _stages  # noqa: F401 (attaches Results.stage_summary)
@@ -155,6 +158,7 @@ __all__ = [
     "Observer",
     "PhysicsWarning",
     "Raos",
+    "ReelLay",
     "Results",
     "Rod",
     "RollerBox",
@@ -171,6 +175,7 @@ __all__ = [
     "Stinger",
     "StingerDesign",
     "StingerSection",
+    "Straightener",
     "SupportLoads",
     "TensionControl",
     "Thruster",
@@ -182,6 +187,7 @@ __all__ = [
     "checks",
     "curve_lay",
     "design_stinger",
+    "design_straightener",
     "dp_capability",
     "fatigue",
     "find_lay_position",

@@ -30,6 +30,7 @@ __all__ = [
     "Model",
     "Observer",
     "Raos",
+    "ReelLay",
     "Results",
     "Rod",
     "RollerBox",
@@ -45,6 +46,7 @@ __all__ = [
     "State",
     "Stinger",
     "StingerSection",
+    "Straightener",
     "TensionControl",
     "Thruster",
     "Touchdown",
@@ -52,6 +54,7 @@ __all__ = [
     "Waves",
     "Winch",
     "Wind",
+    "design_straightener",
     "dp_capability_wind",
     "environment_load",
 ]
@@ -627,6 +630,36 @@ class Material:
     def kind(self) -> str: ...
     def stress_strain(self, strain: Sequence[float]) -> _FloatArray:
         """The stresses (Pa) along a path of strains from rest."""
+
+@final
+class Straightener:
+    """A reel-lay straightener: the curvature (1/m) of its reverse bending."""
+
+    def __new__(cls, curvature: float) -> Straightener: ...
+    @property
+    def curvature(self) -> float: ...
+
+@final
+class ReelLay:
+    """Reel-lay's bending: reel and aligner (centreline radii, m) and a straightener."""
+
+    def __new__(
+        cls, reel_radius: float, aligner_radius: float, straightener: Straightener | None = None
+    ) -> ReelLay: ...
+    def history(self, section: Section, axial_strain: float = 0.0) -> dict[str, Any]:
+        """A pipe section's curvature, moment, strain and stage along the reeling, its residual curvature and
+        accumulated plastic strain."""
+    @property
+    def reel_radius(self) -> float: ...
+    @property
+    def aligner_radius(self) -> float: ...
+    @property
+    def straightener(self) -> Straightener: ...
+
+def design_straightener(
+    section: Section, reel_radius: float, aligner_radius: float, axial_strain: float = 0.0
+) -> Straightener:
+    """The straightener that leaves the pipe straight after the reel and the aligner."""
 
 @final
 class StingerSection:

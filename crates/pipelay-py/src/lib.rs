@@ -54,6 +54,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<lay::Stinger>()?;
     m.add_class::<lay::StingerSection>()?;
     m.add_class::<material::Material>()?;
+    m.add_class::<material::Straightener>()?;
+    m.add_class::<material::ReelLay>()?;
+    m.add_function(wrap_pyfunction!(material::design_straightener, m)?)?;
     m.add_class::<lay::RollerBox>()?;
     m.add_class::<lay::SLay>()?;
     m.add_class::<lay::JLay>()?;

@@ -35,6 +35,8 @@ struct Fibre {
 #[derive(Debug, Clone, PartialEq)]
 pub struct FibreSection {
     fibres: Vec<Fibre>,
+    /// The wall's outer diameter (m).
+    outer_diameter: f64,
     pub material: Material,
     /// What the rest of the section adds, elastically: the shear stiffnesses GA₂, GA₃ (N), the torsional GJ
     /// (N·m²), and the coatings' axial EA and bending EI (N, N·m²) beyond the wall's.
@@ -87,6 +89,7 @@ impl FibreSection {
         }
         Ok(FibreSection {
             fibres,
+            outer_diameter,
             material,
             shear: [0.0; 2],
             torsion: 0.0,
@@ -267,6 +270,27 @@ impl FibreSection {
     /// state `plastic` consistent with them ([`Self::resultants_and_energy`]).
     pub fn energy(&self, strain: &Vector3<f64>, curvature: &Vector3<f64>, plastic: &[f64]) -> f64 {
         self.resultants_and_energy(strain, curvature, plastic).2
+    }
+
+    /// The wall's outer diameter (m): twice its outermost fibre's radius over the quadrature's place.
+    pub fn outer_diameter(&self) -> f64 {
+        self.outer_diameter
+    }
+
+    /// Each fibre's plastic strain ε − σ/E at the strains (ε₀, κ₂, κ₃) and the consistent state `plastic`.
+    pub fn fibre_plastic_strains(&self, strains: &Vector3<f64>, plastic: &[f64]) -> Vec<f64> {
+        let size = self.material.state_size();
+        self.fibres
+            .iter()
+            .enumerate()
+            .map(|(k, fibre)| {
+                let strain = Vector3::new(1.0, fibre.z, -fibre.y).dot(strains);
+                let (stress, _) = self
+                    .material
+                    .stress_and_energy(strain, &plastic[k * size..(k + 1) * size]);
+                strain - stress / self.material.youngs_modulus
+            })
+            .collect()
     }
 
     /// The largest plastic strain |ε − σ/E| over the wall's fibres at the strains (ε₀, κ₂, κ₃) and the plastic

@@ -13,6 +13,7 @@ pub mod element;
 pub mod fibre_section;
 pub mod material;
 pub mod plastic_state;
+pub mod reeling;
 pub mod section;
 
 use crate::error::{finite, Error, Result};
