@@ -8,7 +8,6 @@ use crate::model::Model;
 use crate::response::configuration::Response;
 use crate::rod::cable::gauss_point as cable_gauss_point;
 use crate::rod::dynamic_element::GaussPoint;
-use crate::rod::element::midpoint_frame_and_strains;
 use crate::rod::plastic_state::PlasticState;
 use nalgebra::{Vector2, Vector3, Vector6};
 
@@ -71,23 +70,15 @@ fn plastic_at_rest(model: &Model, configuration: &Configuration) -> Vec<Vec<f64>
     let Some(mut state) = PlasticState::new(&model.rod) else {
         return vec![Vec::new(); elements];
     };
-    for (e, reference) in model.rod.elements.iter().enumerate() {
+    for e in 0..elements {
         if !state.yields(e) {
             continue;
         }
-        let (_, strain, curvature) = midpoint_frame_and_strains(
-            &configuration.positions[e],
-            &configuration.positions[e + 1],
-            &configuration.rotations[e],
-            &configuration.rotations[e + 1],
-            reference,
-        );
-        state.law(
-            e,
-            &(strain - reference.strain),
-            &(curvature - reference.curvature),
-            1.0,
-        );
+        let (strain, curvature) =
+            model
+                .rod
+                .strain_changes(e, &configuration.positions, &configuration.rotations);
+        state.law(e, &strain, &curvature, 1.0);
     }
     state.end
 }

@@ -7,7 +7,7 @@ use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
 use crate::rod::cable;
-use crate::rod::element::{elastic_law, evaluate_with, midpoint_frame_and_strains};
+use crate::rod::element::{elastic_law, evaluate_with};
 use crate::rod::plastic_state::PlasticState;
 use crate::vessel::coupling::{eta_of, pipe_force_on_vessel, vessel_pose};
 use nalgebra::{Vector2, Vector3, Vector6};
@@ -114,18 +114,11 @@ pub fn plastic_field(
         .elements
         .iter()
         .enumerate()
-        .map(|(e, reference)| {
+        .map(|(e, _)| {
             if !state.yields(e) {
                 return (0.0, 0.0);
             }
-            let (_, strain, curvature) = midpoint_frame_and_strains(
-                &positions[e],
-                &positions[e + 1],
-                &rotations[e],
-                &rotations[e + 1],
-                reference,
-            );
-            let (strain, curvature) = (strain - reference.strain, curvature - reference.curvature);
+            let (strain, curvature) = model.rod.strain_changes(e, positions, rotations);
             let plastic = state.largest_plastic_strain(e, &strain, &curvature);
             let moment = state
                 .law(e, &strain, &curvature, 1.0)

@@ -108,15 +108,7 @@ pub fn element_strains(
             if !section.yields() {
                 return section.strain(forces);
             }
-            let reference = &model.rod.elements[e];
-            let (_, strain, curvature) = crate::rod::element::midpoint_frame_and_strains(
-                &positions[e],
-                &positions[e + 1],
-                &rotations[e],
-                &rotations[e + 1],
-                reference,
-            );
-            let (strain, curvature) = (strain - reference.strain, curvature - reference.curvature);
+            let (strain, curvature) = model.rod.strain_changes(e, positions, rotations);
             strain.x + 0.5 * section.outer_diameter * curvature.yz().norm()
         })
         .collect()
@@ -138,15 +130,7 @@ fn residual_curvatures(
             if !section.yields() {
                 return 0.0;
             }
-            let reference = &model.rod.elements[e];
-            let (_, _, curvature) = crate::rod::element::midpoint_frame_and_strains(
-                &positions[e],
-                &positions[e + 1],
-                &rotations[e],
-                &rotations[e + 1],
-                reference,
-            );
-            let curvature = curvature - reference.curvature;
+            let (_, curvature) = model.rod.strain_changes(e, positions, rotations);
             let bending = section.rotational_stiffness;
             nalgebra::Vector2::new(
                 curvature.y - forces[4] / bending.y,

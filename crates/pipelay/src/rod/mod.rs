@@ -274,6 +274,25 @@ impl Rod {
         }
     }
 
+    /// Element `element`'s changes of strain and curvature from its reference, (Γ − Γ₀, K − K₀), in the
+    /// configuration `positions`, `rotations` (the objective element's, [`element::midpoint_frame_and_strains`]).
+    pub fn strain_changes(
+        &self,
+        element: usize,
+        positions: &[Vector3<f64>],
+        rotations: &[UnitQuaternion<f64>],
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let reference = &self.elements[element];
+        let (_, strain, curvature) = element::midpoint_frame_and_strains(
+            &positions[element],
+            &positions[element + 1],
+            &rotations[element],
+            &rotations[element + 1],
+            reference,
+        );
+        (strain - reference.strain, curvature - reference.curvature)
+    }
+
     /// The section of element `element`.
     pub fn section(&self, element: usize) -> &Section {
         &self.sections[self.segment_of[element]]

@@ -7,7 +7,6 @@
 //! state from the model's initial state (a proportional, monotonic path from it); a run commits each step.
 // Indexing cannot go out of bounds here: segment and element indices of the rod the state was built for.
 #![allow(clippy::indexing_slicing)]
-use crate::rod::element::midpoint_frame_and_strains;
 use crate::rod::element::SectionLaw;
 use crate::rod::fibre_section::FibreSection;
 use crate::rod::Rod;
@@ -144,20 +143,8 @@ impl PlasticState {
                 Some(u) => self.start[e].copy_from_slice(&self.end[u]),
                 None => self.start[e].iter_mut().for_each(|p| *p = 0.0),
             }
-            let reference = &rod.elements[e];
-            let (_, strain, curvature) = midpoint_frame_and_strains(
-                &positions[e],
-                &positions[e + 1],
-                &rotations[e],
-                &rotations[e + 1],
-                reference,
-            );
-            self.law(
-                e,
-                &(strain - reference.strain),
-                &(curvature - reference.curvature),
-                1.0,
-            );
+            let (strain, curvature) = rod.strain_changes(e, positions, rotations);
+            self.law(e, &strain, &curvature, 1.0);
             upstream = Some(e);
         }
     }
@@ -214,13 +201,7 @@ mod tests {
         let mut state = PlasticState::new(&rod).unwrap();
         state.march(&rod, &positions, &rotations, 0);
         state.commit();
-        let (_, strain, curvature) = midpoint_frame_and_strains(
-            &positions[15],
-            &positions[16],
-            &rotations[15],
-            &rotations[16],
-            &rod.elements[15],
-        );
+        let (strain, curvature) = rod.strain_changes(15, &positions, &rotations);
         let moment = state.law(15, &strain, &curvature, 1.0).unwrap().moment;
         let residual = (curvature.y - moment.y / (e * inertia)).abs();
         let beta = (1.0 / 1.8f64).asin();
