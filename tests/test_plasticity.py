@@ -307,3 +307,22 @@ def test_reeling_leaves_the_closed_form_residual_curvature_and_the_straightener_
         f"accumulated plastic strain {straight['accumulated_plastic_strain']:.6e}, the fibre's {accumulated:.6e}"
     )
     assert straight["accumulated_plastic_strain"] == pytest.approx(accumulated, rel=1e-9)
+
+
+def test_the_reel_lay_example_prints_the_straightener_that_leaves_the_pipe_straight(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """`examples/reel_lay.py` runs, prints the designed straightener's curvature (the one
+    `pl.design_straightener` gives) and a straightened residual curvature below 1e-9 1/m, and writes its figure."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).parent.parent / "examples" / "reel_lay.py"
+    out = subprocess.run(
+        [sys.executable, str(script), "--out", str(tmp_path)], capture_output=True, text=True, check=True
+    ).stdout
+    section = pl.Section.pipe(0.4064, 0.0206, grade="X65", material=pl.Material.grade("X65"))
+    straightener = pl.design_straightener(section, 8.0, 9.0)
+    assert f"straightener curvature              {straightener.curvature:12.4e} 1/m" in out
+    line = next(row for row in out.splitlines() if row.startswith("residual curvature, straightened"))
+    assert abs(float(line.split()[3])) < 1e-9
+    assert (tmp_path / "reel_lay.png").stat().st_size > 10_000
