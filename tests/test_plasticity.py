@@ -176,6 +176,12 @@ def test_a_run_bending_the_wall_back_and_forth_books_its_dissipation_exactly(tmp
     cycle = results.dissipated[-1] - np.interp(20.0, time, results.dissipated)
     print(f"loop area {area:.6e} J, dissipated over the cycle {cycle:.6e} J")
     assert cycle > 0.0 and area == pytest.approx(cycle, rel=1e-2)
+    # All of it plastic: no drag, no damping; the energy dict carries it as plastic_dissipation.
+    assert np.array_equal(results.energy["plastic_dissipation"], results.dissipated)
+    _cycled()[0].run(40.0, progress=False, output=tmp_path / "cycled.nc")
+    assert np.allclose(
+        pl.load(tmp_path / "cycled.nc").energy["plastic_dissipation"], results.dissipated, rtol=0, atol=1e-9
+    )
     part, _ = _cycled()
     part.run(25.0, progress=False)
     path = part.checkpoint(tmp_path / "part.npz")

@@ -202,7 +202,8 @@ impl Results {
         (!self.history.laid_length.is_empty())
             .then(|| PyArray1::from_slice(py, &self.history.laid_length))
     }
-    /// Energy parts (T,) each (J): keys as State.energy().
+    /// Energy parts (T,) each (J): keys as State.energy(), and plastic_dissipation: the energy the yielding
+    /// walls dissipated since the run's start (part of `dissipated`, not of the total).
     #[getter]
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let h = &self.history;
@@ -222,6 +223,10 @@ impl Results {
         dict.set_item("seabed", PyArray1::from_slice(py, &h.seabed))?;
         dict.set_item("rollers", PyArray1::from_slice(py, &h.rollers))?;
         dict.set_item("stinger", PyArray1::from_slice(py, &h.stinger))?;
+        dict.set_item(
+            "plastic_dissipation",
+            PyArray1::from_slice(py, &h.plastic_dissipation),
+        )?;
         dict.set_item("total", PyArray1::from_slice(py, &total))?;
         Ok(dict)
     }
@@ -539,6 +544,11 @@ impl Results {
         h.pay_out_energy = optional("pay_out_energy")?;
         if h.pay_out_energy.is_empty() {
             h.pay_out_energy = vec![0.0; h.time.len()];
+        }
+        // Files written before yielding walls existed have none: nothing yielded.
+        h.plastic_dissipation = optional("plastic_dissipation")?;
+        if h.plastic_dissipation.is_empty() {
+            h.plastic_dissipation = vec![0.0; h.time.len()];
         }
         h.seabed = optional("seabed_energy")?;
         if h.seabed.is_empty() {

@@ -437,8 +437,9 @@ impl Simulation {
                 ledger.supplied_work(),
                 ledger.dissipated(),
                 ledger.pay_out_energy(),
+                ledger.plastic_dissipated(),
             ],
-            3,
+            4,
         )?;
         if let Some(stages) = self.integrator.stages() {
             rows("stage_starts", stages.starts.clone(), 1)?;
@@ -843,13 +844,15 @@ impl Simulation {
             [supplied, dissipated, pay_out] => simulation
                 .integrator
                 .restore_ledger(Ledger::new(supplied, dissipated, pay_out)),
-            _ => {
-                return Err(input(
-                    "ledger",
-                    format!("{} values", ledger.len()),
-                    "must hold the supplied work, the dissipation and the pay-out energy",
-                ))
-            }
+            [supplied, dissipated, pay_out, plastic] => simulation.integrator.restore_ledger(
+                Ledger::new(supplied, dissipated, pay_out).with_plastic_dissipated(plastic),
+            ),
+            _ => return Err(input(
+                "ledger",
+                format!("{} values", ledger.len()),
+                "must hold the supplied work, the dissipation, the pay-out energy and the plastic \
+                     dissipation",
+            )),
         }
         Ok(simulation)
     }

@@ -138,6 +138,11 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     ),
     "supplied_work": (("time",), "J", "work supplied since the start of the run"),
     "dissipated": (("time",), "J", "energy dissipated since the start of the run"),
+    "plastic_dissipation": (
+        ("time",),
+        "J",
+        "energy the yielding walls dissipated since the start of the run (part of dissipated)",
+    ),
     "iterations": (("time",), "1", "Newton iterations of the step leading to the record"),
     "substeps": (
         ("time",),
@@ -182,6 +187,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "total_energy",
         "supplied_work",
         "dissipated",
+        "plastic_dissipation",
         "pay_out_energy",
         "length",
         "iterations",
@@ -263,6 +269,7 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         **{key: partial(part, key) for key in ENERGY_KEYS},
         "seabed_energy": lambda: part("seabed"),
         "roller_energy": lambda: part("rollers"),
+        "plastic_dissipation": lambda: part("plastic_dissipation"),
         "stinger_energy": lambda: part("stinger"),
         "total_energy": lambda: part("total"),
         "length": lambda: results.length,

@@ -76,7 +76,8 @@ SEGMENT_RECORDS: int | None = None
 # HDF5 chunks of about this size (bytes) along time.
 CHUNK_BYTES = 2**19
 
-_LEDGER = ("supplied_work", "dissipated", "pay_out_energy")  # the order of the checkpoint's "ledger" row
+# The order of the checkpoint's "ledger" row.
+_LEDGER = ("supplied_work", "dissipated", "pay_out_energy", "plastic_dissipation")
 _GROWING = ("node", "element")
 
 
@@ -253,7 +254,7 @@ def _deferred_interrupt() -> Iterator[None]:
 
 
 def _ledger(simulation: Simulation) -> np.ndarray:
-    """(supplied work, dissipated, pay-out energy) since the simulation started (J)."""
+    """(supplied work, dissipated, pay-out energy, plastic dissipation) since the simulation started (J)."""
     return np.asarray(simulation._checkpoint()["ledger"][0])  # type: ignore[attr-defined]
 
 

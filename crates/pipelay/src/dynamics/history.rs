@@ -46,6 +46,8 @@ pub struct Snapshot<'a> {
     pub length: f64,
     /// Energy pay-out brought in since the integrator started (J; part of `supplied_work`).
     pub pay_out_energy: f64,
+    /// Energy the yielding walls dissipated since the integrator started (J; part of `dissipated`).
+    pub plastic_dissipation: f64,
     /// Newton iterations of the step that led to this state.
     pub iterations: usize,
     /// The most substeps any step since the last record was taken in (1: none split).
@@ -144,10 +146,13 @@ pub struct History {
     pub length: Vec<f64>,
     /// Energy pay-out brought in since the start of the run (J; part of `supplied_work`).
     pub pay_out_energy: Vec<f64>,
+    /// Energy the yielding walls dissipated since the start of the run (J; part of `dissipated`).
+    pub plastic_dissipation: Vec<f64>,
     /// Ledger values at the start of the run, so that the record starts from zero.
     supplied_offset: f64,
     dissipated_offset: f64,
     pay_out_offset: f64,
+    plastic_offset: f64,
 }
 
 impl History {
@@ -158,6 +163,7 @@ impl History {
             supplied_offset: first.supplied_work,
             dissipated_offset: first.dissipated,
             pay_out_offset: first.pay_out_energy,
+            plastic_offset: first.plastic_dissipation,
             ..History::default()
         };
         history.record(first)?;
@@ -192,7 +198,7 @@ impl History {
         let seabed = !self.touchdown_arc_length.is_empty();
         let six = |series: &Vec<f64>| if series.is_empty() { 0 } else { 6 };
         let k = self.thrusters_count;
-        let fields: [(&str, usize, usize); 38] = [
+        let fields: [(&str, usize, usize); 39] = [
             (
                 "eta_low_frequency",
                 self.eta_low_frequency.len(),
@@ -213,6 +219,7 @@ impl History {
             ("segment", self.segment.len(), n.saturating_sub(1)),
             ("length", self.length.len(), 1),
             ("pay_out_energy", self.pay_out_energy.len(), 1),
+            ("plastic_dissipation", self.plastic_dissipation.len(), 1),
             ("seabed_energy", self.seabed.len(), 1),
             ("roller_energy", self.rollers.len(), 1),
             ("stinger_energy", self.stinger.len(), 1),
@@ -377,6 +384,8 @@ impl History {
         self.length.push(snapshot.length);
         self.pay_out_energy
             .push(snapshot.pay_out_energy - self.pay_out_offset);
+        self.plastic_dissipation
+            .push(snapshot.plastic_dissipation - self.plastic_offset);
         let reactions = snapshot.reactions;
         self.reaction_a.extend_from_slice(reactions[0].as_slice());
         self.reaction_b

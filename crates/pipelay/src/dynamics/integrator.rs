@@ -393,6 +393,7 @@ impl Integrator {
             dissipated: self.ledger.dissipated(),
             length: observables.length(),
             pay_out_energy: self.ledger.pay_out_energy(),
+            plastic_dissipation: self.ledger.plastic_dissipated(),
             iterations,
             substeps,
         }
@@ -904,6 +905,7 @@ impl Integrator {
         self.state.time += dt;
         self.ledger
             .book_step(self.work.supplied + support_work, self.work.dissipated);
+        self.ledger.book_plastic(self.work.plastic);
     }
 }
 

@@ -34,11 +34,12 @@ impl Energy {
     }
 }
 
-/// Work and dissipation of the last step's loads (J).
+/// Work and dissipation of the last step's loads (J), and the plastic part of the dissipation.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct StepWork {
     pub supplied: f64,
     pub dissipated: f64,
+    pub plastic: f64,
 }
 
 /// Work supplied and energy dissipated since the start of a run (J).
@@ -47,6 +48,7 @@ pub struct Ledger {
     supplied_work: f64,
     dissipated: f64,
     pay_out_energy: f64,
+    plastic_dissipated: f64,
 }
 
 impl Ledger {
@@ -57,7 +59,24 @@ impl Ledger {
             supplied_work,
             dissipated,
             pay_out_energy,
+            plastic_dissipated: 0.0,
         }
+    }
+
+    /// The ledger with `plastic` (J) of its dissipation the yielding walls' (restored from a checkpoint).
+    pub fn with_plastic_dissipated(mut self, plastic: f64) -> Self {
+        self.plastic_dissipated = plastic;
+        self
+    }
+
+    /// The energy the yielding walls dissipated since the start (J; counted in [`Self::dissipated`]).
+    pub fn plastic_dissipated(&self) -> f64 {
+        self.plastic_dissipated
+    }
+
+    /// Books the plastic part `plastic` (J) of a step's dissipation, already booked with the step.
+    pub fn book_plastic(&mut self, plastic: f64) {
+        self.plastic_dissipated += plastic;
     }
 
     /// Work supplied since the start (J): point loads, driven supports, the current's share of the drag, the

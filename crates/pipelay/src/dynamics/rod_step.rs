@@ -46,6 +46,8 @@ pub struct ElementWork {
     pub dissipated: f64,
     /// Work of the internal forces F·Δ (for the element that grows with pay-out).
     pub internal: f64,
+    /// The plastic part of `dissipated`: a yielding wall's.
+    pub plastic: f64,
 }
 
 /// A segment's section's and the sea's constants its elements use.
@@ -284,6 +286,7 @@ impl RodStep<'_> {
         let mut work = ElementWork {
             internal: step.forces.dot(&increments),
             dissipated: plastic_dissipated,
+            plastic: plastic_dissipated,
             ..ElementWork::default()
         };
         let mut forces = step.forces;

@@ -152,6 +152,7 @@ impl Integrator {
         for element in &self.element_work {
             work.supplied += element.supplied;
             work.dissipated += element.dissipated;
+            work.plastic += element.plastic;
         }
         work.dissipated += self.node_dissipation.iter().sum::<f64>();
         if let Some(growth) = self.growth.as_mut() {
