@@ -11,6 +11,7 @@ Imports of pipelay: the package (`pl.InputError`), `pipelay.scenario.values`, `p
 from __future__ import annotations
 
 import os
+import re
 import typing
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -105,7 +106,17 @@ def _locate(loc: tuple[Any, ...]) -> _Place:
 
 # pydantic's errors as messages.
 
-_EMPTY_KEY = '""'
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
+
+
+def _shown(key: str) -> str:
+    """A key as a message shows it: bare, or quoted as a TOML basic string (an empty key, or one with a dot, a
+    colon or a space, would otherwise read as part of the path)."""
+    if _BARE_KEY.fullmatch(key):
+        return key
+    return '"' + key.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
 _RANK = {"extra_forbidden": 0, "missing": 1, "union_tag_not_found": 1}
 """Which error a message is about: an unknown key first, then a missing one (a misspelt key is both)."""
 
@@ -126,7 +137,7 @@ def _message(error: ErrorDetails) -> str:
     if kind == RULE:
         return f"{join(place.path, context['key'])}: {context['message']}"
     if place.unknown is not None:
-        return f"{join(place.path, place.unknown or _EMPTY_KEY)}: {_unknown(place, value)}"
+        return f"{join(place.path, _shown(place.unknown))}: {_unknown(place, value)}"
     if place.values:
         return f"{place.path}: {_refuse(place, kind, value)}"
     if kind in ("union_tag_invalid", "union_tag_not_found"):
