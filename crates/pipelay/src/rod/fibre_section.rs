@@ -14,8 +14,8 @@
 // Indexing cannot go out of bounds here: fibre and state indices of the section's own lists.
 #![allow(clippy::indexing_slicing)]
 use crate::error::{positive, Error, Result};
-use crate::rod::dynamic_element::StepLaw;
-use crate::rod::element::SectionLaw;
+use crate::rod::dynamic_element::{elastic_step_law, StepLaw, StepStrains};
+use crate::rod::element::{elastic_law, SectionLaw};
 use crate::rod::material::Material;
 use nalgebra::{Matrix3, Matrix6, Vector3};
 
@@ -98,10 +98,26 @@ impl FibreSection {
         })
     }
 
+    /// The rest of the section beside the wall's axial force and bending, elastic: C_T = diag(EA_extra, GA₂,
+    /// GA₃), C_R = diag(GJ, EI_extra, EI_extra) (the coatings' axial and bending stiffness, shear, torsion).
+    fn rest(&self) -> (Matrix3<f64>, Matrix3<f64>) {
+        (
+            Matrix3::from_diagonal(&Vector3::new(
+                self.extra_axial,
+                self.shear[0],
+                self.shear[1],
+            )),
+            Matrix3::from_diagonal(&Vector3::new(
+                self.torsion,
+                self.extra_bending,
+                self.extra_bending,
+            )),
+        )
+    }
+
     /// The whole section's law at the changes of strain and curvature (Γ − Γ₀, K − K₀): the wall's axial force
-    /// and bending moments from its fibres (and the coatings' elastic share), shear and torsion elastic; from
-    /// the plastic state `plastic`, the state after it into `plastic_end`. Also the energy dissipated per unit
-    /// length.
+    /// and bending moments from its fibres, added to the rest's elastic law ([`Self::rest`]); from the plastic
+    /// state `plastic`, the state after it into `plastic_end`. Also the energy dissipated per unit length.
     pub fn law(
         &self,
         strain: &Vector3<f64>,
@@ -114,52 +130,26 @@ impl FibreSection {
             plastic,
             plastic_end,
         );
-        let force = Vector3::new(
-            wall.resultants.x + self.extra_axial * strain.x,
-            self.shear[0] * strain.y,
-            self.shear[1] * strain.z,
+        let (c_t, c_r) = self.rest();
+        let mut law = elastic_law(&c_t, &c_r, strain, curvature);
+        add_wall(
+            &mut law.force,
+            &mut law.moment,
+            &mut law.stiffness,
+            &wall.resultants,
+            &wall.tangent,
         );
-        let moment = Vector3::new(
-            self.torsion * curvature.x,
-            wall.resultants.y + self.extra_bending * curvature.y,
-            wall.resultants.z + self.extra_bending * curvature.z,
-        );
-        // (ε₀, κ₂, κ₃) are the 0th, 4th and 5th of (Γ, K).
-        let mut stiffness = Matrix6::zeros();
-        let places = [0, 4, 5];
-        for (i, &row) in places.iter().enumerate() {
-            for (j, &column) in places.iter().enumerate() {
-                stiffness[(row, column)] = wall.tangent[(i, j)];
-            }
-        }
-        stiffness[(0, 0)] += self.extra_axial;
-        stiffness[(1, 1)] = self.shear[0];
-        stiffness[(2, 2)] = self.shear[1];
-        stiffness[(3, 3)] = self.torsion;
-        stiffness[(4, 4)] += self.extra_bending;
-        stiffness[(5, 5)] += self.extra_bending;
-        let energy = wall.free_energy
-            + 0.5 * self.extra_axial * strain.x * strain.x
-            + 0.5 * (self.shear[0] * strain.y * strain.y + self.shear[1] * strain.z * strain.z)
-            + 0.5 * self.torsion * curvature.x * curvature.x
-            + 0.5 * self.extra_bending * (curvature.y * curvature.y + curvature.z * curvature.z);
-        (
-            SectionLaw {
-                force,
-                moment,
-                energy,
-                stiffness,
-            },
-            wall.dissipated,
-        )
+        law.energy += wall.free_energy;
+        (law, wall.dissipated)
     }
 
     /// A time step's section law from the changes of strain and curvature at the step's start (`start`:
     /// (Γ − Γ₀, K − K₀)) to its end (`end`), from the plastic state `plastic` (consistent with the start),
     /// the state after it into `plastic_end`: the wall's resultants averaged over each fibre's straight strain
-    /// path ([`Material::respond_over`]) and the rest's over the average strain, their derivative with respect
-    /// to the end's (Γ, K), the free energy per unit length at the end and the energy dissipated per unit
-    /// length. Its work over the step, N̄·ΔΓ + M̄·ΔK, is the free energy's change and the dissipation.
+    /// path ([`Material::respond_over`]) added to the rest's elastic step law over the average strain
+    /// ([`elastic_step_law`]), their derivative with respect to the end's (Γ, K), the free energy per unit
+    /// length at the end and the energy dissipated per unit length. Its work over the step, N̄·ΔΓ + M̄·ΔK, is
+    /// the free energy's change and the dissipation.
     pub fn step_law(
         &self,
         start: &(Vector3<f64>, Vector3<f64>),
@@ -188,43 +178,24 @@ impl FibreSection {
             free_energy += fibre.area * response.free_energy;
             dissipated += fibre.area * response.dissipated;
         }
-        let strain = 0.5 * (start.0 + end.0);
-        let curvature = 0.5 * (start.1 + end.1);
-        let force = Vector3::new(
-            resultants.x + self.extra_axial * strain.x,
-            self.shear[0] * strain.y,
-            self.shear[1] * strain.z,
+        let (c_t, c_r) = self.rest();
+        let average = (0.5 * (start.0 + end.0), 0.5 * (start.1 + end.1));
+        let strains = StepStrains {
+            start: *start,
+            end: *end,
+            algorithmic: average,
+        };
+        let mut law = elastic_step_law(&c_t, &c_r, &strains);
+        add_wall(
+            &mut law.force,
+            &mut law.moment,
+            &mut law.derivative,
+            &resultants,
+            &derivative,
         );
-        let moment = Vector3::new(
-            self.torsion * curvature.x,
-            resultants.y + self.extra_bending * curvature.y,
-            resultants.z + self.extra_bending * curvature.z,
-        );
-        let mut stiffness = Matrix6::zeros();
-        let places = [0, 4, 5];
-        for (i, &row) in places.iter().enumerate() {
-            for (j, &column) in places.iter().enumerate() {
-                stiffness[(row, column)] = derivative[(i, j)];
-            }
-        }
-        stiffness[(0, 0)] += 0.5 * self.extra_axial;
-        stiffness[(1, 1)] = 0.5 * self.shear[0];
-        stiffness[(2, 2)] = 0.5 * self.shear[1];
-        stiffness[(3, 3)] = 0.5 * self.torsion;
-        stiffness[(4, 4)] += 0.5 * self.extra_bending;
-        stiffness[(5, 5)] += 0.5 * self.extra_bending;
-        let (g, k) = end;
-        StepLaw {
-            force,
-            moment,
-            derivative: stiffness,
-            energy_end: free_energy
-                + 0.5 * self.extra_axial * g.x * g.x
-                + 0.5 * (self.shear[0] * g.y * g.y + self.shear[1] * g.z * g.z)
-                + 0.5 * self.torsion * k.x * k.x
-                + 0.5 * self.extra_bending * (k.y * k.y + k.z * k.z),
-            dissipated,
-        }
+        law.energy_end += free_energy;
+        law.dissipated = dissipated;
+        law
     }
 
     /// The section's material force and moment, and stored energy per unit length (J/m), at the changes of
@@ -248,22 +219,11 @@ impl FibreSection {
             resultants += fibre.area * stress * g;
             energy += fibre.area * free_energy;
         }
-        let force = Vector3::new(
-            resultants.x + self.extra_axial * strain.x,
-            self.shear[0] * strain.y,
-            self.shear[1] * strain.z,
-        );
-        let moment = Vector3::new(
-            self.torsion * curvature.x,
-            resultants.y + self.extra_bending * curvature.y,
-            resultants.z + self.extra_bending * curvature.z,
-        );
-        let energy = energy
-            + 0.5 * self.extra_axial * strain.x * strain.x
-            + 0.5 * (self.shear[0] * strain.y * strain.y + self.shear[1] * strain.z * strain.z)
-            + 0.5 * self.torsion * curvature.x * curvature.x
-            + 0.5 * self.extra_bending * (curvature.y * curvature.y + curvature.z * curvature.z);
-        (force, moment, energy)
+        let (c_t, c_r) = self.rest();
+        let rest = elastic_law(&c_t, &c_r, strain, curvature);
+        let force = rest.force + Vector3::new(resultants.x, 0.0, 0.0);
+        let moment = rest.moment + Vector3::new(0.0, resultants.y, resultants.z);
+        (force, moment, rest.energy + energy)
     }
 
     /// The section's stored energy per unit length (J/m) at the changes of strain and curvature and the plastic
@@ -360,6 +320,26 @@ impl FibreSection {
                 response.resultants.y
             })
             .collect()
+    }
+}
+
+/// Adds the wall's resultants (N, m₂, m₃) and their tangent by (ε₀, κ₂, κ₃) to a section law's force, moment
+/// and 6×6 stiffness: (ε₀, κ₂, κ₃) are the 0th, 4th and 5th of (Γ, K).
+fn add_wall(
+    force: &mut Vector3<f64>,
+    moment: &mut Vector3<f64>,
+    stiffness: &mut Matrix6<f64>,
+    resultants: &Vector3<f64>,
+    tangent: &Matrix3<f64>,
+) {
+    force.x += resultants.x;
+    moment.y += resultants.y;
+    moment.z += resultants.z;
+    let places = [0, 4, 5];
+    for (i, &row) in places.iter().enumerate() {
+        for (j, &column) in places.iter().enumerate() {
+            stiffness[(row, column)] += tangent[(i, j)];
+        }
     }
 }
 
