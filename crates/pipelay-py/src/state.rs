@@ -179,7 +179,7 @@ impl State {
             &response.section_forces,
             rollers,
             response.seabed.as_ref().map(|s| &s.touchdown),
-            None,
+            response.plastic.as_ref().map(|p| &p.residual_curvature[..]),
         );
         let lay = LayState::new(
             model,

@@ -10,7 +10,7 @@ use crate::dynamics::ledger::Energy;
 use crate::dynamics::nodal::NodalProperties;
 use crate::dynamics::state::DynamicState;
 use crate::model::Model;
-use crate::response::lay_summary::{lay_summary, LaySummary, RollerContacts};
+use crate::response::lay_summary::{lay_summary, residual_curvatures, LaySummary, RollerContacts};
 use crate::rod::plastic_state::PlasticState;
 use crate::vessel::coupling::{eta_of, low_frequency_pose, vessel_pose};
 use crate::vessel::rigid_body::kinetic_energy;
@@ -161,6 +161,15 @@ impl<'a> Observables<'a> {
     /// vessel.
     pub fn lay_summary(&self, section_forces: &[Vector6<f64>]) -> Option<LaySummary> {
         let state = &self.state;
+        let configuration = &state.configuration;
+        let residuals = self.plastic.map(|_| {
+            residual_curvatures(
+                self.model,
+                &configuration.positions,
+                &configuration.rotations,
+                section_forces,
+            )
+        });
         lay_summary(
             self.model,
             &state.configuration.positions,
@@ -173,7 +182,7 @@ impl<'a> Observables<'a> {
                 offsets: &r.offsets,
             }),
             self.touchdown().as_ref(),
-            Some(&state.plastic),
+            residuals.as_deref(),
         )
     }
 

@@ -11,7 +11,6 @@
 use crate::contact::roller_geometry::roller_gap;
 use crate::contact::touchdown::Touchdown;
 use crate::model::Model;
-use crate::response::configuration::plastic_field;
 use crate::vessel::lay::Roller;
 use nalgebra::{UnitQuaternion, Vector3, Vector6};
 
@@ -55,7 +54,8 @@ pub struct LaySummary {
     /// crosses the support's plane (normal to the stinger); NaN without rollers or where it does not cross.
     pub tip_offset: f64,
     /// The laid pipe's largest residual curvature (1/m): beyond the touchdown (beyond the inflection without a
-    /// seabed), from the pipe's history through the lay ([`plastic_field`]); NaN where no wall yields.
+    /// seabed), from the pipe's history through the lay
+    /// ([`crate::response::configuration::plastic_field`]); NaN where no wall yields.
     pub residual_curvature: f64,
     /// How many roller boxes the pipe is leaving: those with a contact at a roller's end (0: the pipe stays in
     /// its boxes; always 0 on lone rollers, which are endless).
@@ -115,8 +115,8 @@ pub fn element_strains(
 }
 
 /// Each element's residual curvature |κ − m/EI| (1/m) from the configuration's curvature and the section
-/// forces' moments (0 where the wall does not yield).
-fn residual_curvatures(
+/// forces' moments (0 where the wall does not yield): a run's, whose own plastic state made the forces.
+pub fn residual_curvatures(
     model: &Model,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
@@ -227,8 +227,9 @@ impl LaySummary {
 }
 
 /// The summary of a configuration of `model` (which must hold its end with a vessel; `None` otherwise):
-/// `rollers` as the roller contact reports them, `touchdown` from the seabed contact, `run_plastic` a run's
-/// plastic state (statics: None, the pipe's history marched through the lay).
+/// `rollers` as the roller contact reports them, `touchdown` from the seabed contact, `residual_curvatures`
+/// each element's where a wall yields (statics: [`crate::response::configuration::Response::plastic`]'s, from
+/// the pipe's history marched through the lay; a run: [`residual_curvatures`] of its section forces).
 #[allow(clippy::too_many_arguments)]
 pub fn lay_summary(
     model: &Model,
@@ -238,7 +239,7 @@ pub fn lay_summary(
     section_forces: &[Vector6<f64>],
     rollers: Option<RollerContacts>,
     touchdown: Option<&Touchdown>,
-    run_plastic: Option<&[Vec<f64>]>,
+    residual_curvatures: Option<&[f64]>,
 ) -> Option<LaySummary> {
     let attachment = model.vessel.as_ref()?;
     let node = attachment.node;
@@ -331,20 +332,7 @@ pub fn lay_summary(
     } else {
         inflection_arc
     };
-    // Statics: the pipe's history marched through the lay; a run: κ − m/EI of its section forces (its own
-    // plastic state made them).
-    let residuals = match run_plastic {
-        None => {
-            plastic_field(model, positions, rotations, None, None).map(|f| f.residual_curvature)
-        }
-        Some(_) => model
-            .rod
-            .sections
-            .iter()
-            .any(|s| s.yields())
-            .then(|| residual_curvatures(model, positions, rotations, section_forces)),
-    };
-    let residual_curvature = residuals.map_or(f64::NAN, |residuals| {
+    let residual_curvature = residual_curvatures.map_or(f64::NAN, |residuals| {
         residuals
             .iter()
             .enumerate()
