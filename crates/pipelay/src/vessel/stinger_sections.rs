@@ -278,20 +278,13 @@ impl StingerSections {
         }
         let evaluate = |u: &[f64; MAX_UNKNOWNS]| self.step_residual(step, water, &currents, u);
         let h = TANGENT_STEP * (1.0 + step.position.norm());
-        let before: [f64; MAX_UNKNOWNS] = std::array::from_fn(|i| {
-            if i < self.unknowns() {
-                residual[self.dof(i)]
-            } else {
-                0.0
-            }
-        });
-        let work = self.add(&evaluate, &u, h, residual, sink);
+        let evaluation = self.add(&evaluate, &u, h, residual, sink);
         if let Some(magnitude) = magnitude {
-            for (i, before) in before[..self.unknowns()].iter().enumerate() {
-                magnitude[self.dof(i)] += (residual[self.dof(i)] - before).abs();
+            for (i, term) in evaluation.residual[..self.unknowns()].iter().enumerate() {
+                magnitude[self.dof(i)] += term.abs();
             }
         }
-        work
+        evaluation.work
     }
 
     /// The step's residual at the unknowns `u` (see the module's docs).
@@ -387,7 +380,8 @@ impl StingerSections {
     }
 
     /// Adds `evaluate`'s residual at the unknowns `base` and, with `sink`, its tangent by central differences
-    /// (steps `h` on the position, [`ROTATION_STEP`] on the rotation and the angles).
+    /// (steps `h` on the position, [`ROTATION_STEP`] on the rotation and the angles); returns the evaluation
+    /// at `base`.
     fn add(
         &self,
         evaluate: &dyn Fn(&[f64; MAX_UNKNOWNS]) -> Evaluation,
@@ -395,7 +389,7 @@ impl StingerSections {
         h: f64,
         residual: &mut [f64],
         sink: Option<&mut dyn EntrySink>,
-    ) -> SectionWork {
+    ) -> Evaluation {
         let evaluation = evaluate(base);
         let unknowns = self.unknowns();
         for i in 0..unknowns {
@@ -416,7 +410,7 @@ impl StingerSections {
                 }
             }
         }
-        evaluation.work
+        evaluation
     }
 }
 
