@@ -309,11 +309,9 @@ impl Material {
 
     /// The backbone's stress (Pa) at `strain` from rest (monotonic loading).
     pub fn backbone(&self, strain: f64) -> f64 {
-        let mut plastic = vec![0.0; self.state_size()];
-        let mut end = plastic.clone();
-        let response = self.respond(strain, &plastic, &mut end);
-        plastic.copy_from_slice(&end);
-        response.stress
+        let rest = vec![0.0; self.state_size()];
+        let mut end = rest.clone();
+        self.respond(strain, &rest, &mut end).stress
     }
 }
 

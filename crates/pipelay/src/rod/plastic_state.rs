@@ -22,8 +22,6 @@ pub struct PlasticState {
     /// start from, and after the last one.
     pub start: Vec<Vec<f64>>,
     pub end: Vec<Vec<f64>>,
-    /// The energy each element dissipated per unit length in its last evaluation (J/m).
-    pub dissipated: Vec<f64>,
 }
 
 impl PlasticState {
@@ -54,7 +52,6 @@ impl PlasticState {
             sections,
             segment_of: rod.segment_of.clone(),
             end: start.clone(),
-            dissipated: vec![0.0; start.len()],
             start,
         })
     }
@@ -70,7 +67,7 @@ impl PlasticState {
     }
 
     /// Element `element`'s section law at the strain and curvature changes, from its start state; its end
-    /// state and dissipation are kept. `bending_scale` scales its bending (statics' continuation from a
+    /// state is kept. `bending_scale` scales its bending (statics' continuation from a
     /// cable). None for an element that does not yield.
     pub fn law(
         &mut self,
@@ -80,7 +77,7 @@ impl PlasticState {
         bending_scale: f64,
     ) -> Option<SectionLaw> {
         let fibres = self.sections[self.segment_of[element]].as_ref()?;
-        let (mut law, dissipated) = fibres.law(
+        let (mut law, _) = fibres.law(
             strain,
             curvature,
             &self.start[element],
@@ -94,7 +91,6 @@ impl PlasticState {
                 }
             }
         }
-        self.dissipated[element] = dissipated;
         Some(law)
     }
 
