@@ -256,18 +256,9 @@ impl FibreSection {
     /// The largest plastic strain |ε − σ/E| over the wall's fibres at the strains (ε₀, κ₂, κ₃) and the plastic
     /// state `plastic` (read, not advanced).
     pub fn largest_plastic_strain(&self, strains: &Vector3<f64>, plastic: &[f64]) -> f64 {
-        let size = self.material.state_size();
-        let mut scratch = vec![0.0; size];
-        self.fibres
+        self.fibre_plastic_strains(strains, plastic)
             .iter()
-            .enumerate()
-            .map(|(k, fibre)| {
-                let strain = Vector3::new(1.0, fibre.z, -fibre.y).dot(strains);
-                let response =
-                    self.material
-                        .respond(strain, &plastic[k * size..(k + 1) * size], &mut scratch);
-                (strain - response.stress / self.material.youngs_modulus).abs()
-            })
+            .map(|p| p.abs())
             .fold(0.0, f64::max)
     }
 
