@@ -641,10 +641,16 @@ class Straightener:
 
 @final
 class ReelLay:
-    """Reel-lay's bending: reel and aligner (centreline radii, m) and a straightener."""
+    """Reel-lay: reel and aligner (centreline radii, m), a straightener, and the ramp (its exit `position`,
+    body frame, m; `ramp_angle` from the vertical toward the bow, rad) the pipe hangs from."""
 
     def __new__(
-        cls, reel_radius: float, aligner_radius: float, straightener: Straightener | None = None
+        cls,
+        reel_radius: float,
+        aligner_radius: float,
+        straightener: Straightener | None = None,
+        position: _ArrayLike | None = None,
+        ramp_angle: float = 0.0,
     ) -> ReelLay: ...
     def history(self, section: Section, axial_strain: float = 0.0) -> dict[str, Any]:
         """A pipe section's curvature, moment, strain and stage along the reeling, its residual curvature and
@@ -655,6 +661,10 @@ class ReelLay:
     def aligner_radius(self) -> float: ...
     @property
     def straightener(self) -> Straightener: ...
+    @property
+    def position(self) -> tuple[float, float, float] | None: ...
+    @property
+    def ramp_angle(self) -> float: ...
 
 def design_straightener(
     section: Section, reel_radius: float, aligner_radius: float, axial_strain: float = 0.0
@@ -1300,7 +1310,7 @@ class Model:
         angle: _ArrayLike | None = None,
         controller: PID | None = None,
         environment: Sequence[Force] | None = None,
-        lay: SLay | JLay | None = None,
+        lay: SLay | JLay | ReelLay | None = None,
         winch: Winch | None = None,
         hull_loads: bool = False,
     ) -> None:
@@ -1348,6 +1358,9 @@ class Model:
     @property
     def vessel(self) -> Vessel | None:
         """The vessel attached to the model, if any."""
+    @property
+    def reel_lay(self) -> ReelLay | None:
+        """The reel-lay equipment the vessel holds the pipe with, None for other lay equipment or none."""
     @property
     def gravity(self) -> float:
         """Gravitational acceleration (m/s²)."""

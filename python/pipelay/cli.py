@@ -611,6 +611,21 @@ def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
     return found.state
 
 
+def _reeling_lines(reel_lay: pl.ReelLay, section: pl.Section) -> list[str]:
+    """The pipe's reeling, for a reel-lay: the straightener's setting, the largest strain on the reel, and
+    the residual curvature and accumulated plastic strain the pipe enters the water with."""
+    history = reel_lay.history(section)
+    residual = history["residual_curvature"]
+    radius = f"radius {1 / abs(residual):.4g} m" if abs(residual) > 1e-12 else "straight"
+    return [
+        f"reel-lay: straightener   {reel_lay.straightener.curvature:12.4e} 1/m (reel {reel_lay.reel_radius:g} m, "
+        f"aligner {reel_lay.aligner_radius:g} m)",
+        f"reel-lay: reeling strain {100 * np.max(history['strain']):12.4f} % (the wall's largest)",
+        f"reel-lay: entering with  {residual:12.4e} 1/m residual curvature ({radius}), "
+        f"{100 * history['accumulated_plastic_strain']:.4f} % accumulated plastic strain",
+    ]
+
+
 def _static(args: argparse.Namespace) -> int:
     scenario = load_scenario(args.scenario)
     print(f"scenario: {scenario.source.get('title', args.scenario)}")
@@ -621,6 +636,9 @@ def _static(args: argparse.Namespace) -> int:
             state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
     print(f"static equilibrium: {state.iterations} Newton iterations in {state.steps} load step(s)")
     print(_summary(state, scenario.checks))
+    reel_lay = scenario.model.reel_lay
+    if reel_lay is not None:
+        print("\n".join(_reeling_lines(reel_lay, state.section)))
     _print_suspects(suspects)
     if args.plots:
         path = Path(args.plots) / "tension_bending.png"

@@ -530,7 +530,7 @@ impl JLay {
     }
 }
 
-/// The lay equipment of a Python SLay or JLay object.
+/// The lay equipment of a Python SLay, JLay or ReelLay object.
 pub fn equipment(value: &Bound<'_, PyAny>) -> PyResult<LayEquipment> {
     if let Ok(s) = value.cast::<SLay>() {
         return Ok(s.get().0.clone());
@@ -538,9 +538,12 @@ pub fn equipment(value: &Bound<'_, PyAny>) -> PyResult<LayEquipment> {
     if let Ok(j) = value.cast::<JLay>() {
         return Ok(j.get().0.clone());
     }
+    if let Ok(reel) = value.cast::<crate::reeling::ReelLay>() {
+        return reel.get().equipment();
+    }
     Err(input(
         "lay",
         value.repr().map_or("?".into(), |r| r.to_string()),
-        "must be a pl.SLay or a pl.JLay",
+        "must be a pl.SLay, a pl.JLay or a pl.ReelLay",
     ))
 }

@@ -226,7 +226,8 @@ impl Model {
     /// heave, roll and pitch settle and surge, sway and yaw are held at eta by thrust (reported as
     /// `state.tau`), unless the controller is active at t = 0. Until the controller starts, simulations keep
     /// applying the holding thrust of their starting state. `environment`: pl.Force objects (body frame).
-    /// `lay`: a pl.SLay or pl.JLay holding the pipe at the tensioner or tower (then `angle` stays zero).
+    /// `lay`: a pl.SLay, pl.JLay or pl.ReelLay holding the pipe at the tensioner, tower or ramp (then `angle` stays
+    /// zero).
     /// `winch`: a pl.Winch, the A&R winch the line is handed over to (a stage with hold="winch"); a line whose
     /// top segment is a cable is held by it from the start.
     #[pyo3(signature = (end, vessel, *, eta, angle=None, controller=None, environment=None, lay=None, winch=None, hull_loads=false))]
@@ -324,6 +325,13 @@ impl Model {
     #[getter]
     fn vessel(&self) -> Option<Vessel> {
         self.0.vessel.as_ref().map(|a| Vessel(a.vessel.clone()))
+    }
+    /// The reel-lay equipment the vessel holds the pipe with (its reeling and ramp), None for other lay
+    /// equipment or none.
+    #[getter]
+    fn reel_lay(&self) -> Option<crate::reeling::ReelLay> {
+        let lay = self.0.vessel.as_ref()?.lay.as_ref()?;
+        crate::reeling::ReelLay::of(lay)
     }
     /// Gravitational acceleration (m/s²).
     #[getter]

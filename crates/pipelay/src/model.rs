@@ -3,6 +3,8 @@ use crate::environment::sea::Sea;
 use crate::environment::waves::WaveField;
 use crate::error::{finite, non_negative, Error, Result};
 use crate::rod::attachment::{Attachment, Place};
+use crate::rod::plastic_state::PlasticState;
+use crate::rod::reeling::{entry_state, reel};
 use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
 use crate::table::TimeFunction;
@@ -352,6 +354,35 @@ impl Model {
             pay_out: None,
             attachments: Vec::new(),
         })
+    }
+
+    /// The plastic state of the rod's yielding elements at rest (None if none yields): the unyielded pipe, or in
+    /// a reel-lay the state its reeling left the wall in, bent in the ramp's plane against the sagbend
+    /// ([`crate::rod::reeling::entry_state`]).
+    pub fn plastic_state(&self) -> Option<PlasticState> {
+        let mut state = PlasticState::new(&self.rod)?;
+        let reeled = self.vessel.as_ref().and_then(|attachment| {
+            let reeling = attachment.lay.as_ref()?.reeling?;
+            Some((reeling, attachment.node))
+        });
+        if let Some((reeling, hold)) = reeled {
+            let sense = if hold == 0 { 1.0 } else { -1.0 };
+            state.enter(|fibres| entry_state(fibres, &reeling, sense));
+        }
+        Some(state)
+    }
+
+    /// In a reel-lay, the residual curvature (1/m) the reeling leaves the first yielding segment's pipe with
+    /// ([`crate::rod::reeling::reel`]); None elsewhere.
+    pub fn reeled_residual_curvature(&self) -> Option<f64> {
+        let reeling = self.vessel.as_ref()?.lay.as_ref()?.reeling?;
+        let fibres = self
+            .rod
+            .sections
+            .iter()
+            .filter(|section| section.yields())
+            .find_map(|section| section.fibre_section()?.ok())?;
+        Some(reel(&fibres, &reeling, 0.0).residual_curvature)
     }
 
     /// The node of a rod end: "A" is node 0 (seabed end), "B" node n (top end).

@@ -56,6 +56,7 @@ __all__ = [
     "ModelVessel",
     "Observer",
     "PayOut",
+    "ReelLay",
     "RollerBox",
     "RollerStinger",
     "Route",
@@ -229,11 +230,36 @@ class JLay(Table):
     )
 
 
+class ReelLay(Table):
+    """`[vessel.lay]` of kind "reel-lay": `pl.ReelLay`, the pipe reeled (reel, aligner, straightener) and held
+    at the exit of a ramp; its wall enters the water in the state the reeling left it in."""
+
+    kind: Literal["reel-lay"]
+    position: Annotated[list[float], POINT] = Field(description="the ramp's exit [x, y, z]")
+    ramp_angle: Annotated[float | None, Number("rad")] = api(
+        "the ramp's lean from vertical toward the bow, in [0, π/2]", 0
+    )
+    reel_radius: Annotated[float, Number("m", gt=0)] = Field(
+        description="the radius of the pipe's centreline on the reel"
+    )
+    aligner_radius: Annotated[float, Number("m", gt=0)] = Field(
+        description="the radius of the pipe's centreline over the aligner"
+    )
+    straightener: Annotated[
+        float | str | None,
+        Either(Number("1/m"), Choice(("design",)), _is_text, 'a number (1/m) or "design"'),
+    ] = api(
+        "the straightener's curvature of the pipe (negative: against the reel's), or `\"design\"`: the setting "
+        "that leaves the pipe straight (`pl.design_straightener`)",
+        0,
+    )
+
+
 Lay = Annotated[
-    SLay | JLay,
+    SLay | JLay | ReelLay,
     Discriminator("kind"),
     About(
-        """`pl.SLay` or `pl.JLay`: the pipe held by lay equipment instead of at CO.
+        """`pl.SLay`, `pl.JLay` or `pl.ReelLay`: the pipe held by lay equipment instead of at CO.
 
         Positions in the vessel's body frame (forward, starboard, down; m from CO). Leave `vessel.angle` out."""
     ),

@@ -317,11 +317,19 @@ def _hold(model: pl.Model, supports: models.Supports) -> None:
                 model.drive(end, position, velocity=velocity)
 
 
-def _lay(lay: models.SLay | models.JLay) -> pl.SLay | pl.JLay:
-    """The lay equipment of `[vessel.lay]` (and `[vessel.lay.stinger]`)."""
+def _lay(lay: models.SLay | models.JLay | models.ReelLay, pipe: pl.Section) -> pl.SLay | pl.JLay | pl.ReelLay:
+    """The lay equipment of `[vessel.lay]` (and `[vessel.lay.stinger]`); a reel-lay's straightener set by
+    design for the `pipe` at the hold point."""
     if isinstance(lay, models.JLay):
         with _engine("vessel.lay", KEYS["vessel.lay"]):
             return pl.JLay(**lay.given())
+    if isinstance(lay, models.ReelLay):
+        with _engine("vessel.lay", KEYS["vessel.lay"]):
+            if lay.straightener == "design":
+                straightener = pl.design_straightener(pipe, lay.reel_radius, lay.aligner_radius)
+            else:
+                straightener = pl.Straightener(cast(float, lay.straightener or 0.0))
+            return pl.ReelLay(straightener=straightener, **lay.given("straightener"))
     stinger = None
     if lay.stinger is not None:
         with _engine("vessel.lay.stinger", KEYS["vessel.lay.stinger"], _STINGER_ARGUMENTS):
@@ -417,11 +425,17 @@ def _winch(winch: models.Winch) -> pl.Winch:
         return pl.Winch(winch.position, wire=wire, head=head, **winch.given("position", "wire", "head"))
 
 
+def _held_section(model: pl.Model, end: str) -> pl.Section:
+    """The cross-section of the line's element at `end` ("A" or "B"): the pipe the vessel holds."""
+    rod = model.rod
+    return rod.sections[int(rod.segment_of[0 if end == "A" else -1])]
+
+
 def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
     """Build the vessel, its lay equipment, winch, controller and environment; attach them (with the hull's
     loads if `hull_loads` says so)."""
     vessel = cast(models.ModelVessel | models.MatrixVessel, file.vessel)
-    lay = None if vessel.lay is None else _lay(vessel.lay)
+    lay = None if vessel.lay is None else _lay(vessel.lay, _held_section(model, vessel.end))
     winch = None if vessel.winch is None else _winch(vessel.winch)
     body = _vessel(vessel)
     controller = None if file.controller is None else _controller(file.controller)

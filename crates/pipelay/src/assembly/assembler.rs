@@ -148,7 +148,7 @@ impl Assembler {
             StingerSections::new(attachment, model.rod.node_count(), model.gravity)
         });
         Assembler {
-            plastic: PlasticState::new(&model.rod),
+            plastic: model.plastic_state(),
             rollers,
             sections,
             bending_scale: 1.0,

@@ -8,7 +8,6 @@ use crate::model::Model;
 use crate::response::configuration::Response;
 use crate::rod::cable::gauss_point as cable_gauss_point;
 use crate::rod::dynamic_element::GaussPoint;
-use crate::rod::plastic_state::PlasticState;
 use nalgebra::{Vector2, Vector3, Vector6};
 
 /// The state of the rod at one time.
@@ -63,11 +62,12 @@ pub struct VesselMotion {
     pub filtered_tension: f64,
 }
 
-/// The yielding elements' plastic state in `configuration` reached from the unyielded one along a monotonic
-/// path, as statics reach it; each element's empty where its wall does not yield.
+/// The yielding elements' plastic state in `configuration` reached along a monotonic path from the state at
+/// rest ([`Model::plastic_state`]: unyielded, or reeled), as statics reach it; each element's empty where its
+/// wall does not yield.
 fn plastic_at_rest(model: &Model, configuration: &Configuration) -> Vec<Vec<f64>> {
     let elements = model.rod.element_count();
-    let Some(mut state) = PlasticState::new(&model.rod) else {
+    let Some(mut state) = model.plastic_state() else {
         return vec![Vec::new(); elements];
     };
     for e in 0..elements {

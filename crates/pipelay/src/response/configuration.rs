@@ -94,7 +94,7 @@ pub fn plastic_field(
 ) -> Option<PlasticResponse> {
     let mut state = match state {
         Some(state) => state.clone(),
-        None => PlasticState::new(&model.rod)?,
+        None => model.plastic_state()?,
     };
     if let Some(run) = run {
         state.start = run.to_vec();

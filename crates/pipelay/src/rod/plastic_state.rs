@@ -17,6 +17,9 @@ use nalgebra::{UnitQuaternion, Vector3};
 pub struct PlasticState {
     /// Each segment's wall fibres, None where it does not yield.
     sections: Vec<Option<FibreSection>>,
+    /// Each segment's fibres' state where the pipe enters the line at the hold point: the unyielded pipe's
+    /// zeros, or the state a reel-lay's reeling left ([`PlasticState::enter`]); empty where it does not yield.
+    entry: Vec<Vec<f64>>,
     segment_of: Vec<usize>,
     /// Each element's fibres' plastic strains (empty for an element that does not yield): where evaluations
     /// start from, and after the last one.
@@ -39,21 +42,41 @@ impl PlasticState {
         if sections.iter().all(Option::is_none) {
             return None;
         }
-        let start: Vec<Vec<f64>> = rod
-            .segment_of
+        let entry: Vec<Vec<f64>> = sections
             .iter()
-            .map(|&segment| {
-                sections[segment]
+            .map(|fibres| {
+                fibres
                     .as_ref()
                     .map_or_else(Vec::new, |fibres| vec![0.0; fibres.state_size()])
             })
             .collect();
+        let start: Vec<Vec<f64>> = rod
+            .segment_of
+            .iter()
+            .map(|&segment| entry[segment].clone())
+            .collect();
         Some(PlasticState {
             sections,
+            entry,
             segment_of: rod.segment_of.clone(),
             end: start.clone(),
             start,
         })
+    }
+
+    /// Makes the pipe enter the line in the state `entry` gives each yielding segment's fibres (a reel-lay's
+    /// reeling, [`crate::rod::reeling::entry_state`]): the entry of the steady lay's history ([`Self::march`])
+    /// and every element's state from rest.
+    pub fn enter(&mut self, entry: impl Fn(&FibreSection) -> Vec<f64>) {
+        for (state, fibres) in self.entry.iter_mut().zip(&self.sections) {
+            if let Some(fibres) = fibres {
+                *state = entry(fibres);
+            }
+        }
+        for (e, start) in self.start.iter_mut().enumerate() {
+            start.clone_from(&self.entry[self.segment_of[e]]);
+        }
+        self.end.clone_from(&self.start);
     }
 
     /// Element `element`'s wall fibres, if it yields.
@@ -114,8 +137,8 @@ impl PlasticState {
 
     /// The steady lay's history: every material point of the pipe has come from the hold point at node
     /// `hold` (an end) through the configuration (`positions`, `rotations`), so each element's fibres start from
-    /// the state its upstream neighbour (toward the hold) ended with, the first from the unyielded pipe, and end
-    /// with its own strains. Sets the starts and ends so.
+    /// the state its upstream neighbour (toward the hold) ended with, the first from the entry state (the
+    /// unyielded pipe, or the reeled one), and end with its own strains. Sets the starts and ends so.
     pub fn march(
         &mut self,
         rod: &Rod,
@@ -137,7 +160,7 @@ impl PlasticState {
             }
             match upstream.filter(|&u| self.end[u].len() == self.start[e].len()) {
                 Some(u) => self.start[e].copy_from_slice(&self.end[u]),
-                None => self.start[e].iter_mut().for_each(|p| *p = 0.0),
+                None => self.start[e].clone_from(&self.entry[self.segment_of[e]]),
             }
             let (strain, curvature) = rod.strain_changes(e, positions, rotations);
             self.law(e, &strain, &curvature, 1.0);

@@ -73,6 +73,25 @@ pub struct ReelingHistory {
 
 /// The history of `fibres` along `reeling`, at the axial strain `axial_strain` throughout.
 pub fn reel(fibres: &FibreSection, reeling: &Reeling, axial_strain: f64) -> ReelingHistory {
+    reel_about(fibres, reeling, axial_strain, 1.0)
+}
+
+/// The wall's fibres' plastic state of a pipe leaving a reel-lay ramp, the rod's curvature about its second
+/// axis being `sense` (±1) times the reeling's: the state [`reel`] leaves, released, at zero axial strain (the
+/// reel's back tension is small against EA). The aligner bends the pipe against the sagbend: seen from the
+/// ramp's exit, toward end B, the rod's κ₂ of the aligner is −1/R when the vessel holds end B.
+pub fn entry_state(fibres: &FibreSection, reeling: &Reeling, sense: f64) -> Vec<f64> {
+    reel_about(fibres, reeling, 0.0, sense).plastic
+}
+
+/// [`reel`] with the fibres bent about the section's second axis by `sense` (±1) times the reeling's
+/// curvature; the history's curvatures and moments are the reeling's.
+fn reel_about(
+    fibres: &FibreSection,
+    reeling: &Reeling,
+    axial_strain: f64,
+    sense: f64,
+) -> ReelingHistory {
     let mut plastic = vec![0.0; fibres.state_size()];
     let mut end = plastic.clone();
     let mut history = ReelingHistory {
@@ -89,7 +108,7 @@ pub fn reel(fibres: &FibreSection, reeling: &Reeling, axial_strain: f64) -> Reel
     let mut accumulated = vec![0.0; fibre_plastic.len()];
     let mut kappa = 0.0;
     let mut record = |kappa: f64, stage: usize, plastic: &mut Vec<f64>, end: &mut Vec<f64>| {
-        let strains = Vector3::new(axial_strain, kappa, 0.0);
+        let strains = Vector3::new(axial_strain, sense * kappa, 0.0);
         let response = fibres.respond(&strains, plastic, end);
         plastic.copy_from_slice(end);
         let now = fibres.fibre_plastic_strains(&strains, plastic);
@@ -98,7 +117,7 @@ pub fn reel(fibres: &FibreSection, reeling: &Reeling, axial_strain: f64) -> Reel
         }
         fibre_plastic = now;
         history.curvature.push(kappa);
-        history.moment.push(response.resultants.y);
+        history.moment.push(sense * response.resultants.y);
         history
             .strain
             .push(axial_strain + 0.5 * fibres.outer_diameter() * kappa.abs());
@@ -114,16 +133,14 @@ pub fn reel(fibres: &FibreSection, reeling: &Reeling, axial_strain: f64) -> Reel
     }
     // Release: Newton on the curvature for zero moment from the straightened state (elastic unloading).
     for _ in 0..50 {
-        let strains = Vector3::new(axial_strain, kappa, 0.0);
+        let strains = Vector3::new(axial_strain, sense * kappa, 0.0);
         let mut scratch = plastic.clone();
         let response = fibres.respond(&strains, &plastic, &mut scratch);
-        let stiffness = response.tangent[(1, 1)];
-        if response.resultants.y.abs() <= 1e-9 * stiffness.abs() * (1e-6 + kappa.abs())
-            || stiffness <= 0.0
-        {
+        let (moment, stiffness) = (sense * response.resultants.y, response.tangent[(1, 1)]);
+        if moment.abs() <= 1e-9 * stiffness.abs() * (1e-6 + kappa.abs()) || stiffness <= 0.0 {
             break;
         }
-        kappa -= response.resultants.y / stiffness;
+        kappa -= moment / stiffness;
     }
     record(kappa, 4, &mut plastic, &mut end);
     history.residual_curvature = kappa;

@@ -105,8 +105,9 @@ impl Attempts {
         self.outcomes.push((path.to_string(), outcome));
     }
 
-    /// The error to report when no path gave a physical state: each path's outcome, and what to change.
-    fn error(self) -> Error {
+    /// The error to report when no path gave a physical state: each path's outcome, and what to change (in a
+    /// reel-lay, the straightener too).
+    fn error(self, model: &Model) -> Error {
         if let (1, Some(failure)) = (self.outcomes.len(), self.failure) {
             return failure;
         }
@@ -115,14 +116,22 @@ impl Attempts {
             .iter()
             .map(|(path, outcome)| format!("{path} {outcome}"))
             .collect();
-        let (residual, advice) = match self.unphysical {
-            Some((unphysical, residual)) => (residual, unphysical.advice()),
+        let (residual, mut advice) = match self.unphysical {
+            Some((unphysical, residual)) => (residual, unphysical.advice().to_string()),
             None => (
                 f64::NAN,
                 "check that the line can hang between its supports (its length, the vessel's position, the \
-                 stinger), or give the reference path more load steps",
+                 stinger), or give the reference path more load steps"
+                    .to_string(),
             ),
         };
+        if let Some(kept) = model.reeled_residual_curvature() {
+            advice.push_str(&format!(
+                "; the reeled pipe leaves the straightener with a residual curvature of {kept:.3e} 1/m (a radius \
+                 of {:.0} m): set the straightener that leaves it straight (pl.design_straightener)",
+                1.0 / kept.abs()
+            ));
+        }
         Error::Convergence {
             context: "static solve".into(),
             reached: if self.unphysical.is_some() { 1.0 } else { 0.0 },
@@ -389,7 +398,7 @@ fn solve_on_paths(model: &Model, options: &StaticOptions) -> Result<StaticSoluti
             attempts.failure = Some(failure);
         }
     }
-    Err(attempts.error())
+    Err(attempts.error(model))
 }
 
 /// Statics along the path from the stress-free reference: the loads, then the supports' motion.

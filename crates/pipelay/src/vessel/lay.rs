@@ -8,6 +8,7 @@
 //! whose supports are lone rollers across it or roller boxes ([`crate::vessel::roller_box`], which builds on
 //! this module).
 use crate::error::{finite, positive, Error, Result};
+use crate::rod::reeling::Reeling;
 use crate::vessel::articulation::Articulation;
 pub use crate::vessel::stinger_arc::stinger_station;
 use nalgebra::{Matrix3, Vector3};
@@ -93,6 +94,9 @@ pub struct LayEquipment {
     pub roller_stiffness: f64,
     /// The stinger's hinged sections, if it is articulated.
     pub articulation: Option<Articulation>,
+    /// A reel-lay's reeling (reel, aligner, straightener) the pipe went through before the ramp: the state
+    /// its wall enters the line in ([`crate::rod::reeling::entry_state`]).
+    pub reeling: Option<Reeling>,
 }
 
 /// Checks a stinger arc of `radius` and `length` (at most half a circle) from `origin` at the slope `angle`,
@@ -227,6 +231,19 @@ pub fn rollers_at(
         .collect()
 }
 
+/// Checks a tower's or a ramp's lean `angle` (rad, from the vertical toward the bow), named `name`.
+pub fn check_lean(name: &str, angle: f64) -> Result<()> {
+    finite(name, &[angle])?;
+    if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&angle) {
+        return Err(Error::input(
+            name,
+            angle,
+            "must be between 0 (vertical) and π/2 rad (horizontal)",
+        ));
+    }
+    Ok(())
+}
+
 /// Puts each of `rollers` on the section of `articulation` that carries its station.
 pub fn assign_sections(articulation: &Articulation, rollers: &mut [Roller]) {
     for roller in rollers {
@@ -246,6 +263,7 @@ impl LayEquipment {
             rollers,
             roller_stiffness: stiffness,
             articulation: None,
+            reeling: None,
         })
     }
 
@@ -253,14 +271,7 @@ impl LayEquipment {
     /// leans `angle` (rad) from the vertical toward the bow: t1 = (sin α, 0, −cos α) in b.
     pub fn j_lay(position: Vector3<f64>, angle: f64) -> Result<Self> {
         finite("position", position.as_slice())?;
-        finite("angle", &[angle])?;
-        if !(0.0..=std::f64::consts::FRAC_PI_2).contains(&angle) {
-            return Err(Error::input(
-                "angle",
-                angle,
-                "must be between 0 (vertical tower) and π/2 rad (horizontal)",
-            ));
-        }
+        check_lean("angle", angle)?;
         let pitch = std::f64::consts::FRAC_PI_2 - angle;
         // Rotation about b2 by `pitch` turns b1 into (cos, 0, −sin) = (sin α, 0, −cos α).
         let (s, c) = pitch.sin_cos();
@@ -271,6 +282,17 @@ impl LayEquipment {
             rollers: Vec::new(),
             roller_stiffness: ROLLER_STIFFNESS,
             articulation: None,
+            reeling: None,
+        })
+    }
+
+    /// Reel-lay: the pipe, reeled by `reeling`, held at the ramp's exit `position` along the ramp, which
+    /// leans `angle` (rad) from the vertical toward the bow, as a J-lay tower ([`Self::j_lay`]).
+    pub fn reel_lay(position: Vector3<f64>, angle: f64, reeling: Reeling) -> Result<Self> {
+        check_lean("ramp_angle", angle)?;
+        Ok(LayEquipment {
+            reeling: Some(reeling),
+            ..Self::j_lay(position, angle)?
         })
     }
 
