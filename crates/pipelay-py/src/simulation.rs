@@ -765,12 +765,11 @@ impl Simulation {
             },
         );
         // The yielding walls' plastic strains, each element's as many as its wall's state holds (checkpoints
-        // of elastic lines, and older ones, have none: the state is then the unyielded one).
-        let sizes: Vec<usize> = pipelay::rod::plastic_state::PlasticState::new(&model.rod)
-            .map_or_else(
-                || vec![0; nodes - 1],
-                |state| state.start.iter().map(Vec::len).collect(),
-            );
+        // of elastic lines, and older ones, have none: the state is then the one at rest).
+        let at_rest = model
+            .plastic_state()
+            .map_or_else(|| vec![Vec::new(); nodes - 1], |state| state.start);
+        let sizes: Vec<usize> = at_rest.iter().map(Vec::len).collect();
         let total: usize = sizes.iter().sum();
         let plastic = match optional_values(
             arrays,
@@ -789,7 +788,7 @@ impl Simulation {
                     })
                     .collect()
             }
-            None => sizes.iter().map(|&size| vec![0.0; size]).collect(),
+            None => at_rest,
         };
         let hinge_count = model.hinge_count();
         let hinges = optional_values(

@@ -164,12 +164,16 @@ pub struct Integrator {
 }
 
 /// An assembler for `state` at rest, with the reactions of its configuration (static ones for a static state,
-/// friction from the state's slips) and its seabed contact: what a run starts from.
+/// friction from the state's slips, yielding walls in the state's plastic state: an overlay evaluated at the
+/// strains its state was reached at does not flow) and its seabed contact: what a run starts from.
 fn assembler_at_rest(
     model: &Model,
     state: &DynamicState,
 ) -> (Assembler, Vec<Vector6<f64>>, Option<SeabedContact>) {
     let mut assembler = Assembler::new(model);
+    if let Some(plastic) = assembler.plastic.as_mut() {
+        plastic.start_from(&state.plastic);
+    }
     assembler
         .contact_start
         .clone_from(&state.configuration.positions);
@@ -196,17 +200,6 @@ impl Integrator {
     /// An integrator starting from `state`.
     pub fn new(model: Model, state: DynamicState, options: DynamicOptions) -> Result<Self> {
         positive("dt", options.time_step, "s")?;
-        if let (Some(segment), true) = (
-            model.rod.sections.iter().position(|s| s.yields()),
-            model.pay_out.is_some(),
-        ) {
-            return Err(Error::input(
-                "material",
-                format!("segment {segment}'s wall yields"),
-                "must be linear elastic in a run with pay-out: the plastic state of a mesh that grows is not \
-                 carried yet; give the section no material",
-            ));
-        }
         if state.plastic.len() != model.rod.element_count() {
             return Err(Error::input(
                 "state",
@@ -372,7 +365,7 @@ impl Integrator {
     pub fn snapshot(&self, iterations: usize, substeps: usize) -> Snapshot<'_> {
         let state = &self.state;
         let observables = self.observe();
-        let section_forces = observables.section_forces();
+        let (section_forces, energy) = observables.section_forces_and_energy();
         Snapshot {
             time: state.time,
             positions: &state.configuration.positions,
@@ -382,7 +375,7 @@ impl Integrator {
             section_forces,
             segment_of: &self.model.rod.segment_of,
             reactions: &self.reactions,
-            energy: observables.energy(),
+            energy,
             vessel: observables.vessel_values(),
             station: self.station_record(&observables),
             touchdown: observables.touchdown(),
@@ -478,19 +471,9 @@ impl Integrator {
 
     /// Starts stage `stage` from statics of the configuration as it is: the vessel held where it is (its surge,
     /// sway and yaw by the holding thrust), the line in equilibrium from Newton at full load from the current
-    /// configuration, all at rest. The change of energy is booked as work supplied: the analysis, not the
-    /// physics, put the system there.
+    /// configuration, yielding walls from the run's plastic state, all at rest. The change of energy is booked
+    /// as work supplied: the analysis, not the physics, put the system there.
     fn restart_from_statics(&mut self, stage: usize) -> Result<()> {
-        // Statics start every yielding wall from its unyielded state: a stage's statics would forget the
-        // plastic history of the run before it.
-        if self.assembler.plastic.is_some() {
-            return Err(Error::input(
-                "stages",
-                format!("stage {stage} restarts from statics"),
-                "must not restart from statics with a wall that yields: statics do not carry a run's plastic \
-                 history yet; run the stage without `statics`, or give the section no material",
-            ));
-        }
         let before = self.observe().energy().total();
         let time = self.state.time;
         if let Some(attachment) = self.model.vessel.as_mut() {
@@ -508,6 +491,7 @@ impl Integrator {
             &crate::statics::solve::StaticOptions::default(),
             self.state.configuration.clone(),
             &self.state.slips,
+            &self.state.plastic,
             time,
         )
         .map_err(|error| match error {
@@ -530,7 +514,12 @@ impl Integrator {
             .seabed
             .as_ref()
             .map(|seabed| seabed.slips.clone());
-        let mut state = DynamicState::at_rest(&self.model, solution.configuration, time)?;
+        let mut state = DynamicState::at_rest_from(
+            &self.model,
+            solution.configuration,
+            time,
+            Some(&self.state.plastic),
+        )?;
         if let Some(slips) = slips {
             state = state.with_slips(&slips);
         }
@@ -689,11 +678,18 @@ impl Integrator {
             }
         }
         let report = outcome?;
-        let elastic = self.growth.map_or(0.0, |growth| {
-            growth.strain_energy(&self.model, &self.state, &self.next_gauss)
+        let stored = self.growth.map_or(0.0, |growth| {
+            growth.strain_energy(
+                &self.model,
+                &self.state,
+                &self.next_gauss,
+                self.assembler.plastic.as_ref(),
+                &self.next_plastic,
+                self.element_work[growth.element].plastic,
+            )
         });
         self.commit(dt);
-        self.ledger.book_pay_out(grown + elastic);
+        self.ledger.book_pay_out(grown + stored);
         self.remesh();
         Ok(report)
     }
@@ -812,8 +808,7 @@ impl Integrator {
         self.magnitude = vec![0.0; self.model.dof_count()];
         self.correction = vec![0.0; self.assembler.dofs.free];
         self.next_gauss.clone_from(&self.state.gauss);
-        // A mesh that changes has no yielding wall (refused with pay-out): its elements' plastic states are
-        // empty.
+        // Elements appended at end B (an A&R wire) do not yield.
         self.state.plastic.resize(count - 1, Vec::new());
         self.next_plastic.clone_from(&self.state.plastic);
         self.element_work = vec![ElementWork::default(); count - 1];
@@ -847,7 +842,8 @@ impl Integrator {
             state.configuration.rotations[node] = cayley_quaternion(&theta) * rotation_n;
         }
         self.state.gauss.copy_from_slice(&self.next_gauss);
-        self.state.plastic.clone_from(&self.next_plastic);
+        // The step's end states become the state; the next evaluation overwrites every yielding element's end.
+        std::mem::swap(&mut self.state.plastic, &mut self.next_plastic);
         for (i, rate) in self.state.hinge_rates.iter_mut().enumerate() {
             let change = self.increments[self.model.hinge_dof(i)];
             self.state.configuration.hinge_angles[i] += change;

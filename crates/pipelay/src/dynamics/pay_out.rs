@@ -9,6 +9,7 @@ use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::rod::dynamic_element::GaussPoint;
 use crate::rod::element::ElementReference;
+use crate::rod::plastic_state::PlasticState;
 
 /// The element that grows with pay-out in the current step.
 #[derive(Debug, Clone, Copy)]
@@ -84,24 +85,30 @@ impl Growth {
         nodal.recompute(model, self.element + 1);
     }
 
-    /// After a converged step from `state` to the Gauss points `next_gauss`: the growing element's
-    /// strain-energy change less the work of its internal forces over the step, the energy its change of
-    /// reference length brought in (J).
+    /// After a converged step from `state` to the Gauss points `next_gauss` (and a yielding wall's plastic
+    /// states `next_plastic`, `plastic` its wall's fibres): the growing element's stored-energy change and the
+    /// dissipation `dissipated` it booked, less the work of its internal forces over the step, the energy its
+    /// change of reference length brought in (J).
     pub fn strain_energy(
         &self,
         model: &Model,
         state: &DynamicState,
         next_gauss: &[GaussPoint],
+        plastic: Option<&PlasticState>,
+        next_plastic: &[Vec<f64>],
+        dissipated: f64,
     ) -> f64 {
-        let section = model.rod.section(self.element);
-        let (c_t, c_r) = (section.c_t(), section.c_r());
-        let reference = model.rod.elements[self.element];
+        let e = self.element;
+        let section = model.rod.section(e);
+        let fibres = plastic.and_then(|p| p.fibres(e));
+        let reference = model.rod.elements[e];
         let start = ElementReference {
             length: self.length_start,
             ..reference
         };
-        next_gauss[self.element].energy(&reference, &c_t, &c_r)
-            - state.gauss[self.element].energy(&start, &c_t, &c_r)
+        next_gauss[e].stored_energy(&reference, section, fibres, &next_plastic[e])
+            - state.gauss[e].stored_energy(&start, section, fibres, &state.plastic[e])
+            + dissipated
             - self.internal_work
     }
 }

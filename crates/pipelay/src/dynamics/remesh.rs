@@ -161,16 +161,21 @@ fn split(
     state.slips.insert(b, slip);
     state.gauss[element] = first;
     state.gauss.insert(element + 1, second);
+    // Both halves keep the element's wall fibres' state too: at the same strains, the same stresses.
+    let plastic = state.plastic[element].clone();
+    state.plastic.insert(element + 1, plastic);
     model.rod.split_element(element, fraction);
     b
 }
 
 /// Joins elements `first` and `first + 1` by removing the node between them, the joined element of the
-/// segment of the one away from the end (`at_start`: the second); its Gauss point is that of its end nodes
-/// (the objective element's midpoint triad and strains).
+/// segment of the one away from the end (`at_start`: the second), and with its wall fibres' state; its Gauss
+/// point is that of its end nodes (the objective element's midpoint triad and strains).
 fn join(model: &mut Model, state: &mut DynamicState, first: usize, at_start: bool) {
     model.rod.join_elements(first, usize::from(at_start));
     let removed = first + 1;
+    let kept = state.plastic.remove(if at_start { removed } else { first });
+    state.plastic.insert(first, kept);
     let config = &mut state.configuration;
     config.positions.remove(removed);
     config.rotations.remove(removed);
@@ -185,7 +190,8 @@ fn join(model: &mut Model, state: &mut DynamicState, first: usize, at_start: boo
 /// After a split that inserted node `node` at the paying end: the two elements at it take the section of the
 /// material at their midpoints from the pay-out's feed (the material paid out most recently lies at the end).
 /// An element that changes section keeps its axial force (its unstretched length set for the new stiffness)
-/// and gets the Gauss point of its configuration; a node that becomes a cable's loses its spin.
+/// and gets the Gauss point of its configuration and the wall state its segment's pipe enters in (unyielded,
+/// or reeled); a node that becomes a cable's loses its spin.
 fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
     let Some(pay_out) = model.pay_out.as_ref() else {
         return;
@@ -227,8 +233,13 @@ fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
     }
     if changed {
         model.rod.unstrain_cables();
+        let entering = model.plastic_state();
         for element in [node - 1, node] {
             state.gauss[element] = element_gauss_point(model, &state.configuration, element);
+            let segment = model.rod.segment_of[element];
+            state.plastic[element] = entering
+                .as_ref()
+                .map_or_else(Vec::new, |s| s.entry(segment).to_vec());
         }
         for a in node - 1..=node + 1 {
             if model.is_rotationless(a) {

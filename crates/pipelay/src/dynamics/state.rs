@@ -2,6 +2,7 @@
 //! checkpoint stores.
 // Indexing cannot go out of bounds here: Node, element and DOF indices of the integrator's own mesh (rebuilt with it at every pay-out change).
 #![allow(clippy::indexing_slicing)]
+use crate::assembly::assembler::Assembler;
 use crate::assembly::configuration::Configuration;
 use crate::error::Result;
 use crate::model::Model;
@@ -62,14 +63,21 @@ pub struct VesselMotion {
     pub filtered_tension: f64,
 }
 
-/// The yielding elements' plastic state in `configuration` reached along a monotonic path from the state at
-/// rest ([`Model::plastic_state`]: unyielded, or reeled), as statics reach it; each element's empty where its
-/// wall does not yield.
-fn plastic_at_rest(model: &Model, configuration: &Configuration) -> Vec<Vec<f64>> {
+/// The yielding elements' plastic state in `configuration` reached along a monotonic path from `starts` (each
+/// element's fibres' state; None: the state at rest, [`Model::plastic_state`]: unyielded, or reeled), as statics
+/// reach it; each element's empty where its wall does not yield.
+fn plastic_from(
+    model: &Model,
+    configuration: &Configuration,
+    starts: Option<&[Vec<f64>]>,
+) -> Vec<Vec<f64>> {
     let elements = model.rod.element_count();
     let Some(mut state) = model.plastic_state() else {
         return vec![Vec::new(); elements];
     };
+    if let Some(starts) = starts {
+        state.start_from(starts);
+    }
     for e in 0..elements {
         if !state.yields(e) {
             continue;
@@ -93,6 +101,17 @@ impl DynamicState {
 
     /// A state at rest in `configuration` at time `time`; driven nodes move with their drive's velocity.
     pub fn at_rest(model: &Model, configuration: Configuration, time: f64) -> Result<Self> {
+        Self::at_rest_from(model, configuration, time, None)
+    }
+
+    /// [`Self::at_rest`], the yielding walls reached from the plastic states `plastic` (each element's fibres';
+    /// a run's, which a stage's statics start from) rather than from rest.
+    pub fn at_rest_from(
+        model: &Model,
+        configuration: Configuration,
+        time: f64,
+        plastic: Option<&[Vec<f64>]>,
+    ) -> Result<Self> {
         let gauss = (0..model.rod.element_count())
             .map(|e| element_gauss_point(model, &configuration, e))
             .collect();
@@ -101,7 +120,11 @@ impl DynamicState {
             velocities[support.node] = support.velocity(time)?;
         }
         let vessel = model.vessel.as_ref().map(|_| {
-            let response = Response::new(model, &configuration);
+            let mut assembler = Assembler::new(model);
+            if let (Some(state), Some(plastic)) = (assembler.plastic.as_mut(), plastic) {
+                state.start_from(plastic);
+            }
+            let response = Response::with_assembler(model, &configuration, &mut assembler);
             let top = response
                 .section_forces
                 .get(
@@ -132,7 +155,7 @@ impl DynamicState {
             slips: vec![Vector2::zeros(); model.rod.node_count()],
             body_angular_velocities: vec![Vector3::zeros(); model.rod.node_count()],
             accelerations: vec![Vector3::zeros(); model.rod.node_count()],
-            plastic: plastic_at_rest(model, &configuration),
+            plastic: plastic_from(model, &configuration, plastic),
             hinge_rates: vec![0.0; model.hinge_count()],
             section_velocities: vec![Vector3::zeros(); 2 * model.hinge_count()],
             configuration,

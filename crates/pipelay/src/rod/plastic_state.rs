@@ -79,6 +79,22 @@ impl PlasticState {
         self.end.clone_from(&self.start);
     }
 
+    /// Makes `starts` (each element's fibres' state, as a run keeps them) where evaluations start from; an
+    /// element whose state does not fit its fibres keeps its own.
+    pub fn start_from(&mut self, starts: &[Vec<f64>]) {
+        for (start, given) in self.start.iter_mut().zip(starts) {
+            if start.len() == given.len() {
+                start.copy_from_slice(given);
+            }
+        }
+        self.end.clone_from(&self.start);
+    }
+
+    /// The state segment `segment`'s pipe enters the line in (empty where it does not yield).
+    pub fn entry(&self, segment: usize) -> &[f64] {
+        &self.entry[segment]
+    }
+
     /// Element `element`'s wall fibres, if it yields.
     pub fn fibres(&self, element: usize) -> Option<&FibreSection> {
         self.sections[self.segment_of[element]].as_ref()

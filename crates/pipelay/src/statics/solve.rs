@@ -170,16 +170,21 @@ fn verdict(model: &Model, solution: &StaticSolution) -> Option<Unphysical> {
 
 /// Static equilibrium of `model` found from `start`, a configuration near it (the state a stage of a lay starts
 /// from statics of, [`crate::dynamics::stages`]): by Newton at full load, else by relaxation; supports and point
-/// loads at `time` (s), the seabed's friction measured from `start` with its `slips`. Fails
-/// (`Error::Convergence`) where both do, or where the state reached is not physical.
+/// loads at `time` (s), the seabed's friction measured from `start` with its `slips`, yielding walls from the
+/// plastic states `plastic` (each element's fibres', a run's). Fails (`Error::Convergence`) where both do, or
+/// where the state reached is not physical.
 pub fn solve_from(
     model: &Model,
     options: &StaticOptions,
     start: Configuration,
     slips: &[Vector2<f64>],
+    plastic: &[Vec<f64>],
     time: f64,
 ) -> Result<StaticSolution> {
     let mut assembler = static_assembler(model, time)?;
+    if let Some(state) = assembler.plastic.as_mut() {
+        state.start_from(plastic);
+    }
     assembler.contact_start.clone_from(&start.positions);
     assembler.contact_slips = slips.to_vec();
     let mut config = start.clone();
