@@ -79,7 +79,30 @@ impl<'a> Observables<'a> {
 
     /// Energy of the current state.
     pub fn energy(&self) -> Energy {
-        let rod = &self.model.rod;
+        self.energy_with_strain(self.strain_energy())
+    }
+
+    /// The rod's stored strain energy (J): a yielding wall's its fibres' free energy.
+    fn strain_energy(&self) -> f64 {
+        let (rod, state) = (&self.model.rod, &self.state);
+        state
+            .gauss
+            .iter()
+            .zip(&rod.elements)
+            .enumerate()
+            .map(|(e, (g, reference))| {
+                g.stored_energy(
+                    reference,
+                    rod.section(e),
+                    self.plastic.and_then(|p| p.fibres(e)),
+                    &state.plastic[e],
+                )
+            })
+            .sum()
+    }
+
+    /// Energy of the current state whose rod stores the strain energy `strain` (J).
+    fn energy_with_strain(&self, strain: f64) -> Energy {
         let state = &self.state;
         let kinetic = (0..self.model.rod.node_count())
             .map(|i| self.nodal.kinetic_energy(state, i))
@@ -87,25 +110,6 @@ impl<'a> Observables<'a> {
             + (0..self.model.rod.element_count())
                 .map(|e| self.nodal.element_kinetic_energy(state, e))
                 .sum::<f64>();
-        let strain = state
-            .gauss
-            .iter()
-            .zip(&rod.elements)
-            .enumerate()
-            .map(|(e, (g, reference))| {
-                // A yielding wall stores its fibres' free energy.
-                if let Some(fibres) = self.plastic.and_then(|p| p.fibres(e)) {
-                    return reference.length
-                        * fibres.energy(
-                            &(g.strain - reference.strain),
-                            &(g.curvature - reference.curvature),
-                            &state.plastic[e],
-                        );
-                }
-                let section = rod.section(e);
-                g.energy(reference, &section.c_t(), &section.c_r())
-            })
-            .sum();
         let (vessel_kinetic, vessel_potential) = match (&self.model.vessel, &state.vessel) {
             (Some(attachment), Some(motion)) => {
                 let (position, body) = self.vessel_pose(attachment);
@@ -239,8 +243,15 @@ impl<'a> Observables<'a> {
 
     /// Material force and moment [N; M] at the element Gauss points of the current state.
     pub fn section_forces(&self) -> Vec<Vector6<f64>> {
+        self.section_forces_and_energy().0
+    }
+
+    /// [`Self::section_forces`] and [`Self::energy`] at once: a yielding wall's fibres read once for both.
+    pub fn section_forces_and_energy(&self) -> (Vec<Vector6<f64>>, Energy) {
         let rod = &self.model.rod;
-        self.state
+        let mut strain_energy = 0.0;
+        let forces = self
+            .state
             .gauss
             .iter()
             .zip(&rod.elements)
@@ -253,20 +264,26 @@ impl<'a> Observables<'a> {
                 // A yielding wall's from its fibres' state.
                 let (n, m) = match self.plastic.and_then(|p| p.fibres(e)) {
                     Some(fibres) => {
-                        let (n, m, _) = fibres.resultants_and_energy(
+                        let (n, m, energy) = fibres.resultants_and_energy(
                             &strain,
                             &curvature,
                             &self.state.plastic[e],
                         );
+                        strain_energy += reference.length * energy;
                         (n, m)
                     }
-                    None => (
-                        self.state.material_force(self.model, e),
-                        rod.section(e).c_r() * curvature,
-                    ),
+                    None => {
+                        let section = rod.section(e);
+                        strain_energy += g.energy(reference, &section.c_t(), &section.c_r());
+                        (
+                            self.state.material_force(self.model, e),
+                            section.c_r() * curvature,
+                        )
+                    }
                 };
                 Vector6::new(n.x, n.y, n.z, m.x, m.y, m.z)
             })
-            .collect()
+            .collect();
+        (forces, self.energy_with_strain(strain_energy))
     }
 }

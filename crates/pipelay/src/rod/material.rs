@@ -23,6 +23,8 @@ use crate::error::{finite, positive, Error, Result};
 pub const RO_BREAKPOINTS: usize = 64;
 /// Relative round-off within which an element's trial stress counts as on its yield stress, not beyond.
 const YIELD_ROUND_OFF: f64 = 1e-12;
+/// Independent partial sums the overlay's passes keep (a vector register's width of them).
+const LANES: usize = 4;
 /// The largest strain a Ramberg–Osgood backbone is sampled to; beyond, its last slope holds.
 const RO_LAST_STRAIN: f64 = 0.05;
 
@@ -246,44 +248,89 @@ impl Material {
         plastic: &[f64],
         plastic_end: &mut [f64],
     ) -> PathResponse {
+        if let Some(response) = self.respond_over_elastically(start, end, plastic, plastic_end) {
+            return response;
+        }
         let change = end - start;
         let middle = 0.5 * (start + end);
-        let mut mean = self.hardening * middle;
-        let mut mean_tangent = 0.5 * self.hardening;
-        let mut stress = self.hardening * end;
-        let mut free_energy = 0.5 * self.hardening * end * end;
-        let mut dissipated = 0.0;
-        for (i, &(modulus, yield_strain)) in self.elements.iter().enumerate() {
+        // With no change the path is a point: a yielding element's mean is its stress (and its start was not
+        // consistent).
+        let inverse_change = if change != 0.0 { 1.0 / change } else { 0.0 };
+        // Each element's share, both ways computed and one taken, in four independent sums, so that the pass
+        // has no branches and vectorises.
+        let mut sums = [[0.0; LANES]; 5];
+        let mut add = |lane: usize,
+                       (modulus, yield_strain): (f64, f64),
+                       plastic_strain: f64,
+                       plastic_end: &mut f64| {
             let limit = modulus * yield_strain;
-            let trial = modulus * (end - plastic[i]);
-            if trial.abs() <= limit * (1.0 + YIELD_ROUND_OFF) {
-                mean += modulus * (middle - plastic[i]);
-                mean_tangent += 0.5 * modulus;
-                let element_stress = trial.clamp(-limit, limit);
-                stress += element_stress;
-                free_energy += 0.5 * element_stress * element_stress / modulus;
-                plastic_end[i] = plastic[i];
-                continue;
-            }
-            // Elastic from the start stress to s·y at ε* = ε_p + s y/E_i, then flowing to the end.
-            let sign = trial.signum();
-            let start_stress = (modulus * (start - plastic[i])).clamp(-limit, limit);
-            let reached = plastic[i] + sign * yield_strain;
+            let elastic_strain = end - plastic_strain;
+            let yields = elastic_strain.abs() > yield_strain * (1.0 + YIELD_ROUND_OFF);
+            // Yielding: elastic from the start stress to s·y at ε* = ε_p + s y/E_i, then flowing to the end.
+            let sign = 1.0f64.copysign(elastic_strain);
+            let start_stress = bound(modulus * (start - plastic_strain), limit);
+            let reached = plastic_strain + sign * yield_strain;
             let flow = end - reached;
             let path_work =
                 0.5 * (start_stress + sign * limit) * (reached - start) + sign * limit * flow;
-            let element_dissipated = limit * flow.abs();
-            if change != 0.0 {
-                mean += path_work / change;
-                mean_tangent += (sign * limit - path_work / change) / change;
+            let yielded_mean = if change != 0.0 {
+                path_work * inverse_change
             } else {
-                mean += sign * limit;
+                sign * limit
+            };
+            let clamped = bound(elastic_strain, yield_strain);
+            let share = if yields {
+                [
+                    yielded_mean,
+                    (sign * limit - yielded_mean) * inverse_change,
+                    sign * limit,
+                    0.5 * limit * yield_strain,
+                    limit * flow.abs(),
+                ]
+            } else {
+                [
+                    modulus * (middle - plastic_strain),
+                    0.5 * modulus,
+                    modulus * clamped,
+                    0.5 * modulus * clamped * clamped,
+                    0.0,
+                ]
+            };
+            for (sum, value) in sums.iter_mut().zip(share) {
+                sum[lane] += value;
             }
-            stress += sign * limit;
-            free_energy += 0.5 * limit * limit / modulus;
-            dissipated += element_dissipated;
-            plastic_end[i] = end - sign * yield_strain;
+            *plastic_end = if yields {
+                end - sign * yield_strain
+            } else {
+                plastic_strain
+            };
+        };
+        let (elements, plastic_chunks, end_chunks) = (
+            self.elements.chunks_exact(LANES),
+            plastic.chunks_exact(LANES),
+            plastic_end.chunks_exact_mut(LANES),
+        );
+        let rest = (elements.remainder(), plastic_chunks.remainder());
+        for ((elements, plastic), ends) in elements.zip(plastic_chunks).zip(end_chunks) {
+            for (lane, end) in ends.iter_mut().enumerate() {
+                add(lane, elements[lane], plastic[lane], end);
+            }
         }
+        let done = self.elements.len() - rest.0.len();
+        for ((&element, &plastic_strain), end) in rest
+            .0
+            .iter()
+            .zip(rest.1)
+            .zip(plastic_end[done..].iter_mut())
+        {
+            add(0, element, plastic_strain, end);
+        }
+        let [mean, mean_tangent, stress, free_energy, dissipated] =
+            sums.map(|lanes| lanes.iter().sum::<f64>());
+        let mean = mean + self.hardening * middle;
+        let mean_tangent = mean_tangent + 0.5 * self.hardening;
+        let stress = stress + self.hardening * end;
+        let free_energy = free_energy + 0.5 * self.hardening * end * end;
         PathResponse {
             mean,
             mean_tangent,
@@ -293,17 +340,92 @@ impl Material {
         }
     }
 
+    /// [`Self::respond_over`] where every element stays elastic over the path (the end within each element's
+    /// elastic range ε_p,i ± ε_i; the start is, being consistent with the state), in one pass without branches:
+    /// σ̄ = E ε̄ − Σ E_i ε_p,i at the path's middle ε̄, ∂σ̄/∂ε_end = E/2, ψ = ½ s_∞ ε² + Σ ½ E_i (ε − ε_p,i)².
+    /// None if an element yields.
+    fn respond_over_elastically(
+        &self,
+        start: f64,
+        end: f64,
+        plastic: &[f64],
+        plastic_end: &mut [f64],
+    ) -> Option<PathResponse> {
+        // Four independent sums, so that the pass vectorises (floating-point sums are not reordered).
+        let (mut excess, mut modulus_sum, mut plastic_sum, mut energy) = (
+            [f64::NEG_INFINITY; LANES],
+            [0.0; LANES],
+            [0.0; LANES],
+            [0.0; LANES],
+        );
+        let mut add = |lane: usize, (modulus, yield_strain): (f64, f64), plastic_strain: f64| {
+            let elastic_strain = end - plastic_strain;
+            excess[lane] =
+                excess[lane].max(elastic_strain.abs() - yield_strain * (1.0 + YIELD_ROUND_OFF));
+            modulus_sum[lane] += modulus;
+            plastic_sum[lane] += modulus * plastic_strain;
+            energy[lane] += modulus * elastic_strain * elastic_strain;
+        };
+        let (elements, plastic_chunks) = (
+            self.elements.chunks_exact(LANES),
+            plastic.chunks_exact(LANES),
+        );
+        let rest = elements.remainder().iter().zip(plastic_chunks.remainder());
+        for (elements, plastic) in elements.zip(plastic_chunks) {
+            for lane in 0..LANES {
+                add(lane, elements[lane], plastic[lane]);
+            }
+        }
+        for (&element, &plastic_strain) in rest {
+            add(0, element, plastic_strain);
+        }
+        let elastic = excess.iter().all(|&e| e <= 0.0);
+        let (modulus_sum, plastic_sum, energy): (f64, f64, f64) = (
+            modulus_sum.iter().sum(),
+            plastic_sum.iter().sum(),
+            energy.iter().sum(),
+        );
+        if !elastic {
+            return None;
+        }
+        plastic_end.copy_from_slice(plastic);
+        let modulus = self.hardening + modulus_sum;
+        Some(PathResponse {
+            mean: modulus * 0.5 * (start + end) - plastic_sum,
+            mean_tangent: 0.5 * modulus,
+            stress: modulus * end - plastic_sum,
+            free_energy: 0.5 * (self.hardening * end * end + energy),
+            dissipated: 0.0,
+        })
+    }
+
     /// The stress (Pa) and free energy (J/m³) at `strain` of a state `plastic` consistent with it (where a
     /// step left it): read, not advanced.
     pub fn stress_and_energy(&self, strain: f64, plastic: &[f64]) -> (f64, f64) {
         let mut stress = self.hardening * strain;
         let mut free_energy = 0.5 * self.hardening * strain * strain;
-        for (&(modulus, yield_strain), &plastic_strain) in self.elements.iter().zip(plastic) {
-            let limit = modulus * yield_strain;
-            let element_stress = (modulus * (strain - plastic_strain)).clamp(-limit, limit);
-            stress += element_stress;
-            free_energy += 0.5 * element_stress * element_stress / modulus;
+        // Four independent sums, so that the pass vectorises (floating-point sums are not reordered).
+        let (mut stresses, mut energies) = ([0.0; LANES], [0.0; LANES]);
+        let mut add = |lane: usize, (modulus, yield_strain): (f64, f64), plastic_strain: f64| {
+            let elastic_strain = bound(strain - plastic_strain, yield_strain);
+            stresses[lane] += modulus * elastic_strain;
+            energies[lane] += 0.5 * modulus * elastic_strain * elastic_strain;
+        };
+        let (elements, plastic_chunks) = (
+            self.elements.chunks_exact(LANES),
+            plastic.chunks_exact(LANES),
+        );
+        let rest = elements.remainder().iter().zip(plastic_chunks.remainder());
+        for (elements, plastic) in elements.zip(plastic_chunks) {
+            for lane in 0..LANES {
+                add(lane, elements[lane], plastic[lane]);
+            }
         }
+        for (&element, &plastic_strain) in rest {
+            add(0, element, plastic_strain);
+        }
+        stress += stresses.iter().sum::<f64>();
+        free_energy += energies.iter().sum::<f64>();
         (stress, free_energy)
     }
 
@@ -312,6 +434,17 @@ impl Material {
         let rest = vec![0.0; self.state_size()];
         let mut end = rest.clone();
         self.respond(strain, &rest, &mut end).stress
+    }
+}
+
+/// `value` within ±`limit` (`limit` ≥ 0): `clamp` without its check or NaN rules (comparisons a vector
+/// register's min and max do at once), so that the passes vectorise.
+fn bound(value: f64, limit: f64) -> f64 {
+    let above = if value < -limit { -limit } else { value };
+    if above > limit {
+        limit
+    } else {
+        above
     }
 }
 
