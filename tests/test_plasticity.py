@@ -448,3 +448,66 @@ def test_a_reel_lay_pays_out_reeled_pipe_and_restarts_from_statics_with_its_hist
     print(f"worst balance {np.abs(balance).max():.3e} J of {abs(energy[0]):.3e} J")
     assert np.abs(balance).max() < 1e-8 * abs(energy[0])
     assert results.energy["plastic_dissipation"][-1] > 0.0
+
+
+def test_a_deepwater_s_lay_whose_overbend_yields_reports_its_strain_and_residual_curvature() -> None:
+    """`examples/s_lay_deepwater.toml` (16-inch X65 in 1000 m of water over a 90 m stinger, n = 300): statics
+    reach a designed lay (the pipe leaves a box before the tip, clear of it) whose overbend strain is past the
+    steel's proportional limit and the elastic estimate N/EA + (D/2)|M|/EI; the laid pipe keeps a residual
+    curvature and the overbend's plastic strain."""
+    from pathlib import Path
+
+    from pipelay.scenario import load_scenario
+
+    example = Path(__file__).parent.parent / "examples" / "s_lay_deepwater.toml"
+    state = load_scenario(example).model.static()
+    lay = state.lay_summary()
+    forces = state.section_forces
+    e = int(np.argmax(state.strain))
+    d, t = 0.4064, 0.0206
+    ea = 207e9 * np.pi / 4 * (d**2 - (d - 2 * t) ** 2)
+    ei = 207e9 * np.pi / 64 * (d**4 - (d - 2 * t) ** 4)
+    elastic_estimate = forces[e, 0] / ea + 0.5 * d * np.hypot(forces[e, 4], forces[e, 5]) / ei
+    print(
+        f"departure {np.degrees(lay['departure_angle']):.2f}°, lift-off box {lay['liftoff_roller'] + 1}, tip "
+        f"clearance {lay['tip_clearance']:.3f} m; overbend strain {lay['overbend_strain']:.5f} (elastic "
+        f"estimate {elastic_estimate:.5f}); residual curvature {lay['residual_curvature']:.4e} 1/m"
+    )
+    assert 50.0 < np.degrees(lay["departure_angle"]) < 60.0
+    assert lay["liftoff_roller"] + 1 < 16 and lay["tip_clearance"] > 0.3
+    assert lay["overbend_strain"] == pytest.approx(state.strain[e], rel=1e-12)
+    assert lay["overbend_strain"] > 1.05 * elastic_estimate > 0.0
+    assert lay["residual_curvature"] > 1e-3
+    assert state.plastic_strain[e] > 1e-4
+
+
+def test_at_a_hand_over_the_wire_takes_the_yielding_walls_axial_force() -> None:
+    """`examples/reel_lay.toml` (designed straightener) with an A&R winch: after 10 s of pay-out the winch takes
+    the pipe over, and its wire takes on the top element's axial force as its reeled, yielding wall carries it
+    (the fibres' resultant, the one the records show), exactly."""
+    import tomllib
+    from pathlib import Path
+
+    from pipelay.scenario import parse_scenario
+
+    example = Path(__file__).parent.parent / "examples" / "reel_lay.toml"
+    data = tomllib.loads(example.read_text())
+    data["vessel"]["winch"] = {
+        "position": [-30.0 + 10.0 * np.sin(0.2), 0.0, -5.0 - 10.0 * np.cos(0.2)],  # 10 m up the ramp
+        "tension_limit": 2e6,
+        "element_length": 10.0,
+        "wire": {"diameter": 0.08, "mass": 28.0, "EA": 5.5e8},
+    }
+    data["stages"] = [
+        {"name": "lay", "duration": 10.0, "pay_out": 0.5},
+        {"name": "hand-over", "duration": 4.0, "hold": "winch", "winch_speed": 0.0},
+    ]
+    del data["solver"]["t_end"]
+    scenario = parse_scenario(data, "reel-lay hand-over")
+    simulation = scenario.model.simulation(scenario.model.static(), dt=0.2, stages=scenario.stages)
+    results = simulation.run(progress=False)
+    k = int(np.flatnonzero(results.stage == 0)[-1])
+    top = int(np.flatnonzero(np.isfinite(results.section_forces[k, :, 0]))[-1])
+    tensioner = results.section_forces[k, top, 0]
+    print(f"hand-over at {tensioner / 1e3:.3f} kN, the wire takes {simulation.hand_over_tension / 1e3:.3f} kN")
+    assert simulation.hand_over_tension == pytest.approx(tensioner, rel=1e-12)

@@ -49,7 +49,7 @@ pub fn hand_over(
     let offset = body_rotation(attachment, &rotation) * (winch.position - attachment.hang_off());
     let wire = winch.wire;
     // The axial force at the hold point: that of the top element.
-    let force = state.material_force(model, node - 1).x;
+    let force = state.axial_force(model, node - 1);
     let chord = offset.norm();
     let length =
         chord / (1.0 + force.max(0.0) / model.rod.sections[wire].translational_stiffness.x);

@@ -221,7 +221,7 @@ fn take_fed_segments(model: &mut Model, state: &mut DynamicState, node: usize) {
         // The element's axial force under its old section, which the new one is to carry on: its unstretched
         // length becomes l/(1 + N/EA) of the new section's EA (a joint passes the tensioner under tension,
         // not by a jump of the strain's stiffness), and its Gauss point that of the configuration.
-        let force = state.material_force(model, element).x;
+        let force = state.axial_force(model, element);
         model.rod.segment_of[element] = segment;
         changed = true;
         let positions = &state.configuration.positions;

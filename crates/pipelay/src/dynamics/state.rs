@@ -99,6 +99,31 @@ impl DynamicState {
             * (self.gauss[element].strain - model.rod.elements[element].strain)
     }
 
+    /// Element `element`'s axial force (N): a yielding wall's from its fibres' state, else the first component
+    /// of [`Self::material_force`].
+    pub fn axial_force(&self, model: &Model, element: usize) -> f64 {
+        let section = model.rod.section(element);
+        let fibres = section
+            .yields()
+            .then(|| section.fibre_section()?.ok())
+            .flatten()
+            .filter(|fibres| fibres.state_size() == self.plastic[element].len());
+        match fibres {
+            Some(fibres) => {
+                let (gauss, reference) = (&self.gauss[element], &model.rod.elements[element]);
+                fibres
+                    .resultants_and_energy(
+                        &(gauss.strain - reference.strain),
+                        &(gauss.curvature - reference.curvature),
+                        &self.plastic[element],
+                    )
+                    .0
+                    .x
+            }
+            None => self.material_force(model, element).x,
+        }
+    }
+
     /// A state at rest in `configuration` at time `time`; driven nodes move with their drive's velocity.
     pub fn at_rest(model: &Model, configuration: Configuration, time: f64) -> Result<Self> {
         Self::at_rest_from(model, configuration, time, None)
