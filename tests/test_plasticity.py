@@ -352,13 +352,14 @@ def _reel_lay_section() -> pl.Section:
     return pl.Section.pipe(0.4064, 0.0206, contents_density=0.0, material=pl.Material.grade("X65"))
 
 
-def test_a_reel_lay_vessel_lays_the_pipe_in_the_state_its_reeling_left() -> None:
+def test_a_reel_lay_vessel_lays_the_pipe_in_the_state_its_reeling_left(tmp_path) -> None:  # type: ignore[no-untyped-def]
     """`examples/reel_lay.toml` (16-inch X65 from an 8 m reel over a 9 m aligner, hung from a ramp 0.2 rad
     from the vertical in 500 m of water): with the straightener at 99 % of its design the laid pipe keeps the
     residual curvature the reeling leaves (`ReelLay.history`), within 2 % (the sagbend bends it back within
     its elastic range); with the designed one it lies within 5 % of that of straight (what is left, 3.6e-6 1/m,
     the sagbend's 0.125 % strain yields into the reeled wall's residual stresses; 6.9e-7 1/m in a pipe never
-    reeled); `pipelay static` prints the reeling; and a run from the state books its energy exactly."""
+    reeled); `pipelay static` prints the reeling; and a run from the state books its energy exactly, its
+    summary the laid pipe's residual curvature."""
     import subprocess
     import sys
     from pathlib import Path
@@ -390,6 +391,12 @@ def test_a_reel_lay_vessel_lays_the_pipe_in_the_state_its_reeling_left() -> None
     balance = energy[-1] - energy[0] - (results.supplied_work[-1] - results.dissipated[-1])
     print(f"run: balance {balance:.3e} J of {energy[0]:.3e} J")
     assert abs(balance) < 1e-8 * abs(energy[0])
+    # `pipelay run`'s summary reports the laid pipe's residual curvature over the run.
+    from pipelay.cli import _run_summary
+
+    residual = results.lay_summary()["residual_curvature"]
+    summary = _run_summary(results.to_netcdf(tmp_path / "reel_lay.nc"))
+    assert f"lay: residual curvature {np.min(residual):10.4g} … {np.max(residual):.4g} 1/m" in summary
 
 
 def test_a_reel_lay_without_its_ramp_or_with_a_bad_one_is_refused() -> None:
@@ -509,5 +516,7 @@ def test_at_a_hand_over_the_wire_takes_the_yielding_walls_axial_force() -> None:
     k = int(np.flatnonzero(results.stage == 0)[-1])
     top = int(np.flatnonzero(np.isfinite(results.section_forces[k, :, 0]))[-1])
     tensioner = results.section_forces[k, top, 0]
-    print(f"hand-over at {tensioner / 1e3:.3f} kN, the wire takes {simulation.hand_over_tension / 1e3:.3f} kN")
+    print(
+        f"hand-over at {tensioner / 1e3:.3f} kN, the wire takes {simulation.hand_over_tension / 1e3:.3f} kN"
+    )
     assert simulation.hand_over_tension == pytest.approx(tensioner, rel=1e-12)

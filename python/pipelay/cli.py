@@ -404,7 +404,8 @@ def _run_summary(path: Path) -> str:
     """The records, time span and extremes of a run, read from its results file a slice of records at a time:
     top tension (`pl.statistics.top_tension`: at the tensioner, tower or top support), the reaction at B
     |F_B|, largest bending moment, lay summary (the overbend strain and tip offset with a stinger's rollers
-    only, and when the pipe leaves its roller boxes), touchdown range."""
+    only, and when the pipe leaves its roller boxes; the laid pipe's residual curvature where its wall
+    yields), touchdown range."""
     import xarray as xr
 
     lines = []
@@ -431,6 +432,7 @@ def _run_summary(path: Path) -> str:
             ("overbend_strain", "lay: overbend strain   ", 100.0, "%"),
             ("sagbend_strain", "lay: sagbend strain    ", 100.0, "%"),
             ("tip_offset", "lay: tip offset        ", 1.0, "m to starboard"),
+            ("residual_curvature", "lay: residual curvature", 1.0, "1/m of the laid pipe"),
         ):
             if key in data and (key not in ("overbend_strain", "tip_offset") or "roller_reactions" in data):
                 series = data[key].values * scale
@@ -613,16 +615,17 @@ def _target(args: argparse.Namespace, scenario: Scenario) -> pl.State:
 
 def _reeling_lines(reel_lay: pl.ReelLay, section: pl.Section) -> list[str]:
     """The pipe's reeling, for a reel-lay: the straightener's setting, the largest strain on the reel, and
-    the residual curvature and accumulated plastic strain the pipe enters the water with."""
+    the residual curvature and accumulated plastic strain ("% plastic") the pipe enters the water with."""
     history = reel_lay.history(section)
     residual = history["residual_curvature"]
     radius = f"radius {1 / abs(residual):.4g} m" if abs(residual) > 1e-12 else "straight"
+    setting = reel_lay.straightener.curvature
+    radii = f"reel {reel_lay.reel_radius:g} m, aligner {reel_lay.aligner_radius:g} m"
+    accumulated = 100 * history["accumulated_plastic_strain"]
     return [
-        f"reel-lay: straightener   {reel_lay.straightener.curvature:12.4e} 1/m (reel {reel_lay.reel_radius:g} m, "
-        f"aligner {reel_lay.aligner_radius:g} m)",
+        f"reel-lay: straightener   {setting:12.4e} 1/m ({radii})",
         f"reel-lay: reeling strain {100 * np.max(history['strain']):12.4f} % (the wall's largest)",
-        f"reel-lay: entering with  {residual:12.4e} 1/m residual curvature ({radius}), "
-        f"{100 * history['accumulated_plastic_strain']:.4f} % accumulated plastic strain",
+        f"reel-lay: entering with  {residual:12.4e} 1/m residual curvature ({radius}), {accumulated:.4f} % plastic",
     ]
 
 
