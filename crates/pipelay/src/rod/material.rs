@@ -253,84 +253,41 @@ impl Material {
         }
         let change = end - start;
         let middle = 0.5 * (start + end);
-        // With no change the path is a point: a yielding element's mean is its stress (and its start was not
-        // consistent).
-        let inverse_change = if change != 0.0 { 1.0 / change } else { 0.0 };
-        // Each element's share, both ways computed and one taken, in four independent sums, so that the pass
-        // has no branches and vectorises.
-        let mut sums = [[0.0; LANES]; 5];
-        let mut add = |lane: usize,
-                       (modulus, yield_strain): (f64, f64),
-                       plastic_strain: f64,
-                       plastic_end: &mut f64| {
+        let mut mean = self.hardening * middle;
+        let mut mean_tangent = 0.5 * self.hardening;
+        let mut stress = self.hardening * end;
+        let mut free_energy = 0.5 * self.hardening * end * end;
+        let mut dissipated = 0.0;
+        for (i, &(modulus, yield_strain)) in self.elements.iter().enumerate() {
             let limit = modulus * yield_strain;
-            let elastic_strain = end - plastic_strain;
-            let yields = elastic_strain.abs() > yield_strain * (1.0 + YIELD_ROUND_OFF);
-            // Yielding: elastic from the start stress to s·y at ε* = ε_p + s y/E_i, then flowing to the end.
-            let sign = 1.0f64.copysign(elastic_strain);
-            let start_stress = bound(modulus * (start - plastic_strain), limit);
-            let reached = plastic_strain + sign * yield_strain;
+            let trial = modulus * (end - plastic[i]);
+            if trial.abs() <= limit * (1.0 + YIELD_ROUND_OFF) {
+                mean += modulus * (middle - plastic[i]);
+                mean_tangent += 0.5 * modulus;
+                let elastic_strain = bound(end - plastic[i], yield_strain);
+                stress += modulus * elastic_strain;
+                free_energy += 0.5 * modulus * elastic_strain * elastic_strain;
+                plastic_end[i] = plastic[i];
+                continue;
+            }
+            // Elastic from the start stress to s·y at ε* = ε_p + s y/E_i, then flowing to the end.
+            let sign = trial.signum();
+            let start_stress = bound(modulus * (start - plastic[i]), limit);
+            let reached = plastic[i] + sign * yield_strain;
             let flow = end - reached;
             let path_work =
                 0.5 * (start_stress + sign * limit) * (reached - start) + sign * limit * flow;
-            let yielded_mean = if change != 0.0 {
-                path_work * inverse_change
+            if change != 0.0 {
+                mean += path_work / change;
+                mean_tangent += (sign * limit - path_work / change) / change;
             } else {
-                sign * limit
-            };
-            let clamped = bound(elastic_strain, yield_strain);
-            let share = if yields {
-                [
-                    yielded_mean,
-                    (sign * limit - yielded_mean) * inverse_change,
-                    sign * limit,
-                    0.5 * limit * yield_strain,
-                    limit * flow.abs(),
-                ]
-            } else {
-                [
-                    modulus * (middle - plastic_strain),
-                    0.5 * modulus,
-                    modulus * clamped,
-                    0.5 * modulus * clamped * clamped,
-                    0.0,
-                ]
-            };
-            for (sum, value) in sums.iter_mut().zip(share) {
-                sum[lane] += value;
+                mean += sign * limit;
             }
-            *plastic_end = if yields {
-                end - sign * yield_strain
-            } else {
-                plastic_strain
-            };
-        };
-        let (elements, plastic_chunks, end_chunks) = (
-            self.elements.chunks_exact(LANES),
-            plastic.chunks_exact(LANES),
-            plastic_end.chunks_exact_mut(LANES),
-        );
-        let rest = (elements.remainder(), plastic_chunks.remainder());
-        for ((elements, plastic), ends) in elements.zip(plastic_chunks).zip(end_chunks) {
-            for (lane, end) in ends.iter_mut().enumerate() {
-                add(lane, elements[lane], plastic[lane], end);
-            }
+            stress += sign * limit;
+            free_energy += 0.5 * limit * yield_strain;
+            dissipated += limit * flow.abs();
+            plastic_end[i] = end - sign * yield_strain;
         }
-        let done = self.elements.len() - rest.0.len();
-        for ((&element, &plastic_strain), end) in rest
-            .0
-            .iter()
-            .zip(rest.1)
-            .zip(plastic_end[done..].iter_mut())
-        {
-            add(0, element, plastic_strain, end);
-        }
-        let [mean, mean_tangent, stress, free_energy, dissipated] =
-            sums.map(|lanes| lanes.iter().sum::<f64>());
-        let mean = mean + self.hardening * middle;
-        let mean_tangent = mean_tangent + 0.5 * self.hardening;
-        let stress = stress + self.hardening * end;
-        let free_energy = free_energy + 0.5 * self.hardening * end * end;
         PathResponse {
             mean,
             mean_tangent,
@@ -351,34 +308,24 @@ impl Material {
         plastic: &[f64],
         plastic_end: &mut [f64],
     ) -> Option<PathResponse> {
-        // Four independent sums, so that the pass vectorises (floating-point sums are not reordered).
         let (mut excess, mut modulus_sum, mut plastic_sum, mut energy) = (
             [f64::NEG_INFINITY; LANES],
             [0.0; LANES],
             [0.0; LANES],
             [0.0; LANES],
         );
-        let mut add = |lane: usize, (modulus, yield_strain): (f64, f64), plastic_strain: f64| {
-            let elastic_strain = end - plastic_strain;
-            excess[lane] =
-                excess[lane].max(elastic_strain.abs() - yield_strain * (1.0 + YIELD_ROUND_OFF));
-            modulus_sum[lane] += modulus;
-            plastic_sum[lane] += modulus * plastic_strain;
-            energy[lane] += modulus * elastic_strain * elastic_strain;
-        };
-        let (elements, plastic_chunks) = (
-            self.elements.chunks_exact(LANES),
-            plastic.chunks_exact(LANES),
+        in_lanes(
+            &self.elements,
+            plastic,
+            |lane, (modulus, yield_strain), plastic_strain| {
+                let elastic_strain = end - plastic_strain;
+                excess[lane] =
+                    excess[lane].max(elastic_strain.abs() - yield_strain * (1.0 + YIELD_ROUND_OFF));
+                modulus_sum[lane] += modulus;
+                plastic_sum[lane] += modulus * plastic_strain;
+                energy[lane] += modulus * elastic_strain * elastic_strain;
+            },
         );
-        let rest = elements.remainder().iter().zip(plastic_chunks.remainder());
-        for (elements, plastic) in elements.zip(plastic_chunks) {
-            for lane in 0..LANES {
-                add(lane, elements[lane], plastic[lane]);
-            }
-        }
-        for (&element, &plastic_strain) in rest {
-            add(0, element, plastic_strain);
-        }
         let elastic = excess.iter().all(|&e| e <= 0.0);
         let (modulus_sum, plastic_sum, energy): (f64, f64, f64) = (
             modulus_sum.iter().sum(),
@@ -404,26 +351,16 @@ impl Material {
     pub fn stress_and_energy(&self, strain: f64, plastic: &[f64]) -> (f64, f64) {
         let mut stress = self.hardening * strain;
         let mut free_energy = 0.5 * self.hardening * strain * strain;
-        // Four independent sums, so that the pass vectorises (floating-point sums are not reordered).
         let (mut stresses, mut energies) = ([0.0; LANES], [0.0; LANES]);
-        let mut add = |lane: usize, (modulus, yield_strain): (f64, f64), plastic_strain: f64| {
-            let elastic_strain = bound(strain - plastic_strain, yield_strain);
-            stresses[lane] += modulus * elastic_strain;
-            energies[lane] += 0.5 * modulus * elastic_strain * elastic_strain;
-        };
-        let (elements, plastic_chunks) = (
-            self.elements.chunks_exact(LANES),
-            plastic.chunks_exact(LANES),
+        in_lanes(
+            &self.elements,
+            plastic,
+            |lane, (modulus, yield_strain), plastic_strain| {
+                let elastic_strain = bound(strain - plastic_strain, yield_strain);
+                stresses[lane] += modulus * elastic_strain;
+                energies[lane] += 0.5 * modulus * elastic_strain * elastic_strain;
+            },
         );
-        let rest = elements.remainder().iter().zip(plastic_chunks.remainder());
-        for (elements, plastic) in elements.zip(plastic_chunks) {
-            for lane in 0..LANES {
-                add(lane, elements[lane], plastic[lane]);
-            }
-        }
-        for (&element, &plastic_strain) in rest {
-            add(0, element, plastic_strain);
-        }
         stress += stresses.iter().sum::<f64>();
         free_energy += energies.iter().sum::<f64>();
         (stress, free_energy)
@@ -434,6 +371,22 @@ impl Material {
         let rest = vec![0.0; self.state_size()];
         let mut end = rest.clone();
         self.respond(strain, &rest, &mut end).stress
+    }
+}
+
+/// Calls `add(lane, element, plastic strain)` for each overlay element and its plastic strain, lane k of
+/// every [`LANES`] in a row: sums kept per lane are independent, so that a pass vectorises (floating-point sums
+/// are not reordered).
+fn in_lanes(elements: &[(f64, f64)], plastic: &[f64], mut add: impl FnMut(usize, (f64, f64), f64)) {
+    let (chunks, plastic_chunks) = (elements.chunks_exact(LANES), plastic.chunks_exact(LANES));
+    let rest = chunks.remainder().iter().zip(plastic_chunks.remainder());
+    for (elements, plastic) in chunks.zip(plastic_chunks) {
+        for lane in 0..LANES {
+            add(lane, elements[lane], plastic[lane]);
+        }
+    }
+    for (&element, &plastic_strain) in rest {
+        add(0, element, plastic_strain);
     }
 }
 
