@@ -3,9 +3,9 @@
 //! of the design the laid pipe keeps the reeling's residual curvature, bent against the sagbend; with the
 //! designed one it lies straight; without one the pipe cannot hang and statics say why; a run from the
 //! reel-lay's statics starts at rest.
+mod common;
+
 use nalgebra::{Vector3, Vector6};
-use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
-use pipelay::dynamics::state::DynamicState;
 use pipelay::environment::sea::Sea;
 use pipelay::model::Model;
 use pipelay::response::configuration::Response;
@@ -146,22 +146,11 @@ fn with_the_designed_straightener_the_laid_pipe_lies_straight() {
 #[test]
 fn a_run_from_the_reel_lay_statics_starts_at_rest() {
     let (model, _) = reel_lay(0.99 * designed_straightener());
-    let solution = solve(&model, &StaticOptions::default()).expect("statics");
-    let state = DynamicState::at_rest(&model, solution.configuration, 0.0).expect("state");
-    let options = DynamicOptions {
-        time_step: 0.1,
-        ..DynamicOptions::default()
-    };
-    let mut integrator = Integrator::new(model, state, options).expect("integrator");
+    let mut integrator = common::from_statics(model, 0.1);
     for _ in 0..10 {
         integrator.step().expect("step");
     }
-    let fastest = integrator
-        .state()
-        .velocities
-        .iter()
-        .map(|v| v.norm())
-        .fold(0.0, f64::max);
+    let fastest = common::fastest_node(&integrator);
     println!("after 1 s the fastest node moves at {fastest:.3e} m/s");
     assert!(fastest < 1e-4, "{fastest}");
 }

@@ -66,6 +66,16 @@ pub fn released_without_dissipation(mut model: Model, dt: f64) -> Integrator {
     Integrator::new(model, state, options).expect("integrator")
 }
 
+/// The speed of the integrator's fastest node (m/s).
+pub fn fastest_node(integrator: &Integrator) -> f64 {
+    integrator
+        .state()
+        .velocities
+        .iter()
+        .map(|v| v.norm())
+        .fold(0.0, f64::max)
+}
+
 /// A model's integrator from its static state at rest, stepping by `dt`.
 pub fn from_statics(model: Model, dt: f64) -> Integrator {
     let solution = solve(&model, &StaticOptions::default()).expect("statics");
