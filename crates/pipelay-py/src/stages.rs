@@ -80,7 +80,8 @@ impl Winch {
 /// `setpoint`: a new DP set-point (x, y, ψ) (m, rad): the reference jumps there and waits, until a route speed
 /// (of this stage or a later one) moves it along ψ. `statics`: the stage starts from statics of its own
 /// configuration (the line and vessel as they are, brought to rest in equilibrium, the vessel held where it is;
-/// the energy this changes is booked as work supplied); calm water only.
+/// the energy this changes is booked as work supplied; its pay-out or winch speed ramps up from rest); calm
+/// water only.
 /// `ramp` (s): the time the stage's speed changes take (default 10 s, or the duration if shorter): a step of
 /// the pay-out speed would send an axial wave of force √(EA·m)·Δv down the pipe.
 #[pyclass(module = "pipelay", name = "Stage", frozen)]

@@ -706,7 +706,8 @@ class Stage(Table):
         words="none: the reference carries on",
     )
     statics: Annotated[bool | None, Flag()] = api(
-        "start the stage from statics of its own configuration (brought to rest in equilibrium; calm water)",
+        "start the stage from statics of its own configuration (brought to rest in equilibrium, its pay-out or "
+        "winch speed ramping up from rest; calm water)",
         words="false",
     )
     ramp: Annotated[float | None, Number("s", ge=0)] = api(

@@ -290,6 +290,15 @@ impl Stages {
                 ));
             }
             self.holds[k] = hold;
+            if stage.statics {
+                // Statics bring the line to rest: the stage's speed ramps up from zero, not from the speed
+                // before (a pipe at rest fed at speed v takes an axial shock √(EA·m)·v).
+                speeds.push(Leg {
+                    start: self.starts[k],
+                    speed: 0.0,
+                    ramp: 0.0,
+                });
+            }
             speeds.push(stage.leg(self.starts[k], speed));
         }
         if pays_out {
