@@ -215,10 +215,11 @@ pub fn step(
 }
 
 /// The axial internal damping of a taut cable element over a step: the force B ε̇ along the step's mean chord,
-/// with ε̇ = Δl/(L Δt) and the direction u = (d_n + d_{n+1})/(l_n + l_{n+1}), for which u·Δd = Δl exactly: its
-/// work on the step's increments is B Δl²/(L Δt) ≥ 0, all of it dissipated. Slack at both ends of the step, the
-/// cable has no damping (a slack rope's strands do not rub). Returns the forces on [Δφ1, θ1, Δφ2, θ2] and the
-/// energy dissipated (J); with `tangent`, their derivatives are added to it.
+/// with ε̇ = (l_{n+1} − l_n L/L_n)/(L Δt) (L_n → L: its unstretched length over the step, which pay-out grows)
+/// and the direction u = (d_n + d_{n+1})/(l_n + l_{n+1}), for which u·Δd = Δl exactly: its work on the step's
+/// increments, B Δl²/(L Δt) ≥ 0 for an element that does not grow, is all dissipated. Slack at both ends of the
+/// step, the cable has no damping (a slack rope's strands do not rub). Returns the forces on [Δφ1, θ1, Δφ2, θ2]
+/// and the energy dissipated (J); with `tangent`, their derivatives are added to it.
 pub fn damping_step(
     chord: &Vector3<f64>,
     increments: &ElementVector,
@@ -236,7 +237,8 @@ pub fn damping_step(
     let sum = l_n + l_next;
     let direction = (chord + chord_next) / sum;
     let rate = damping / (length * dt);
-    let stretch = l_next - l_n;
+    // ε̇ L Δt: the chord's stretch less what the element's growth under pay-out (L_n → L) accounts for.
+    let stretch = l_next - l_n * (length / length_start);
     let force = direction * (rate * stretch);
     if let Some(tangent) = tangent {
         // ∂(B Δl/(L Δt) u)/∂Δφ2 with ∂l_{n+1}/∂Δφ2 = t_{n+1}ᵀ and ∂u/∂Δφ2 = (I − u t_{n+1}ᵀ)/(l_n + l_{n+1}).
@@ -247,7 +249,8 @@ pub fn damping_step(
         bar_tangent(&block, &mut added);
         *tangent += added;
     }
-    (bar_forces(&force), rate * stretch * stretch)
+    // The force's work on the increments, u·Δd = Δl: B Δl²/(L Δt) ≥ 0 for an element that does not grow.
+    (bar_forces(&force), rate * stretch * (l_next - l_n))
 }
 
 #[cfg(test)]
@@ -293,6 +296,27 @@ mod tests {
             damping_step(&slack, &increments, 10.0, 10.0, damping, dt, None).1,
             0.0
         );
+    }
+
+    /// An element paid out at its end grows with its chord at one strain: no strain rate, no damping force
+    /// (it resisted the pay-out itself before, with B v/L); stretched as it grows, the force's work on the
+    /// increments is the dissipation booked.
+    #[test]
+    fn a_growing_element_is_damped_by_its_strain_rate_only() {
+        let chord = Vector3::new(10.05, 0.0, 0.0);
+        let (damping, dt, grown) = (2e6, 0.1, 10.5);
+        let mut increments = ElementVector::zeros();
+        increments[6] = chord.x * (grown / 10.0 - 1.0);
+        let (forces, dissipated) =
+            damping_step(&chord, &increments, 10.0, grown, damping, dt, None);
+        assert!(forces.norm() < 1e-6 * damping, "{forces}");
+        assert!(dissipated.abs() < 1e-9, "{dissipated}");
+        increments[6] += 0.01;
+        let (forces, dissipated) =
+            damping_step(&chord, &increments, 10.0, grown, damping, dt, None);
+        let rate = damping / (grown * dt);
+        assert!((forces[6] - rate * 0.01).abs() < 1e-6 * rate * 0.01);
+        assert!((forces.dot(&increments) - dissipated).abs() < 1e-9 * dissipated.abs());
     }
 
     fn reference(length: f64) -> ElementReference {
