@@ -349,3 +349,46 @@ fn bad_input_names_the_argument() {
         matches!(model.point_load(3, Vector3::zeros(), Vector3::zeros(), None), Err(Error::Input { argument, .. }) if argument == "node")
     );
 }
+
+/// A stage's statics from a configuration far from equilibrium (the straight reference along the seabed, the
+/// J-lay tower 1 km away and 800 m up): Newton at full load and relaxation from it fail, and the paths of a
+/// model's first statics reach the equilibrium the model's own statics find.
+#[test]
+fn statics_from_far_from_equilibrium_take_the_paths_of_a_first_solve() {
+    let mut model = common::flooded_pipe(60);
+    model.pin("A", None).expect("pin");
+    let tower = pipelay::vessel::lay::LayEquipment::j_lay(Vector3::new(-40.0, 5.0, -10.0), 0.4)
+        .expect("tower");
+    model
+        .attach_vessel(
+            "B",
+            pipelay::vessel::rigid_body::Vessel::osv(),
+            nalgebra::Vector6::new(850.0, 0.0, -800.0, 0.0, 0.0, 0.0),
+            Vector3::zeros(),
+            None,
+            vec![],
+            Some(tower),
+        )
+        .expect("vessel");
+    let options = StaticOptions::default();
+    let first = solve(&model, &options).expect("statics");
+    let far = Configuration::reference(&model);
+    let slips = vec![nalgebra::Vector2::zeros(); model.rod.node_count()];
+    let plastic = vec![Vec::new(); model.rod.element_count()];
+    let again = pipelay::statics::solve::solve_from(&model, &options, far, &slips, &plastic, 0.0)
+        .expect("statics from far");
+    let apart = first
+        .configuration
+        .positions
+        .iter()
+        .zip(&again.configuration.positions)
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0, f64::max);
+    println!(
+        "from the straight reference: {} iterations, {} relaxations; {apart:.3e} m from the first statics",
+        again.iterations, again.relaxations
+    );
+    assert!(apart < 1e-6, "{apart}");
+    // Newton and relaxation from the reference came first, and failed.
+    assert!(again.relaxations >= 1 && again.iterations > first.iterations);
+}

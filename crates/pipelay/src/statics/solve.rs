@@ -57,7 +57,7 @@ pub fn solve(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
     // On the engine's threads, where the factorisation and contact run in parallel.
     crate::linalg::pool::run(
         crate::linalg::pool::worth_it(model.rod.element_count()),
-        || solve_on_paths(model, options),
+        || solve_on_paths(model, options, 0.0, None),
     )
 }
 
@@ -169,10 +169,11 @@ fn verdict(model: &Model, solution: &StaticSolution) -> Option<Unphysical> {
 }
 
 /// Static equilibrium of `model` found from `start`, a configuration near it (the state a stage of a lay starts
-/// from statics of, [`crate::dynamics::stages`]): by Newton at full load, else by relaxation; supports and point
-/// loads at `time` (s), the seabed's friction measured from `start` with its `slips`, yielding walls from the
-/// plastic states `plastic` (each element's fibres', a run's). Fails (`Error::Convergence`) where both do, or
-/// where the state reached is not physical.
+/// from statics of, [`crate::dynamics::stages`]): by Newton at full load, else by relaxation, else (a start far
+/// from equilibrium) along the paths of a model's first statics ([`solve`]); supports and point loads at
+/// `time` (s), the seabed's friction measured from `start` with its `slips` (from scratch, from the path's
+/// start), yielding walls from the plastic states `plastic` (each element's fibres', a run's). Fails
+/// (`Error::Convergence`) where all do, or where the state reached is not physical.
 pub fn solve_from(
     model: &Model,
     options: &StaticOptions,
@@ -238,18 +239,31 @@ pub fn solve_from(
                 }),
             }
         }
-        Newton::Failed {
-            iterations,
-            residual,
-        } => Err(Error::Convergence {
-            context: "static solve".into(),
-            reached: time,
-            iterations,
-            residual,
-            reason: format!(
-                "neither Newton nor relaxation converged from the configuration at t = {time} s"
-            ),
-        }),
+        // Far from equilibrium: the paths a model's first statics take, with the supports and loads at `time`.
+        Newton::Failed { iterations, .. } => solve_on_paths(model, options, time, Some(plastic))
+            .map(|mut solution| {
+                solution.iterations += iterations;
+                solution.relaxations += relaxations;
+                solution
+            })
+            .map_err(|error| match error {
+                Error::Convergence {
+                    iterations: more,
+                    residual,
+                    reason,
+                    ..
+                } => Error::Convergence {
+                    context: "static solve".into(),
+                    reached: time,
+                    iterations: iterations + more,
+                    residual,
+                    reason: format!(
+                        "neither Newton nor relaxation converged from the configuration at t = {time} s, and \
+                         from scratch: {reason}"
+                    ),
+                },
+                other => other,
+            }),
     }
 }
 
@@ -288,8 +302,14 @@ fn guess_targets(model: &Model, targets: &[SupportTarget]) -> Vec<SupportTarget>
     guess_targets
 }
 
-/// The paths of the module's documentation, in turn, until one gives a physical state.
-fn solve_on_paths(model: &Model, options: &StaticOptions) -> Result<StaticSolution> {
+/// The paths of the module's documentation, in turn, until one gives a physical state: supports and point loads
+/// at `time` (s), yielding walls from the plastic states `plastic` (None: the state at rest).
+fn solve_on_paths(
+    model: &Model,
+    options: &StaticOptions,
+    time: f64,
+    plastic: Option<&[Vec<f64>]>,
+) -> Result<StaticSolution> {
     if options.initial_steps == 0 {
         return Err(Error::input("steps", 0, "must be an integer >= 1"));
     }
@@ -301,8 +321,11 @@ fn solve_on_paths(model: &Model, options: &StaticOptions) -> Result<StaticSoluti
         ));
     }
     // Statics is the state at t = 0: supports (drives included) and load scales are taken there.
-    let targets = model.support_targets(0.0)?;
-    let mut assembler = static_assembler(model, 0.0)?;
+    let targets = model.support_targets(time)?;
+    let mut assembler = static_assembler(model, time)?;
+    if let (Some(state), Some(plastic)) = (assembler.plastic.as_mut(), plastic) {
+        state.start_from(plastic);
+    }
     let catenary = match options.start {
         Start::Reference => None,
         Start::Auto => catenary_guess(model, &guess_targets(model, &targets)),
