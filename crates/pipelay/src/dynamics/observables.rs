@@ -11,13 +11,40 @@ use crate::dynamics::nodal::NodalProperties;
 use crate::dynamics::state::DynamicState;
 use crate::model::Model;
 use crate::response::lay_summary::{lay_summary, residual_curvatures, LaySummary, RollerContacts};
+use crate::rod::dynamic_element::GaussPoint;
+use crate::rod::element::ElementReference;
+use crate::rod::fibre_section::FibreSection;
 use crate::rod::plastic_state::PlasticState;
+use crate::rod::section::Section;
 use crate::vessel::coupling::{eta_of, low_frequency_pose, vessel_pose};
 use crate::vessel::rigid_body::kinetic_energy;
 use crate::vessel::stinger_sections::StingerSections;
 use crate::vessel::wave_motion::WaveOffset;
 use crate::vessel::VesselAttachment;
 use nalgebra::{Matrix3, Vector3, Vector6};
+
+/// The strain energy an element stores at its Gauss point `gauss` over `reference` (J): a yielding wall's fibres'
+/// free energy in their plastic state `plastic` (`fibres`: the wall, if it yields), else the elastic
+/// [`GaussPoint::energy`] of `section`.
+pub fn stored_energy(
+    gauss: &GaussPoint,
+    reference: &ElementReference,
+    section: &Section,
+    fibres: Option<&FibreSection>,
+    plastic: &[f64],
+) -> f64 {
+    match fibres {
+        Some(fibres) => {
+            reference.length
+                * fibres.energy(
+                    &(gauss.strain - reference.strain),
+                    &(gauss.curvature - reference.curvature),
+                    plastic,
+                )
+        }
+        None => gauss.energy(reference, &section.c_t(), &section.c_r()),
+    }
+}
 
 /// A view of a state with what its observables need beside it.
 #[derive(Clone, Copy)]
@@ -91,7 +118,8 @@ impl<'a> Observables<'a> {
             .zip(&rod.elements)
             .enumerate()
             .map(|(e, (g, reference))| {
-                g.stored_energy(
+                stored_energy(
+                    g,
                     reference,
                     rod.section(e),
                     self.plastic.and_then(|p| p.fibres(e)),

@@ -4,6 +4,7 @@
 // Indexing cannot go out of bounds here: the growing element and its two nodes, of the model's own mesh.
 #![allow(clippy::indexing_slicing)]
 use crate::dynamics::nodal::NodalProperties;
+use crate::dynamics::observables::stored_energy;
 use crate::dynamics::state::DynamicState;
 use crate::error::{Error, Result};
 use crate::model::Model;
@@ -106,8 +107,13 @@ impl Growth {
             length: self.length_start,
             ..reference
         };
-        next_gauss[e].stored_energy(&reference, section, fibres, &next_plastic[e])
-            - state.gauss[e].stored_energy(&start, section, fibres, &state.plastic[e])
+        stored_energy(
+            &next_gauss[e],
+            &reference,
+            section,
+            fibres,
+            &next_plastic[e],
+        ) - stored_energy(&state.gauss[e], &start, section, fibres, &state.plastic[e])
             + dissipated
             - self.internal_work
     }

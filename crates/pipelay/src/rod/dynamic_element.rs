@@ -10,8 +10,6 @@
 // Indexing cannot go out of bounds here: Fixed-size 12-vectors and 3-vectors indexed by constants.
 #![allow(clippy::indexing_slicing)]
 use super::element::{midpoint_frame_and_strains, ElementMatrix, ElementReference, ElementVector};
-use crate::rod::fibre_section::FibreSection;
-use crate::rod::section::Section;
 use crate::so3::{cayley, cayley_tangent, skew};
 use nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3};
 
@@ -53,28 +51,6 @@ impl GaussPoint {
         let g = self.strain - reference.strain;
         let k = self.curvature - reference.curvature;
         0.5 * reference.length * (g.dot(&(c_t * g)) + k.dot(&(c_r * k)))
-    }
-
-    /// The strain energy stored over `reference` (J): a yielding wall's fibres' free energy in their plastic
-    /// state `plastic` (`fibres`: the wall, if it yields), else [`Self::energy`] of `section`.
-    pub fn stored_energy(
-        &self,
-        reference: &ElementReference,
-        section: &Section,
-        fibres: Option<&FibreSection>,
-        plastic: &[f64],
-    ) -> f64 {
-        match fibres {
-            Some(fibres) => {
-                reference.length
-                    * fibres.energy(
-                        &(self.strain - reference.strain),
-                        &(self.curvature - reference.curvature),
-                        plastic,
-                    )
-            }
-            None => self.energy(reference, &section.c_t(), &section.c_r()),
-        }
     }
 }
 
