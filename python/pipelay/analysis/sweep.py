@@ -724,6 +724,10 @@ def _outcome(future: Any, case: _Case, directory: Path, client: Any, address: st
             " not saved: the next call runs it again"
         )
     except CancelledError as error:
+        # Cancelled as the client lost its connection: the case did not finish, even if the client reconnects
+        # for a moment to a scheduler still shutting down (and answers a probe).
+        if getattr(error, "reason", None) == "scheduler-connection-lost":
+            raise _Lost(address, "the connection to it closed") from None
         _probe_settled(client, address)  # raises _Lost if the scheduler is lost
         message = f"{type(error).__name__}: {error}"
     except TimeoutError as error:
