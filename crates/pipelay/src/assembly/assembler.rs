@@ -79,6 +79,14 @@ pub struct Assembler {
 const ROTATION_SHIFT: f64 = 1e-12;
 
 impl Assembler {
+    /// Makes the yielding walls' evaluations start from the plastic states `plastic` (each element's fibres', as
+    /// a run keeps them) instead of the model's state at rest ([`PlasticState::start_from`]).
+    pub fn start_plastic_from(&mut self, plastic: &[Vec<f64>]) {
+        if let Some(state) = self.plastic.as_mut() {
+            state.start_from(plastic);
+        }
+    }
+
     /// Builds the pattern and its symbolic factorisation for `model`.
     pub fn new(model: &Model) -> Self {
         let dofs = DofMap::new(model);

@@ -171,9 +171,7 @@ fn assembler_at_rest(
     state: &DynamicState,
 ) -> (Assembler, Vec<Vector6<f64>>, Option<SeabedContact>) {
     let mut assembler = Assembler::new(model);
-    if let Some(plastic) = assembler.plastic.as_mut() {
-        plastic.start_from(&state.plastic);
-    }
+    assembler.start_plastic_from(&state.plastic);
     assembler
         .contact_start
         .clone_from(&state.configuration.positions);

@@ -146,8 +146,8 @@ impl DynamicState {
         }
         let vessel = model.vessel.as_ref().map(|_| {
             let mut assembler = Assembler::new(model);
-            if let (Some(state), Some(plastic)) = (assembler.plastic.as_mut(), plastic) {
-                state.start_from(plastic);
+            if let Some(plastic) = plastic {
+                assembler.start_plastic_from(plastic);
             }
             let response = Response::with_assembler(model, &configuration, &mut assembler);
             let top = response

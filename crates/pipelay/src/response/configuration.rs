@@ -97,7 +97,7 @@ pub fn plastic_field(
         None => model.plastic_state()?,
     };
     if let Some(run) = run {
-        state.start = run.to_vec();
+        state.start_from(run);
     }
     let lay = model
         .vessel
@@ -123,12 +123,8 @@ pub fn plastic_field(
             let moment = state
                 .law(e, &strain, &curvature, 1.0)
                 .map_or_else(Vector3::zeros, |law| law.moment);
-            let bending = model.rod.section(e).rotational_stiffness;
-            let kept = nalgebra::Vector2::new(
-                curvature.y - moment.y / bending.y,
-                curvature.z - moment.z / bending.z,
-            );
-            (plastic, kept.norm())
+            let kept = model.rod.section(e).residual_curvature(&curvature, &moment);
+            (plastic, kept)
         })
         .unzip();
     Some(PlasticResponse {

@@ -131,12 +131,7 @@ pub fn residual_curvatures(
                 return 0.0;
             }
             let (_, curvature) = model.rod.strain_changes(e, positions, rotations);
-            let bending = section.rotational_stiffness;
-            nalgebra::Vector2::new(
-                curvature.y - forces[4] / bending.y,
-                curvature.z - forces[5] / bending.z,
-            )
-            .norm()
+            section.residual_curvature(&curvature, &forces.fixed_rows::<3>(3).into_owned())
         })
         .collect()
 }

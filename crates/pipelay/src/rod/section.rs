@@ -417,6 +417,17 @@ impl Section {
         axial + 0.5 * self.outer_diameter * curvature.norm()
     }
 
+    /// The bending curvature a section bent to `curvature` (K − K₀, 1/m) under the moment `moment` (N·m) keeps
+    /// when unloaded elastically: its residual curvature |(κ₂ − m₂/EI₂, κ₃ − m₃/EI₃)| (1/m).
+    pub fn residual_curvature(&self, curvature: &Vector3<f64>, moment: &Vector3<f64>) -> f64 {
+        let bending = self.rotational_stiffness;
+        nalgebra::Vector2::new(
+            curvature.y - moment.y / bending.y,
+            curvature.z - moment.z / bending.z,
+        )
+        .norm()
+    }
+
     /// C_T as a matrix.
     pub fn c_t(&self) -> Matrix3<f64> {
         Matrix3::from_diagonal(&self.translational_stiffness)

@@ -183,9 +183,7 @@ pub fn solve_from(
     time: f64,
 ) -> Result<StaticSolution> {
     let mut assembler = static_assembler(model, time)?;
-    if let Some(state) = assembler.plastic.as_mut() {
-        state.start_from(plastic);
-    }
+    assembler.start_plastic_from(plastic);
     assembler.contact_start.clone_from(&start.positions);
     assembler.contact_slips = slips.to_vec();
     let mut config = start.clone();
@@ -323,8 +321,8 @@ fn solve_on_paths(
     // Statics is the state at t = 0: supports (drives included) and load scales are taken there.
     let targets = model.support_targets(time)?;
     let mut assembler = static_assembler(model, time)?;
-    if let (Some(state), Some(plastic)) = (assembler.plastic.as_mut(), plastic) {
-        state.start_from(plastic);
+    if let Some(plastic) = plastic {
+        assembler.start_plastic_from(plastic);
     }
     let catenary = match options.start {
         Start::Reference => None,
