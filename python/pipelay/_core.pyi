@@ -1147,6 +1147,10 @@ class Simulation:
     @property
     def hand_over_tension(self) -> float | None:
         """The axial force the A&R wire took on at the hand-over (N), None if none happened in this run."""
+    @property
+    def hand_back_time(self) -> float | None:
+        """When the tensioner took the pipe back from the A&R winch (s), None if no hand-back happened in this
+        run."""
 
 @final
 class Results:
@@ -1204,6 +1208,9 @@ class Results:
     @property
     def length(self) -> _FloatArray:
         """Unstretched pipe length at each record (T,) (m)."""
+    @property
+    def pay_out_speed(self) -> _FloatArray:
+        """The pay-out speed of the step that led to each record (T,) (m/s; the A&R winch's once it holds)."""
     @property
     def pay_out_energy(self) -> _FloatArray:
         """Energy pay-out brought in since the start of the run (T,) (J), part of supplied_work."""
@@ -1381,6 +1388,9 @@ class Winch:
         wire: Section | None = None,
         element_length: float | None = None,
         head: Clump | None = None,
+        speed_limit: float | None = None,
+        acceleration_limit: float | None = None,
+        tension_band: float | None = None,
     ) -> Winch: ...
     @property
     def position(self) -> list[float]:
@@ -1388,6 +1398,15 @@ class Winch:
     @property
     def tension_limit(self) -> float | None:
         """The wire's rating (N), None for none."""
+    @property
+    def speed_limit(self) -> float:
+        """The drive's largest speed either way (m/s)."""
+    @property
+    def acceleration_limit(self) -> float:
+        """The drive's largest change of speed (m/s²)."""
+    @property
+    def tension_band(self) -> float:
+        """The constant-tension mode's band and the rendering's, below the limit (N)."""
 
 @final
 class Stage:
@@ -1402,6 +1421,7 @@ class Stage:
         route_speed: float | None = None,
         hold: Literal["tensioner", "winch"] | None = None,
         winch_speed: float | None = None,
+        winch_tension: float | None = None,
         setpoint: _ArrayLike | None = None,
         statics: bool = False,
         ramp: float | None = None,
@@ -1420,6 +1440,9 @@ class Stage:
     @property
     def winch_speed(self) -> float | None: ...
     @property
+    def winch_tension(self) -> float | None:
+        """The tension the winch holds in constant-tension mode (N), None for none."""
+    @property
     def setpoint(self) -> list[float] | None:
         """The DP set-point (x, y, ψ) the stage moves the reference to (m, rad), None for none."""
     @property
@@ -1435,6 +1458,8 @@ class Stages:
 
     def __new__(cls, stages: Sequence[Stage]) -> Stages: ...
     def __len__(self) -> int: ...
+    def __getitem__(self, index: int, /) -> Stage:
+        """The stage at `index` (negative: from the end)."""
     @property
     def names(self) -> list[str]:
         """The stages' names."""

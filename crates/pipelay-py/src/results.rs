@@ -241,9 +241,17 @@ impl Results {
     fn length<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.history.length)
     }
+    /// The pay-out speed of the step that led to each record (T,) (m/s; < 0: pay-in): the tensioner's, or the
+    /// A&R winch's once it holds the line (in constant-tension mode, the speed it rendered or hauled at).
+    #[getter]
+    fn pay_out_speed<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.history.pay_out_speed)
+    }
     /// Energy pay-out brought in since the start of the run (T,) (J), part of `supplied_work`: the work of the
     /// tensioner (or driven end) on the pipe it lets out, the energy the added pipe carries, and the energy
-    /// change of mesh changes.
+    /// change of mesh changes. Once the A&R winch holds the line, it is the winch's work on its wire and the
+    /// energy of the wire it pays out: its power, the rate of change, is −T·v to first order (T the wire's
+    /// tension, v the `pay_out_speed`).
     #[getter]
     fn pay_out_energy<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_slice(py, &self.history.pay_out_energy)
@@ -540,6 +548,11 @@ impl Results {
         h.length = optional("length")?;
         if h.length.is_empty() {
             h.length = vec![f64::NAN; h.time.len()];
+        }
+        // Files written before the pay-out speed was recorded: unknown (NaN).
+        h.pay_out_speed = optional("pay_out_speed")?;
+        if h.pay_out_speed.is_empty() {
+            h.pay_out_speed = vec![f64::NAN; h.time.len()];
         }
         h.pay_out_energy = optional("pay_out_energy")?;
         if h.pay_out_energy.is_empty() {

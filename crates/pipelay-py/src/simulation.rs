@@ -13,6 +13,7 @@ use pipelay::dynamics::stages::Stages;
 use pipelay::dynamics::state::{DynamicState, VesselMotion};
 use pipelay::model::Model;
 use pipelay::rod::dynamic_element::GaussPoint;
+use pipelay::vessel::winch::HandBack;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -291,6 +292,12 @@ impl Simulation {
         self.integrator.handed_over()
     }
 
+    /// When the tensioner took the pipe back from the A&R winch (s), None if no hand-back happened in this run.
+    #[getter]
+    fn hand_back_time(&self) -> Option<f64> {
+        self.integrator.handed_back()
+    }
+
     /// Advances one time step dt. Raises ConvergenceError if Newton fails (the state is then unchanged).
     fn step(&mut self, py: Python<'_>) -> PyResult<()> {
         let integrator = &mut self.integrator;
@@ -429,6 +436,7 @@ impl Simulation {
             dict.set_item(name, shaped(py, &data, &[count, width])?)
         };
         rows("time", vec![state.time], 1)?;
+        rows("pay_out_speed", vec![state.pay_out_speed], 1)?;
         rows("dt", vec![self.time_step()], 1)?;
         let ledger = self.integrator.ledger();
         rows(
@@ -443,6 +451,20 @@ impl Simulation {
         )?;
         if let Some(stages) = self.integrator.stages() {
             rows("stage_starts", stages.starts.clone(), 1)?;
+        }
+        // The hand-back's clamp: its time, the hold point and the clamp's angle.
+        if let Some(back) = self
+            .integrator
+            .model()
+            .vessel
+            .as_ref()
+            .and_then(|v| v.winch.as_ref())
+            .and_then(|w| w.hand_back)
+        {
+            let mut values = vec![back.time];
+            values.extend(back.hang_off.iter());
+            values.extend(back.angle.iter());
+            rows("hand_back", values, 13)?;
         }
         let fingerprint: Vec<String> = self
             .fingerprint
@@ -675,6 +697,24 @@ impl Simulation {
                 .map_err(to_py)?,
             None => original,
         };
+        // A run resumed after the hand-back: the tensioner holds the pipe with the clamp it made then.
+        let mut model = model;
+        if let Some(values) = optional_values(
+            arrays,
+            "hand_back",
+            13,
+            "must hold the hand-back's time, hold point (3) and clamp angle (9)",
+        )? {
+            let back = HandBack {
+                time: values[0],
+                hang_off: Vector3::from_column_slice(&values[1..4]),
+                angle: Matrix3::from_column_slice(&values[4..13]),
+            };
+            model.hand_back(back);
+            if let Some(stages) = &stages {
+                stages.rest_after_hand_back(&mut model, back.time);
+            }
+        }
         let nodes = model.rod.node_count();
         let elements = model.rod.element_count();
         let vectors = |key: &str, count: usize| -> PyResult<Vec<Vector3<f64>>> {
@@ -833,6 +873,17 @@ impl Simulation {
             gauss,
             vessel,
             slips,
+            // The last step's pay-out speed (checkpoints written before it was kept have none: the speed
+            // commanded then).
+            pay_out_speed: match optional_values(arrays, "pay_out_speed", 1, "must hold one speed")?
+            {
+                Some(data) => data[0],
+                None => model
+                    .pay_out
+                    .as_ref()
+                    .map_or(Ok(0.0), |p| p.speed_at(time))
+                    .map_err(to_py)?,
+            },
         };
         let ledger = get("ledger")?;
         let mut simulation = Simulation::from_state(model, state, dt, stages, fingerprint)?;

@@ -3,7 +3,7 @@ use crate::convert::vector3;
 use crate::errors::{input, to_py};
 use crate::structure::{Clump, Section};
 use pipelay::dynamics::stages::{Hold, Stage as EngineStage};
-use pipelay::vessel::winch::Winch as EngineWinch;
+use pipelay::vessel::winch::{Drive, Winch as EngineWinch};
 use pyo3::prelude::*;
 
 /// An abandonment and recovery (A&R) winch on the vessel. `position` (body frame, m): where its wire enters
@@ -11,7 +11,11 @@ use pyo3::prelude::*;
 /// in an S-lay, up the tower in a J-lay). `tension_limit` (N): the wire's rating, None for none. `wire`: the
 /// wire's `pl.Section.cable` (default: the line's top segment, if it is a cable). `element_length` (m): of the
 /// wire elements pay-out adds (default: the line's top element's). `head`: a `pl.Clump`, the laydown head
-/// fitted to the pipe's end at the hand-over. Give it to `Model.attach_vessel(..., winch=)`.
+/// fitted to the pipe's end at the hand-over. The drive: `speed_limit` (m/s, default 1), `acceleration_limit`
+/// (m/s², default 0.5) and `tension_band` (N, default 50 kN): in constant-tension mode (`pl.Stage(...,
+/// winch_tension=)`) the winch stands within the set tension ± band and runs at full speed 2·band away from
+/// it; with a `tension_limit` it renders from tension_limit − band, at full speed at the limit. Give it to
+/// `Model.attach_vessel(..., winch=)`.
 #[pyclass(module = "pipelay", name = "Winch", frozen)]
 #[derive(Clone)]
 pub struct Winch {
@@ -22,14 +26,26 @@ pub struct Winch {
 #[pymethods]
 impl Winch {
     #[new]
-    #[pyo3(signature = (position, tension_limit=None, *, wire=None, element_length=None, head=None))]
+    #[pyo3(signature = (position, tension_limit=None, *, wire=None, element_length=None, head=None, speed_limit=None, acceleration_limit=None, tension_band=None))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         position: &Bound<'_, PyAny>,
         tension_limit: Option<f64>,
         wire: Option<&Section>,
         element_length: Option<f64>,
         head: Option<&Clump>,
+        speed_limit: Option<f64>,
+        acceleration_limit: Option<f64>,
+        tension_band: Option<f64>,
     ) -> PyResult<Self> {
+        let defaults = Drive::default();
+        let drive = Drive {
+            speed_limit: speed_limit.unwrap_or(defaults.speed_limit),
+            acceleration_limit: acceleration_limit.unwrap_or(defaults.acceleration_limit),
+            tension_band: tension_band.unwrap_or(defaults.tension_band),
+        }
+        .checked()
+        .map_err(to_py)?;
         let position = vector3(position, "position")?;
         // An element length of 0 stands for "the line's top element's", resolved by attach_vessel.
         if let Some(length) = element_length {
@@ -44,6 +60,7 @@ impl Winch {
         .map_err(to_py)?;
         let winch = EngineWinch {
             element_length: element_length.unwrap_or(0.0),
+            drive,
             ..winch
         };
         Ok(Winch {
@@ -62,6 +79,21 @@ impl Winch {
     fn tension_limit(&self) -> Option<f64> {
         self.winch.tension_limit
     }
+    /// The drive's largest speed either way (m/s).
+    #[getter]
+    fn speed_limit(&self) -> f64 {
+        self.winch.drive.speed_limit
+    }
+    /// The drive's largest change of speed (m/s²).
+    #[getter]
+    fn acceleration_limit(&self) -> f64 {
+        self.winch.drive.acceleration_limit
+    }
+    /// The constant-tension mode's band and the rendering's, below the limit (N).
+    #[getter]
+    fn tension_band(&self) -> f64 {
+        self.winch.drive.tension_band
+    }
 
     fn __repr__(&self) -> String {
         format!(
@@ -76,7 +108,9 @@ impl Winch {
 /// start; what it leaves at None carries on from the stage before. `pay_out`: the tensioner's pay-out speed
 /// (m/s; negative: pay-in). `route_speed`: the DP reference's speed along its route (m/s). `hold`:
 /// "tensioner" or "winch" — the first stage the winch holds starts with the hand-over of the line to it.
-/// `winch_speed`: the winch's pay-out speed once it holds (m/s; negative: haul-in; 0: the brake holds).
+/// `winch_speed`: the winch's pay-out speed once it holds (m/s; negative: haul-in; 0: the brake holds; within
+/// its speed limit, and its tension limit rendered). `winch_tension`: the tension the winch holds in
+/// constant-tension mode once it holds (N), within its drive's limits (`pl.Winch`).
 /// `setpoint`: a new DP set-point (x, y, ψ) (m, rad): the reference jumps there and waits, until a route speed
 /// (of this stage or a later one) moves it along ψ. `statics`: the stage starts from statics of its own
 /// configuration (the line and vessel as they are, brought to rest in equilibrium, the vessel held where it is;
@@ -91,7 +125,7 @@ pub struct Stage(pub EngineStage);
 #[pymethods]
 impl Stage {
     #[new]
-    #[pyo3(signature = (name, duration=None, *, pay_out=None, route_speed=None, hold=None, winch_speed=None, setpoint=None, statics=false, ramp=None))]
+    #[pyo3(signature = (name, duration=None, *, pay_out=None, route_speed=None, hold=None, winch_speed=None, winch_tension=None, setpoint=None, statics=false, ramp=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         name: String,
@@ -100,6 +134,7 @@ impl Stage {
         route_speed: Option<f64>,
         hold: Option<&str>,
         winch_speed: Option<f64>,
+        winch_tension: Option<f64>,
         setpoint: Option<&Bound<'_, PyAny>>,
         statics: bool,
         ramp: Option<f64>,
@@ -125,6 +160,7 @@ impl Stage {
             route_speed,
             hold,
             winch_speed,
+            winch_tension,
             setpoint,
             statics,
             ramp,
@@ -161,6 +197,11 @@ impl Stage {
     #[getter]
     fn winch_speed(&self) -> Option<f64> {
         self.0.winch_speed
+    }
+    /// The tension the winch holds in constant-tension mode (N), None for none.
+    #[getter]
+    fn winch_tension(&self) -> Option<f64> {
+        self.0.winch_tension
     }
     /// The DP set-point the stage moves the reference to, (x, y, ψ) (m, rad), None for none.
     #[getter]
@@ -217,6 +258,21 @@ impl Stages {
 
     fn __len__(&self) -> usize {
         self.0.len()
+    }
+
+    /// The stage at `index` (negative: from the end).
+    fn __getitem__(&self, index: isize) -> PyResult<Stage> {
+        let count = self.0.len() as isize;
+        let at = if index < 0 { index + count } else { index };
+        usize::try_from(at)
+            .ok()
+            .and_then(|k| self.0.get(k))
+            .map(|stage| Stage(stage.clone()))
+            .ok_or_else(|| {
+                pyo3::exceptions::PyIndexError::new_err(format!(
+                    "stage index {index} out of range for {count} stages"
+                ))
+            })
     }
 
     /// The stages' names.

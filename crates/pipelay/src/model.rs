@@ -9,7 +9,7 @@ use crate::rod::Rod;
 use crate::so3::quat_from_matrix;
 use crate::table::TimeFunction;
 use crate::vessel::control::Pid;
-use crate::vessel::winch::Winch;
+use crate::vessel::winch::{HandBack, Winch};
 use crate::vessel::{EnvironmentForce, VesselAttachment};
 use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use std::fmt;
@@ -698,6 +698,7 @@ impl Model {
         let (element_length, head) = (winch.element_length, winch.head);
         let rod_length = self.rod.length();
         if let Some(pay_out) = self.pay_out.as_mut() {
+            winch.pipe_element_length = pay_out.element_length;
             pay_out.element_length = element_length;
             pay_out.initial_length = rod_length;
             pay_out.feed.clear();
@@ -716,6 +717,34 @@ impl Model {
                     ..head
                 });
             }
+        }
+    }
+
+    /// Makes the tensioner hold the line again after the hand-back `back`, the winch's wire gone from the mesh
+    /// ([`crate::dynamics::hand_back`]): the vessel holds the pipe's end with the clamp `back` made, pay-out adds
+    /// pipe elements again, and the laydown head is taken off the pipe's end. Called at the hand-back and when a
+    /// run is resumed after it.
+    pub fn hand_back(&mut self, back: HandBack) {
+        let Some(attachment) = self.vessel.as_mut() else {
+            return;
+        };
+        attachment.angle = back.angle;
+        let Some(winch) = attachment.winch.as_mut() else {
+            return;
+        };
+        winch.holds = false;
+        winch.hand_back = Some(back);
+        let head = winch.head;
+        let element_length = winch.pipe_element_length;
+        let rod_length = self.rod.length();
+        if let Some(pay_out) = self.pay_out.as_mut() {
+            pay_out.element_length = element_length;
+            pay_out.initial_length = rod_length;
+        }
+        if head.is_some() {
+            let tolerance = 1e-9 * rod_length.max(1.0);
+            self.attachments
+                .retain(|a| (a.arc_length - rod_length).abs() > tolerance);
         }
     }
 

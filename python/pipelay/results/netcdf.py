@@ -131,6 +131,11 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     ),
     "laid_length": (("time",), "m", "reference length of pipe on the seabed"),
     "length": (("time",), "m", "unstretched pipe length (changes with pay-out)"),
+    "pay_out_speed": (
+        ("time",),
+        "m/s",
+        "pay-out speed of the last step: the tensioner's, or the winch's once it holds",
+    ),
     "pay_out_energy": (
         ("time",),
         "J",
@@ -190,6 +195,7 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "plastic_dissipation",
         "pay_out_energy",
         "length",
+        "pay_out_speed",
         "iterations",
         "substeps",
     ),
@@ -273,6 +279,7 @@ def _arrays(results: Results, names: Iterable[str] | None = None) -> dict[str, n
         "stinger_energy": lambda: part("stinger"),
         "total_energy": lambda: part("total"),
         "length": lambda: results.length,
+        "pay_out_speed": lambda: results.pay_out_speed,
         "pay_out_energy": lambda: results.pay_out_energy,
         "supplied_work": lambda: results.supplied_work,
         "dissipated": lambda: results.dissipated,

@@ -19,7 +19,7 @@ far).
 - ``"positions"``, ``"rotations"``, ``"velocities"``: the nodal series of those names (3, 9 and 3 numbers a node);
 - ``"section_forces"``: section_forces and tension (7 numbers an element);
 - ``"reactions"``: reaction_A and reaction_B;
-- ``"energy"``: the energy parts, total_energy, supplied_work, dissipated, pay_out_energy, length, iterations, substeps;
+- ``"energy"``: the energy parts, total_energy, supplied_work, dissipated, pay_out_energy, length, pay_out_speed, iterations, substeps;
 - ``"vessel"``: eta, nu, tau, chi, eta_low_frequency, eta_wave_frequency, tau_commanded and, with an
   observer or thrusters, eta_estimate, thrust, azimuth (with a vessel);
 - ``"seabed"``: touchdown, touchdown_arc_length, laid_length (with a seabed);
@@ -436,7 +436,7 @@ def _attach() -> None:
         the last record only (the whole series is in the file: ``pl.load(output)``). `record` chooses what the
         file holds: None (everything) or some of the groups "positions", "rotations", "velocities",
         "section_forces" (with tension), "reactions" (A and B), "energy" (parts, total, supplied_work,
-        dissipated, pay_out_energy, length, iterations, substeps), "vessel" (eta, nu, tau, chi), "seabed" (touchdown,
+        dissipated, pay_out_energy, length, pay_out_speed, iterations, substeps), "vessel" (eta, nu, tau, chi), "seabed" (touchdown,
         touchdown_arc_length, laid_length), "lay" (lay summary and roller reactions); time always.
 
         A progress bar (tqdm) shows on long runs unless progress=False. Ctrl-C stops the run between steps and

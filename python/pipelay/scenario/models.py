@@ -17,6 +17,7 @@ Imports of pipelay: `pipelay.scenario.values` and `pipelay.scenario.models_vesse
 
 from __future__ import annotations
 
+import math
 from typing import Annotated, ClassVar, Literal, cast
 
 from pydantic import Discriminator, Field, Tag, model_validator
@@ -678,8 +679,11 @@ class Stage(Table):
     change of speed is linear over the stage's `ramp`, from the speed before: the length paid out is the
     integral of those ramped speeds. The first stage with `hold = "winch"` starts with the hand-over to
     `[vessel.winch]`: the tensioner's speed ramps to 0 (the winch's brake then holds) and the winch holds the
-    line from then on (there is no hand-back); `winch_speed` pays its wire out. With stages, `solver.t_end`
-    defaults to the end of the last stage (past it, a later `t_end` runs on at the last stage's speeds)."""
+    line; `winch_speed` pays its wire out (or hauls it in), `winch_tension` holds a tension. Hauled in to the
+    hold point, the pipe's end is taken back by the tensioner (the hand-back), which holds it at rest until a
+    stage with `hold = "tensioner"` (which needs the hand-back done by its start) sets its `pay_out`. With
+    stages, `solver.t_end` defaults to the end of the last stage (past it, a later `t_end` runs on at the last
+    stage's speeds)."""
 
     name: Annotated[str, Text()] = Field(description="the stage's name, for the results (`res.stage_names`)")
     duration: Annotated[float, Number("s", gt=0)] = Field(
@@ -698,8 +702,14 @@ class Stage(Table):
         words="the stage before's (at first the tensioner)",
     )
     winch_speed: Annotated[float | None, Number("m/s")] = api(
-        "the winch's pay-out speed once it holds the line (< 0 hauls in; 0: the brake holds)",
+        "the winch's pay-out speed once it holds the line (< 0 hauls in; 0: the brake holds), within its "
+        "speed_limit",
         words="the stage before's (at first 0)",
+    )
+    winch_tension: Annotated[float | None, Number("N", gt=0)] = api(
+        "the tension the winch holds once it holds the line (constant-tension mode; a later winch_speed "
+        "ends it)",
+        words="none: the winch runs at winch_speed",
     )
     setpoint: Annotated[list[float] | None, Vector(3, Number("m, m, rad"), "[x, y, ψ]")] = api(
         "a new DP set-point (x, y, ψ): the reference jumps there and waits until a route speed moves it",
@@ -925,25 +935,33 @@ class ScenarioFile(Table):
         for k, stage in enumerate(self.stages):
             key = f"stages[{k}]"
             steps = stage.duration / dt
+            if not math.isfinite(steps):
+                finite = f"must be a finite number of time steps solver.dt = {dt:g} s, got {stage.duration:g}"
+                raise rule(finite, f"{key}.duration")
             if abs(steps - round(steps)) > 1e-6 * max(steps, 1.0):
                 whole = f"must be a whole number of time steps solver.dt = {dt:g} s, got {stage.duration:g}"
                 raise rule(whole, f"{key}.duration")
             if stage.hold == "winch" and winch is None:
                 raise rule("needs a [vessel.winch] to hand the line over to", f"{key}.hold")
-            if stage.hold == "tensioner" and holds == "winch":
-                back = "the winch holds the line by then; the hand-back to the tensioner is not modelled"
-                raise rule(back, f"{key}.hold")
             holds = stage.hold or holds
-            if stage.winch_speed is not None and winch is None:
-                raise rule("needs a [vessel.winch] to pay out", f"{key}.winch_speed")
-            if stage.winch_speed is not None and holds != "winch":
-                first = 'the tensioner holds the line in this stage: hand over first (hold = "winch")'
-                raise rule(first, f"{key}.winch_speed")
+            for name in ("winch_speed", "winch_tension"):
+                if getattr(stage, name) is not None and winch is None:
+                    raise rule("needs a [vessel.winch] to pay out", f"{key}.{name}")
+                if getattr(stage, name) is not None and holds != "winch":
+                    first = 'the tensioner holds the line in this stage: hand over first (hold = "winch")'
+                    raise rule(first, f"{key}.{name}")
+            if stage.winch_speed is not None and stage.winch_tension is not None:
+                one = "gives the winch a tension to hold, and winch_speed a speed: give one of them"
+                raise rule(one, f"{key}.winch_tension")
             if stage.pay_out is not None and holds == "winch":
                 raise rule("the winch holds the line in this stage: set winch_speed", f"{key}.pay_out")
             if stage.route_speed is not None and self.controller is None:
                 raise rule("needs a [controller] whose reference it moves", f"{key}.route_speed")
-            paying = [name for name in ("pay_out", "winch_speed") if getattr(stage, name) is not None]
+            paying = [
+                name
+                for name in ("pay_out", "winch_speed", "winch_tension")
+                if getattr(stage, name) is not None
+            ]
             paying += ["hold"] if stage.hold == "winch" else []
             if paying and self.pay_out is not None:
                 twice = "conflicts with [pay_out]: the stages set the pay-out speed; give it one way"

@@ -305,7 +305,8 @@ class Winch(Table):
 
     The first `[[stages]]` entry with `hold = "winch"` starts with the hand-over: the wire, from `position` to
     the tensioner or tower exit, stretched to the pipe's axial force there, joins the pipe's end (with the
-    head), and the vessel holds the line by the winch; the stages' `winch_speed` then pays the wire out.
+    head), and the vessel holds the line by the winch; the stages' `winch_speed` then pays the wire out, or
+    their `winch_tension` holds a tension (constant-tension mode), within the drive's limits.
     `position` must lie on the firing line, ahead of the hold point along the pipe: in an S-lay forward of the
     tensioner along +b1, in a J-lay up the tower, the tower exit + d·[sin a, 0, −cos a] with d > 0 and a the
     tower's `angle`."""
@@ -323,6 +324,17 @@ class Winch(Table):
     )
     head: Head | None = api(
         "the head fitted to the pipe's end at the hand-over: a `[vessel.winch.head]` table"
+    )
+    speed_limit: Annotated[float | None, Number("m/s", gt=0)] = api(
+        "the drive's largest speed either way, > 0", words="1 m/s"
+    )
+    acceleration_limit: Annotated[float | None, Number("m/s²", gt=0)] = api(
+        "the drive's largest change of speed, > 0", words="0.5 m/s²"
+    )
+    tension_band: Annotated[float | None, Number("N", gt=0)] = api(
+        "constant-tension mode stands within the set tension ± band and runs at full speed 2·band away; "
+        "the rating renders from tension_limit − band",
+        words="50 kN",
     )
 
 

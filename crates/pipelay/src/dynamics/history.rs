@@ -44,6 +44,8 @@ pub struct Snapshot<'a> {
     pub dissipated: f64,
     /// The pipe's unstretched length (m).
     pub length: f64,
+    /// The pay-out speed of the step that led here (m/s): the tensioner's, or the winch's once it holds.
+    pub pay_out_speed: f64,
     /// Energy pay-out brought in since the integrator started (J; part of `supplied_work`).
     pub pay_out_energy: f64,
     /// Energy the yielding walls dissipated since the integrator started (J; part of `dissipated`).
@@ -144,6 +146,8 @@ pub struct History {
     pub substeps: Vec<usize>,
     /// The pipe's unstretched length at each record (m).
     pub length: Vec<f64>,
+    /// The pay-out speed of the step that led to each record (m/s; the winch's once it holds).
+    pub pay_out_speed: Vec<f64>,
     /// Energy pay-out brought in since the start of the run (J; part of `supplied_work`).
     pub pay_out_energy: Vec<f64>,
     /// Energy the yielding walls dissipated since the start of the run (J; part of `dissipated`).
@@ -198,7 +202,7 @@ impl History {
         let seabed = !self.touchdown_arc_length.is_empty();
         let six = |series: &Vec<f64>| if series.is_empty() { 0 } else { 6 };
         let k = self.thrusters_count;
-        let fields: [(&str, usize, usize); 39] = [
+        let fields: [(&str, usize, usize); 40] = [
             (
                 "eta_low_frequency",
                 self.eta_low_frequency.len(),
@@ -218,6 +222,7 @@ impl History {
             ("azimuth", self.azimuth.len(), k),
             ("segment", self.segment.len(), n.saturating_sub(1)),
             ("length", self.length.len(), 1),
+            ("pay_out_speed", self.pay_out_speed.len(), 1),
             ("pay_out_energy", self.pay_out_energy.len(), 1),
             ("plastic_dissipation", self.plastic_dissipation.len(), 1),
             ("seabed_energy", self.seabed.len(), 1),
@@ -382,6 +387,7 @@ impl History {
         nan(&mut self.segment, missing);
         self.time.push(snapshot.time);
         self.length.push(snapshot.length);
+        self.pay_out_speed.push(snapshot.pay_out_speed);
         self.pay_out_energy
             .push(snapshot.pay_out_energy - self.pay_out_offset);
         self.plastic_dissipation

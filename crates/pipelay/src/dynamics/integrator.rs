@@ -24,6 +24,7 @@
 use crate::assembly::assembler::Assembler;
 use crate::assembly::dofs::NODE_DOFS;
 use crate::contact::seabed::SeabedContact;
+use crate::dynamics::hand_back;
 use crate::dynamics::hand_over;
 use crate::dynamics::history::{History, Snapshot, StationRecord};
 use crate::dynamics::ledger::{Ledger, StepWork};
@@ -159,6 +160,8 @@ pub struct Integrator {
     pub(super) stages: Option<Stages>,
     /// The axial force the winch's wire took on at the hand-over (N), once it happened in this run.
     pub(super) handed_over: Option<f64>,
+    /// When the tensioner took the line back from the winch (s).
+    pub(super) handed_back: Option<f64>,
     /// The most substeps any step since the last record was taken in.
     substeps_since_record: usize,
 }
@@ -293,6 +296,7 @@ impl Integrator {
             growth: None,
             stages: None,
             handed_over: None,
+            handed_back: None,
             substeps_since_record: 1,
         })
     }
@@ -311,6 +315,11 @@ impl Integrator {
     /// The axial force the wire took on at the hand-over (N), if it happened in this run.
     pub fn handed_over(&self) -> Option<f64> {
         self.handed_over
+    }
+
+    /// When the tensioner took the line back from the winch in this run (s), if it did.
+    pub fn handed_back(&self) -> Option<f64> {
+        self.handed_back
     }
 
     /// The current state.
@@ -383,6 +392,7 @@ impl Integrator {
             supplied_work: self.ledger.supplied_work(),
             dissipated: self.ledger.dissipated(),
             length: observables.length(),
+            pay_out_speed: state.pay_out_speed,
             pay_out_energy: self.ledger.pay_out_energy(),
             plastic_dissipation: self.ledger.plastic_dissipated(),
             iterations,
@@ -456,6 +466,13 @@ impl Integrator {
             .is_some_and(|stages| stages.hand_over_due(&self.model, self.state.time))
         {
             self.hand_over()?;
+        }
+        if self.stages.is_some() && hand_back::due(&self.model, &self.state)? {
+            self.hand_back();
+        }
+        if let Some(stages) = &self.stages {
+            let remaining = hand_back::remaining(&self.model, &self.state);
+            stages.check_handed_back(&self.model, self.state.time, remaining)?;
         }
         if let Some(stage) = self
             .stages
@@ -539,6 +556,25 @@ impl Integrator {
         self.ledger.book_pay_out(after - before);
         self.handed_over = Some(force);
         Ok(())
+    }
+
+    /// Hands the line back to the tensioner ([`hand_back`]), rests the pay-out until the next stage the
+    /// tensioner holds, and books the energy the wire and head take away.
+    fn hand_back(&mut self) {
+        let before = self.observe().energy().total();
+        let winch_node = self.model.rod.element_count();
+        let Some(back) =
+            hand_back::hand_back(&mut self.model, &mut self.state, &mut self.reactions)
+        else {
+            return;
+        };
+        if let Some(stages) = &self.stages {
+            stages.rest_after_hand_back(&mut self.model, back.time);
+        }
+        self.rebuild(Some(MeshChange::Removed(winch_node)));
+        let after = self.observe().energy().total();
+        self.ledger.book_pay_out(after - before);
+        self.handed_back = Some(back.time);
     }
 
     /// The step of size `dt`, in substeps where it must be: a substep whose Newton fails or whose state is
@@ -676,6 +712,20 @@ impl Integrator {
             }
         }
         let report = outcome?;
+        // A winch that renders or holds a tension ran at the speed its law gives at the solved chord.
+        let predicted = self.growth.and_then(|growth| {
+            growth.winch?;
+            let e = growth.element;
+            let chord_next = self.state.configuration.positions[e + 1]
+                - self.state.configuration.positions[e]
+                + Vector3::from_column_slice(&self.increments[NODE_DOFS * (e + 1)..][..3])
+                - Vector3::from_column_slice(&self.increments[NODE_DOFS * e..][..3]);
+            let predicted = self.model.rod.elements[e].length;
+            if let Some(growth) = self.growth.as_mut() {
+                growth.solve_length(&mut self.model, chord_next.norm(), dt);
+            }
+            Some(predicted)
+        });
         let stored = self.growth.map_or(0.0, |growth| {
             growth.strain_energy(
                 &self.model,
@@ -687,7 +737,16 @@ impl Integrator {
             )
         });
         self.commit(dt);
-        self.ledger.book_pay_out(grown + stored);
+        let settled = match (self.growth, predicted) {
+            (Some(growth), Some(predicted)) => {
+                growth.settle(&mut self.model, &mut self.nodal, &self.state, predicted)
+            }
+            _ => 0.0,
+        };
+        if let Some(growth) = self.growth {
+            self.state.pay_out_speed = growth.speed;
+        }
+        self.ledger.book_pay_out(grown + stored + settled);
         self.remesh();
         Ok(report)
     }

@@ -12,6 +12,7 @@
 //! - [`ledger`]: the storage function and the work supplied and dissipated;
 //! - [`observables`]: what users read off a state; [`history`]: the record of a run.
 pub mod acceptance;
+pub mod hand_back;
 pub mod hand_over;
 pub mod history;
 pub mod integrator;

@@ -23,6 +23,7 @@ use crate::rod::dynamic_element::{
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::rod::plastic_state::PlasticState;
 use crate::so3::{cayley, cayley_tangent, skew};
+use crate::vessel::winch::WinchLaw;
 use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 use std::ops::{AddAssign, Range};
 
@@ -106,6 +107,9 @@ pub struct RodStep<'a> {
     pub waves: &'a [Kinematics],
     /// With pay-out: the growing element and its length at the step's start (m).
     pub growth: Option<(usize, f64)>,
+    /// The winch's law over the step, where its speed depends on its wire's tension (the growing element is
+    /// then the wire's top).
+    pub winch: Option<WinchLaw>,
     pub stress_rule: StressRule,
     /// The yielding elements' wall fibres (None: no wall yields), and each element's fibres' plastic strains
     /// at the step's start (empty where it does not yield).
@@ -243,13 +247,21 @@ impl RodStep<'_> {
             .map_or(reference.length, |(_, length)| length);
         let mut plastic_dissipated = 0.0;
         let step = if cable {
+            let ea = c_t[(0, 0)];
+            let winch = self
+                .winch
+                .filter(|_| self.growth.is_some_and(|(element, _)| element == e));
+            let rendered = winch.map(|law| move |l: f64| law.length(ea, length_start, dt, l));
             cable_step(
                 &chord,
                 &increments,
                 length_start,
                 reference,
-                c_t[(0, 0)],
+                ea,
                 self.stress_rule,
+                rendered
+                    .as_ref()
+                    .map(|law| law as &dyn Fn(f64) -> (f64, f64)),
                 tangent.as_deref_mut(),
             )
         } else if let Some(fibres) = self.fibres.and_then(|p| p.fibres(e)) {

@@ -49,6 +49,9 @@ pub struct Stage {
     pub hold: Option<Hold>,
     /// The winch's pay-out speed (m/s; negative: haul-in; zero: the brake holds).
     pub winch_speed: Option<f64>,
+    /// The tension the winch holds in constant-tension mode (N): it renders above the band around it and hauls
+    /// below (a later stage's `winch_speed` returns it to a commanded speed).
+    pub winch_tension: Option<f64>,
     /// A new DP set-point (x, y (m), heading ψ (rad)): the reference jumps there and waits (until a route speed
     /// moves it along ψ).
     pub setpoint: Option<[f64; 3]>,
@@ -76,6 +79,7 @@ impl Stage {
             route_speed: None,
             hold: None,
             winch_speed: None,
+            winch_tension: None,
             setpoint: None,
             statics: false,
             ramp: None,
@@ -107,6 +111,16 @@ impl Stage {
         }
         if let Some(setpoint) = self.setpoint {
             crate::error::finite(&format!("{prefix}setpoint"), &setpoint)?;
+        }
+        if let Some(tension) = self.winch_tension {
+            crate::error::positive(&format!("{prefix}winch_tension"), tension, "N")?;
+            if self.winch_speed.is_some() {
+                return Err(Error::input(
+                    format!("{prefix}winch_tension"),
+                    tension,
+                    "gives the winch a tension to hold, and winch_speed a speed: give one of them",
+                ));
+            }
         }
         if let Some(ramp) = self.ramp {
             if !(ramp.is_finite() && (0.0..=self.duration).contains(&ramp)) {
@@ -214,6 +228,7 @@ impl Stages {
             _ => 0.0,
         };
         let mut speeds = Vec::with_capacity(self.stages.len());
+        let mut modes = Vec::new();
         let mut route = Vec::new();
         let mut pays_out = false;
         for (k, stage) in self.stages.iter().enumerate() {
@@ -235,11 +250,11 @@ impl Stages {
                     ))
                 }
                 (Some(Hold::Tensioner), Hold::Winch) => {
-                    return Err(Error::input(
-                        key("hold"),
-                        "\"tensioner\" after the winch held the line",
-                        "the hand-back from the winch to the tensioner is not modelled: end the run with the winch",
-                    ))
+                    // The tensioner has taken the pipe back at rest (the hand-back, when the winch hauled the
+                    // pipe's end to the hold point) and starts from there.
+                    hold = Hold::Tensioner;
+                    speed = 0.0;
+                    pays_out = true;
                 }
                 (Some(Hold::Winch), Hold::Tensioner) => {
                     hold = Hold::Winch;
@@ -265,8 +280,29 @@ impl Stages {
                         "the tensioner holds the line in this stage: hand over first (hold=\"winch\")",
                     ));
                 }
+                if let Some(limit) = winch.map(|w| w.drive.speed_limit) {
+                    if value.abs() > limit {
+                        return Err(Error::input(
+                            key("winch_speed"),
+                            value,
+                            format!("must be within the winch's speed_limit, ±{limit} m/s"),
+                        ));
+                    }
+                }
                 speed = value;
                 pays_out = true;
+                modes.push((self.starts[k], None));
+            }
+            if let Some(value) = stage.winch_tension {
+                if winch.is_none() || hold != Hold::Winch {
+                    return Err(Error::input(
+                        key("winch_tension"),
+                        value,
+                        "needs the winch to hold the line in this stage: hand over first (hold=\"winch\")",
+                    ));
+                }
+                pays_out = true;
+                modes.push((self.starts[k], Some(value)));
             }
             if let Some(value) = stage.pay_out {
                 if hold == Hold::Winch {
@@ -289,8 +325,9 @@ impl Stages {
                     "a stage can start from statics in calm water only (statics has no waves)",
                 ));
             }
+            let handed_back = k > 0 && hold == Hold::Tensioner && self.holds[k - 1] == Hold::Winch;
             self.holds[k] = hold;
-            if stage.statics {
+            if stage.statics || handed_back {
                 // Statics bring the line to rest: the stage's speed ramps up from zero, not from the speed
                 // before (a pipe at rest fed at speed v takes an axial shock √(EA·m)·v).
                 speeds.push(Leg {
@@ -303,6 +340,9 @@ impl Stages {
         }
         if pays_out {
             self.set_pay_out(model, speeds)?;
+        }
+        if let Some(winch) = model.vessel.as_mut().and_then(|v| v.winch.as_mut()) {
+            winch.modes = modes;
         }
         if let Some(&first) = route.first() {
             let key = if self.stages[first].setpoint.is_some() {
@@ -386,14 +426,69 @@ impl Stages {
     }
 
     /// Whether the line must be handed over to the winch before a step from `time` (s): the stage holds it by
-    /// the winch and the winch does not yet.
+    /// the winch, and the winch neither holds it yet nor has handed it back.
     pub fn hand_over_due(&self, model: &Model, time: f64) -> bool {
-        let holds = model
+        let done = model
             .vessel
             .as_ref()
             .and_then(|v| v.winch.as_ref())
-            .is_some_and(|w| w.holds);
-        !holds && self.holds[self.stepping_at(time)] == Hold::Winch
+            .is_some_and(|w| w.holds || w.hand_back.is_some());
+        !done && self.holds[self.stepping_at(time)] == Hold::Winch
+    }
+
+    /// Checks that the tensioner holds the line when a step from `time` (s) is in a stage where it should after
+    /// the winch held it: the winch must have hauled the pipe's end back to the hold point by then (the
+    /// hand-back). `remaining`: how much more wire there is to haul in (m), if known.
+    pub fn check_handed_back(
+        &self,
+        model: &Model,
+        time: f64,
+        remaining: Option<f64>,
+    ) -> Result<()> {
+        let k = self.stepping_at(time);
+        let holds = model
+            .vessel
+            .as_ref()
+            .and_then(|v| v.holding_winch())
+            .is_some();
+        if !holds || self.holds[k] != Hold::Tensioner {
+            return Ok(());
+        }
+        let left = remaining.map_or_else(
+            || "the winch's wire is still out".to_string(),
+            |r| format!("{r:.3} m of wire is still out beyond the hold point"),
+        );
+        Err(Error::input(
+            format!("stages[{k}].hold"),
+            format!("\"tensioner\" at t = {time} s"),
+            format!(
+                "the tensioner takes the pipe back when the winch has hauled its end to the hold point, and \
+                 {left}: haul in longer or faster before this stage"
+            ),
+        ))
+    }
+
+    /// After the hand-back at `time` (s): the tensioner holds the pipe at rest until the next stage that
+    /// holds it by the tensioner (the winch's speeds of the stages until then no longer pay anything out).
+    pub fn rest_after_hand_back(&self, model: &mut Model, time: f64) {
+        let next = self
+            .starts
+            .iter()
+            .zip(&self.holds)
+            .find(|&(&start, &hold)| start > time && hold == Hold::Tensioner)
+            .map_or(f64::INFINITY, |(&start, _)| start);
+        if let Some(PayOutSpeed::Staged(legs)) = model.pay_out.as_mut().map(|p| &mut p.speed) {
+            legs.retain(|leg| leg.start < time || leg.start >= next);
+            let at = legs.partition_point(|leg| leg.start < time);
+            legs.insert(
+                at,
+                Leg {
+                    start: time,
+                    speed: 0.0,
+                    ramp: 0.0,
+                },
+            );
+        }
     }
 }
 

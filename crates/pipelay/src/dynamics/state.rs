@@ -38,6 +38,9 @@ pub struct DynamicState {
     /// Each element's wall fibres' plastic strains ([`crate::rod::plastic_state`]; empty where its wall does
     /// not yield).
     pub plastic: Vec<Vec<f64>>,
+    /// The pay-out speed of the last step (m/s; zero at rest): the tensioner's, or the winch's once it holds,
+    /// from which the winch's acceleration limit counts.
+    pub pay_out_speed: f64,
 }
 
 /// Velocity and controller state of an attached vessel.
@@ -183,6 +186,7 @@ impl DynamicState {
             plastic: plastic_from(model, &configuration, plastic),
             hinge_rates: vec![0.0; model.hinge_count()],
             section_velocities: vec![Vector3::zeros(); 2 * model.hinge_count()],
+            pay_out_speed: 0.0,
             configuration,
             velocities,
             gauss,

@@ -133,6 +133,7 @@ impl Integrator {
             increments: &self.increments,
             waves: &self.wave_kinematics,
             growth: self.growth.map(|g| (g.element, g.length_start)),
+            winch: self.growth.and_then(|g| g.winch),
             stress_rule: self.options.stress_rule,
             fibres: plastic.as_ref(),
             plastic: &state.plastic,

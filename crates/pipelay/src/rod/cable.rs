@@ -163,6 +163,12 @@ pub fn gauss_point(chord: &Vector3<f64>, length: f64) -> GaussPoint {
 /// growing element the rest of the change of stored energy is what pay-out brings in. (Taking both levels at
 /// L_{n+1} instead would slacken a taut growing wire's start strain, ε̃_n = l_n/L_{n+1} − 1 < 0, whenever a
 /// step pays out more than its stretch.)
+///
+/// `rendered`: for a winch's wire whose speed depends on its tension ([`crate::vessel::winch::WinchLaw`]),
+/// L_{n+1} as a function of l_{n+1}, with dL_{n+1}/dl_{n+1}; it replaces `reference.length`, and the tangent
+/// takes ∂ε_{n+1}/∂l_{n+1} = 1/L_{n+1} − l_{n+1}/L_{n+1}² dL_{n+1}/dl_{n+1}. Under the midpoint rule
+/// L_{n+1}(l_{n+1}) enters the force but not the tangent.
+#[allow(clippy::too_many_arguments)]
 pub fn step(
     chord: &Vector3<f64>,
     increments: &ElementVector,
@@ -170,15 +176,18 @@ pub fn step(
     reference: &ElementReference,
     ea: f64,
     rule: StressRule,
+    rendered: Option<&dyn Fn(f64) -> (f64, f64)>,
     tangent: Option<&mut ElementMatrix>,
 ) -> ElementStep {
-    let law = AxialLaw {
-        ea,
-        length: reference.length,
-    };
     let dphi1 = increments.fixed_rows::<3>(0).into_owned();
     let dphi2 = increments.fixed_rows::<3>(NODE_DOFS).into_owned();
     let chord_next = chord + dphi2 - dphi1;
+    let (length_next, d_length) =
+        rendered.map_or((reference.length, 0.0), |law| law(chord_next.norm()));
+    let law = AxialLaw {
+        ea,
+        length: length_next,
+    };
     let mean = 0.5 * (chord + chord_next);
     let (q_n, q_next) = (chord.norm_squared(), chord_next.norm_squared());
     let q_mid = mean.norm_squared();
@@ -186,14 +195,15 @@ pub fn step(
         StressRule::AverageStrain => {
             let (l_n, l_next) = (q_n.sqrt(), q_next.sqrt());
             let strain_n = l_n / length_start - 1.0;
-            let strain_next = l_next / reference.length - 1.0;
+            let strain_next = l_next / length_next - 1.0;
             let (tension, d_tension) = law.mean_tension(strain_n, strain_next);
-            // f = N̄ 2d̄/(l_n + l_{n+1}); with t_{n+1} = d_{n+1}/l_{n+1}, ∂ε_{n+1}/∂Δφ2 = t_{n+1}ᵀ/L_{n+1},
+            // f = N̄ 2d̄/(l_n + l_{n+1}); with t_{n+1} = d_{n+1}/l_{n+1}, ∂ε_{n+1}/∂Δφ2 = t_{n+1}ᵀ ∂ε_{n+1}/∂l_{n+1},
             // ∂l_{n+1}/∂Δφ2 = t_{n+1}ᵀ and ∂d̄/∂Δφ2 = ½I.
+            let d_strain = 1.0 / length_next - l_next * d_length / (length_next * length_next);
             let sum = l_n + l_next;
             let direction = 2.0 * mean / sum;
             let t_next = chord_next / l_next;
-            let block = direction * t_next.transpose() * (d_tension / reference.length)
+            let block = direction * t_next.transpose() * (d_tension * d_strain)
                 + (Matrix3::identity() / sum - 2.0 * mean * t_next.transpose() / (sum * sum))
                     * tension;
             (direction * tension, block)
@@ -210,7 +220,7 @@ pub fn step(
     }
     ElementStep {
         forces: bar_forces(&force),
-        next: gauss_point(&chord_next, reference.length),
+        next: gauss_point(&chord_next, length_next),
     }
 }
 
@@ -398,6 +408,7 @@ mod tests {
                         &reference,
                         ea,
                         rule,
+                        None,
                         tangent,
                     )
                 };
@@ -440,6 +451,81 @@ mod tests {
                             tangent[(i, j)]
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// A winch's wire in constant-tension mode: the step's unstretched length solves the winch's law at the
+    /// tension of the step's end, and the tangent, with dL/dl, matches central differences, on the law's
+    /// sloped part and on its flat parts.
+    #[test]
+    fn rendered_step_solves_the_law_with_a_consistent_tangent() {
+        use crate::vessel::winch::WinchLaw;
+        let chord = Vector3::new(10.0, 0.5, -2.0);
+        let ea = 5.5e8;
+        let length_start = chord.norm() / (1.0 + 1e6 / ea);
+        let reference = reference(length_start);
+        let (dt, rule) = (0.5, StressRule::AverageStrain);
+        // Set tension 1 MN, band 50 kN: at the start, on the set tension; the three increments move the
+        // tension into the band, onto the slope above it and past full speed.
+        let law = WinchLaw {
+            commanded: None,
+            tension: Some(1e6),
+            band: 5e4,
+            speed_limit: 1.0,
+            lowest: -1.0,
+            highest: 1.0,
+        };
+        let rendered = |l: f64| law.length(ea, length_start, dt, l);
+        for stretch in [1e-5, 4e-3, 0.7] {
+            let mut increments = ElementVector::zeros();
+            increments
+                .fixed_rows_mut::<3>(6)
+                .copy_from(&(chord.normalize() * stretch + Vector3::new(0.0, 1e-3, 0.0)));
+            let at = |increments: &ElementVector, tangent: Option<&mut ElementMatrix>| {
+                step(
+                    &chord,
+                    increments,
+                    length_start,
+                    &reference,
+                    ea,
+                    rule,
+                    Some(&rendered),
+                    tangent,
+                )
+            };
+            let mut tangent = ElementMatrix::zeros();
+            let result = at(&increments, Some(&mut tangent));
+            // The law holds at the step's end: L = L_n + Δt v(EA ε_{n+1}).
+            let l_next = (chord + increments.fixed_rows::<3>(6)).norm();
+            let (length, _) = rendered(l_next);
+            let tension = ea * (l_next / length - 1.0);
+            let (speed, slope) = law.speed(tension);
+            assert!((length - length_start - dt * speed).abs() < 1e-12 * length);
+            // Within the band, on the slope, at full speed.
+            let expected_speed = match stretch {
+                s if s < 1e-3 => 0.0,
+                s if s < 0.5 => speed,
+                _ => 1.0,
+            };
+            assert_eq!(speed, expected_speed);
+            assert_eq!(slope > 0.0, (1e-3..0.5).contains(&stretch));
+            assert!((result.next.strain.x - (l_next / length - 1.0)).abs() < 1e-15);
+            let h = 1e-8;
+            for j in [0, 1, 2, 6, 7, 8] {
+                let mut plus = increments;
+                plus[j] += h;
+                let mut minus = increments;
+                minus[j] -= h;
+                let (f_plus, f_minus) = (at(&plus, None).forces, at(&minus, None).forces);
+                for i in 0..12 {
+                    let difference = (f_plus[i] - f_minus[i]) / (2.0 * h);
+                    assert!(
+                        (difference - tangent[(i, j)]).abs() < 1e-5 * ea / length,
+                        "stretch {stretch} ({i}, {j}): {difference} vs {}",
+                        tangent[(i, j)]
+                    );
                 }
             }
         }

@@ -71,6 +71,9 @@ impl VesselAttachment {
     pub fn hang_off(&self) -> nalgebra::Vector3<f64> {
         match (&self.winch, &self.lay) {
             (Some(winch), _) if winch.holds => winch.position,
+            (Some(winch), _) if winch.hand_back.is_some() => {
+                winch.hand_back.map_or(winch.position, |back| back.hang_off)
+            }
             (_, Some(lay)) => lay.hang_off,
             _ => nalgebra::Vector3::zeros(),
         }
