@@ -1,7 +1,8 @@
 """S-lay abandonment, as `examples/s_lay_abandonment.toml` runs it: the 24-inch pipe in 150 m of water is handed
-over from the tensioner to the A&R winch (10 m forward of it on the firing line) with a 5 t head on its end,
-and the winch pays the wire out as the vessel moves on at 0.5 m/s, so that the head runs aft over the stinger's
-15 rollers, leaves its tip and goes down the catenary to the seabed (module fixture: ~45 s).
+over from the tensioner to the A&R winch (10 m forward of it on the firing line) with a 5 t head, 3 m long, on
+its end, and the winch pays the wire out as the vessel moves on at 1 m/s, so that the head runs aft over the
+stinger's 15 rollers (the default 1e7 N/m), leaves its tip and goes down the catenary to the seabed, with the
+solver's high-frequency damping ξ = 0.1 (module fixture: ~80 s).
 
 References: the normal lay's roller loads (their static values and the dynamic margin the run itself shows
 before the hand-over) for the head's passage over the rollers; the laid pipe's length for where the head lands;
@@ -30,7 +31,7 @@ def abandonment() -> tuple[Scenario, pl.State, pl.Results]:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pl.PhysicsWarning)
         state = scenario.model.static()
-        simulation = scenario.model.simulation(state, dt=scenario.dt, stages=scenario.stages)
+        simulation = scenario.simulation(state)
         results = simulation.run(progress=False, record_every=scenario.record_every)
     return scenario, state, results
 
@@ -46,13 +47,14 @@ def _head_along_vessel(results: pl.Results, heads: np.ndarray) -> np.ndarray:
 def test_the_head_runs_over_the_rollers_within_the_normal_lays_loads(
     abandonment: tuple[Scenario, pl.State, pl.Results],
 ) -> None:
-    """The head starts at the tensioner (10 m forward of CO) and runs aft past every roller to the stinger's tip
-    (body x = −135.9 m) and beyond. While it crosses the stinger's first 11 rollers (forward of −100 m) no
-    roller carries more than the normal lay's largest load (the static 78.5 kN plus the margin of the normal
-    lay's own dynamics, measured 26 %) by more than 15 % (measured 11.5 %). Over the last rollers the stiff
-    pipe's end pivots on the tip roller with the pipe hanging below it: that roller's load peaks at 3.4 times
-    the static (267 kN), still below the wire's tension there (831 kN: a deflection under 60°). The wire never goes
-    slack."""
+    """The head's padeye starts 3 m forward of the tensioner (13 m forward of CO, less the winch's last
+    creep) and runs aft past every roller to the stinger's tip (body x = −135.9 m) and beyond. While it crosses
+    the stinger's first 11 rollers (forward of −100 m) no roller carries more than the normal lay's largest load
+    (the static 113 kN plus the margin of the normal lay's own dynamics, measured 8 %) by more than 50 %
+    (measured 31 %: the head's taper rides over each roller at 1 m/s). Over the last rollers the stiff pipe's
+    end pivots on the tip roller with the pipe hanging below it: that roller's load peaks at 2.5 times the
+    static (280 kN), still below the wire's tension there (819 kN: a deflection under 60°). The wire never goes
+    slack (its least tension 168 kN, a fifth of its largest)."""
     scenario, state, results = abandonment
     heads = head_positions(results, scenario.model)
     along = _head_along_vessel(results, heads)
@@ -72,11 +74,11 @@ def test_the_head_runs_over_the_rollers_within_the_normal_lays_loads(
         f"the last rollers {passing / 1e3:.1f} kN; tip roller at the head's pivot {rollers[peak, -1] / 1e3:.1f} kN "
         f"(wire {tension[peak] / 1e3:.1f} kN)"
     )
-    assert along[seen][0] == pytest.approx(10.0, abs=1.0)
+    assert along[seen][0] == pytest.approx(13.0, abs=1.5)
     assert along[seen].min() < STINGER_TIP - 100.0
     assert np.all(np.diff(along[ahead]) < 0.5)  # aft, record after record (the vessel moving on)
     assert 0.0 < margin < 0.5
-    assert passing <= 1.15 * normal
+    assert passing <= 1.5 * normal
     assert normal < rollers[peak, -1] < tension[peak]
     summary = results.stage_summary(scenario.model)
     assert summary["wire_tension_min"][2] > 0.1 * summary["wire_tension_max"][2]
@@ -92,7 +94,8 @@ def test_the_head_runs_over_the_rollers_within_the_normal_lays_loads(
 def test_the_head_lands_at_the_laid_pipes_end(abandonment: tuple[Scenario, pl.State, pl.Results]) -> None:
     """The head lands during the abandonment stage and rests on the seabed (sunk by its weight, a few cm) at
     the laid pipe's length from the pile: the 700 m of pipe and the 27.5 m paid out in normal lay (0.5 m/s for
-    60 s less half the 10 s ramp), stretched by its residual tension (within one 5 m element; measured 3 cm)."""
+    60 s less half the 10 s ramp), plus the head's 3 m to its padeye, stretched by its residual tension (within
+    one 5 m element; measured 3.02 m beyond the pipe's length)."""
     scenario, _, results = abandonment
     heads = head_positions(results, scenario.model)
     pipe_length = 700.0 + 0.5 * 60.0 - 0.5 * 0.5 * 10.0
@@ -102,18 +105,19 @@ def test_the_head_lands_at_the_laid_pipes_end(abandonment: tuple[Scenario, pl.St
     assert results.stage[landed[0]] == 2
     final = heads[-1]
     print(f"\nhead lands at t = {results.time[landed[0]]:.0f} s, rests at {final}")
-    assert abs(final[0] - pipe_length) < 5.0
+    assert abs(final[0] - pipe_length - 3.0) < 5.0
     assert abs(final[1]) < 1e-6 and 0.0 < final[2] < 0.2
 
 
 def test_the_ledger_closes_through_the_abandonment(
     abandonment: tuple[Scenario, pl.State, pl.Results],
 ) -> None:
-    """E(t) − E(0) = W(t) − D(t) through the hand-over, the head's passage over the rollers (where steps are
-    taken in substeps) and its landing: to 1e-9 of the energy."""
+    """E(t) − E(0) = W(t) − D(t) through the hand-over, the head's passage over the rollers and its landing, the
+    high-frequency damping's work in D: to 1e-9 of the energy (measured 2e-11). Once the head has reached the
+    stinger's last rollers the wire on them takes most steps in substeps (measured 218 records of 336)."""
     _, _, results = abandonment
     split = results.substeps > 1
-    assert 0 < np.count_nonzero(split) < len(results.time) // 2
+    assert 0 < np.count_nonzero(split)
     assert results.substeps[0] == 1 and results.substeps.max() <= 1024
     energy = results.energy["total"]
     balance = energy - energy[0] - results.supplied_work + results.dissipated

@@ -73,12 +73,17 @@ from pipelay.results import load, resume, streaming
 
 
 def _simulation(
-    self: Model, state: State | None = None, dt: float = 0.05, stages: Stages | None = None
+    self: Model,
+    state: State | None = None,
+    dt: float = 0.05,
+    stages: Stages | None = None,
+    high_frequency_damping: float = 0.0,
 ) -> Simulation:
     """A time simulation from `state` (default: ``self.static()``) with time step `dt` (s), using the
-    energy–momentum conserving integrator, through `stages` (a `pl.Stages`) if given; the same as
-    ``Simulation(self, state, dt, stages)``."""
-    return Simulation(self, state, dt, stages)
+    energy–momentum conserving integrator, through `stages` (a `pl.Stages`) if given, with the
+    `high_frequency_damping` ξ ≥ 0 of the line's strains (0: energy conserving); the same as
+    ``Simulation(self, state, dt, stages, high_frequency_damping)``."""
+    return Simulation(self, state, dt, stages, high_frequency_damping)
 
 
 Model.simulation = _simulation  # type: ignore[attr-defined]

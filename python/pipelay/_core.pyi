@@ -762,9 +762,15 @@ class SLay:
 
 @final
 class JLay:
-    """J-lay: the pipe held at the tower exit (body frame, m), the tower leaning `angle` (rad) from vertical."""
+    """J-lay: the pipe held at the tower exit (body frame, m), the tower leaning `angle` (rad) from vertical;
+    `guide` (m): a bellmouth of that bend radius at the exit, `guide_opening` (m) across at its narrowest."""
 
-    def __new__(cls, position: _ArrayLike, angle: float = 0.0) -> JLay: ...
+    def __new__(
+        cls, position: _ArrayLike, angle: float = 0.0, guide: float | None = None, guide_opening: float = 1.0
+    ) -> JLay: ...
+    @property
+    def guide(self) -> float | None:
+        """The guide's bend radius (m), None without a guide."""
     @property
     def position(self) -> tuple[float, float, float]:
         """The tower exit's position (body frame, m)."""
@@ -1081,8 +1087,16 @@ class Simulation:
     """A time simulation of a model (energy–momentum conserving integrator)."""
 
     def __new__(
-        cls, model: Model, state: State | None = None, dt: float = 0.05, stages: Stages | None = None
+        cls,
+        model: Model,
+        state: State | None = None,
+        dt: float = 0.05,
+        stages: Stages | None = None,
+        high_frequency_damping: float = 0.0,
     ) -> Simulation: ...
+    @property
+    def high_frequency_damping(self) -> float:
+        """The high-frequency damping ξ of the line's strains (0: energy conserving)."""
     def step(self) -> None:
         """Advance one time step dt."""
     def run(
@@ -1327,9 +1341,14 @@ class Model:
         sea's wind, current and waves act on the hull through the vessel's coefficient tables (mean and
         slowly varying drift); off, the hull feels only `environment` (the paper's model)."""
     def simulation(
-        self, state: State | None = None, dt: float = 0.05, stages: Stages | None = None
+        self,
+        state: State | None = None,
+        dt: float = 0.05,
+        stages: Stages | None = None,
+        high_frequency_damping: float = 0.0,
     ) -> Simulation:
-        """A time simulation from `state` (default: self.static()) with time step `dt` (s), through `stages`."""
+        """A time simulation from `state` (default: self.static()) with time step `dt` (s), through `stages`,
+        with the high-frequency damping ξ of the line's strains (0: energy conserving)."""
     def pay_out(
         self,
         end: _End = "B",
@@ -1388,6 +1407,8 @@ class Winch:
         wire: Section | None = None,
         element_length: float | None = None,
         head: Clump | None = None,
+        head_length: float | None = None,
+        head_diameter: float | None = None,
         speed_limit: float | None = None,
         acceleration_limit: float | None = None,
         tension_band: float | None = None,
@@ -1398,6 +1419,9 @@ class Winch:
     @property
     def tension_limit(self) -> float | None:
         """The wire's rating (N), None for none."""
+    @property
+    def head_body(self) -> tuple[float, float] | None:
+        """The head body's length and diameter (m), None for a point head."""
     @property
     def speed_limit(self) -> float:
         """The drive's largest speed either way (m/s)."""

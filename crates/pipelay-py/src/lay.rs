@@ -501,7 +501,9 @@ impl SLay {
 }
 
 /// J-lay: the pipe held at the tower exit `position` (body frame, m), along the tower, which leans `angle`
-/// (rad) from the vertical toward the bow.
+/// (rad) from the vertical toward the bow. `guide` (m): a bellmouth at the exit of that bend radius, whose
+/// narrowest opening is `guide_opening` (m, default 1 m) across: a line that leaves the exit at an angle (the
+/// A&R wire, lowered below the exit) bends over it.
 #[pyclass(module = "pipelay", name = "JLay", frozen)]
 #[derive(Clone)]
 pub struct JLay(pub LayEquipment);
@@ -509,12 +511,27 @@ pub struct JLay(pub LayEquipment);
 #[pymethods]
 impl JLay {
     #[new]
-    #[pyo3(signature = (position, angle=0.0))]
-    fn new(position: &Bound<'_, PyAny>, angle: f64) -> PyResult<Self> {
+    #[pyo3(signature = (position, angle=0.0, guide=None, guide_opening=1.0))]
+    fn new(
+        position: &Bound<'_, PyAny>,
+        angle: f64,
+        guide: Option<f64>,
+        guide_opening: f64,
+    ) -> PyResult<Self> {
         let position = vector3(position, "position")?;
-        LayEquipment::j_lay(position, angle)
-            .map(JLay)
-            .map_err(to_py)
+        let lay = LayEquipment::j_lay(position, angle).map_err(to_py)?;
+        match guide {
+            Some(radius) => lay.with_guide(radius, guide_opening),
+            None => Ok(lay),
+        }
+        .map(JLay)
+        .map_err(to_py)
+    }
+
+    /// The guide's bend radius (m), None without a guide.
+    #[getter]
+    fn guide(&self) -> Option<f64> {
+        self.0.rollers.first().filter(|r| r.guide).map(|r| r.radius)
     }
 
     /// The tower exit's position (body frame, m).

@@ -11,7 +11,10 @@ use pyo3::prelude::*;
 /// in an S-lay, up the tower in a J-lay). `tension_limit` (N): the wire's rating, None for none. `wire`: the
 /// wire's `pl.Section.cable` (default: the line's top segment, if it is a cable). `element_length` (m): of the
 /// wire elements pay-out adds (default: the line's top element's). `head`: a `pl.Clump`, the laydown head
-/// fitted to the pipe's end at the hand-over. The drive: `speed_limit` (m/s, default 1), `acceleration_limit`
+/// fitted to the pipe's end at the hand-over, a point body; with `head_length` and `head_diameter` (m) a body:
+/// an element of the line from the pipe's end to the wire, of the pipe's stiffness and the head's mass,
+/// volume, drag and added mass, whose surface tapers from `head_diameter` at the pipe's end to the wire's at its
+/// padeye (the rollers and the seabed see it). The drive: `speed_limit` (m/s, default 1), `acceleration_limit`
 /// (m/s², default 0.5) and `tension_band` (N, default 50 kN): in constant-tension mode (`pl.Stage(...,
 /// winch_tension=)`) the winch stands within the set tension ± band and runs at full speed 2·band away from
 /// it; with a `tension_limit` it renders from tension_limit − band, at full speed at the limit. Give it to
@@ -26,7 +29,7 @@ pub struct Winch {
 #[pymethods]
 impl Winch {
     #[new]
-    #[pyo3(signature = (position, tension_limit=None, *, wire=None, element_length=None, head=None, speed_limit=None, acceleration_limit=None, tension_band=None))]
+    #[pyo3(signature = (position, tension_limit=None, *, wire=None, element_length=None, head=None, head_length=None, head_diameter=None, speed_limit=None, acceleration_limit=None, tension_band=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         position: &Bound<'_, PyAny>,
@@ -34,6 +37,8 @@ impl Winch {
         wire: Option<&Section>,
         element_length: Option<f64>,
         head: Option<&Clump>,
+        head_length: Option<f64>,
+        head_diameter: Option<f64>,
         speed_limit: Option<f64>,
         acceleration_limit: Option<f64>,
         tension_band: Option<f64>,
@@ -63,6 +68,26 @@ impl Winch {
             drive,
             ..winch
         };
+        let winch = match (head_length, head_diameter) {
+            (None, None) => winch,
+            (Some(length), Some(diameter)) => {
+                winch.with_head_body(length, diameter).map_err(to_py)?
+            }
+            (Some(length), None) => {
+                return Err(input(
+                    "head_diameter",
+                    "missing",
+                    &format!("a head body of head_length {length} m needs its diameter (m)"),
+                ))
+            }
+            (None, Some(diameter)) => {
+                return Err(input(
+                    "head_length",
+                    "missing",
+                    &format!("a head body of head_diameter {diameter} m needs its length (m)"),
+                ))
+            }
+        };
         Ok(Winch {
             winch,
             wire: wire.map(|w| w.0.clone()),
@@ -78,6 +103,11 @@ impl Winch {
     #[getter]
     fn tension_limit(&self) -> Option<f64> {
         self.winch.tension_limit
+    }
+    /// The head body's length and diameter (m), None for a point head.
+    #[getter]
+    fn head_body(&self) -> Option<(f64, f64)> {
+        self.winch.head_body.map(|b| (b.length, b.diameter))
     }
     /// The drive's largest speed either way (m/s).
     #[getter]

@@ -674,6 +674,48 @@ impl Model {
                 "needs lay= (pl.SLay or pl.JLay): the winch takes the line over from its tensioner",
             ));
         }
+        if let Some(body) = winch.head_body.as_mut() {
+            let Some(lay) = attachment.lay.as_ref().filter(|_| !held_top) else {
+                return Err(Error::input(
+                    "head_length",
+                    body.length,
+                    "needs the pipe at the line's top, held by lay equipment: the head is fitted to it at the \
+                     hand-over",
+                ));
+            };
+            let room = (winch.position - lay.hang_off).norm() - body.length;
+            if room < 1.0 {
+                return Err(Error::input(
+                    "head_length",
+                    body.length,
+                    format!(
+                        "must leave at least 1 m of wire between the head and the winch, {} m from the hold point",
+                        room + body.length
+                    ),
+                ));
+            }
+            // with_head_body refuses a body without the head's clump.
+            let Some(clump) = winch.head else {
+                return Err(Error::input(
+                    "head_length",
+                    body.length,
+                    "needs head=pl.Clump(...)",
+                ));
+            };
+            let pipe = self.rod.section(top);
+            let head = crate::rod::section::Section::head(
+                pipe,
+                body.length,
+                body.diameter,
+                wire.hydrodynamic_diameter,
+                clump.mass,
+                clump.volume,
+                clump.drag_area,
+                clump.added_mass,
+            )?;
+            self.rod.sections.push(head);
+            body.section = self.rod.sections.len() - 1;
+        }
         self.rod.sections.push(wire);
         winch.wire = self.rod.sections.len() - 1;
         winch.holds = held_top;
@@ -695,7 +737,10 @@ impl Model {
             return;
         };
         winch.holds = true;
-        let (element_length, head) = (winch.element_length, winch.head);
+        let (element_length, head) = (
+            winch.element_length,
+            winch.head.filter(|_| winch.head_body.is_none()),
+        );
         let rod_length = self.rod.length();
         if let Some(pay_out) = self.pay_out.as_mut() {
             winch.pipe_element_length = pay_out.element_length;
@@ -741,7 +786,7 @@ impl Model {
             pay_out.element_length = element_length;
             pay_out.initial_length = rod_length;
         }
-        if head.is_some() {
+        if head.is_some() && winch.head_body.is_none() {
             let tolerance = 1e-9 * rod_length.max(1.0);
             self.attachments
                 .retain(|a| (a.arc_length - rod_length).abs() > tolerance);

@@ -157,7 +157,7 @@ def start(scenario: Scenario, checkpoint: str | os.PathLike[str] | None = None) 
     if checkpoint is not None:
         return resume(scenario.model, checkpoint, stages=scenario.stages)
     state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
-    return scenario.model.simulation(state=state, dt=scenario.dt, stages=scenario.stages)  # type: ignore[attr-defined, no-any-return]
+    return scenario.simulation(state)
 
 
 def run(

@@ -9,7 +9,7 @@ from pipelay.scenario import load_scenario
 scenario = load_scenario("examples/jensen2009.toml")
 state = scenario.model.static(steps=scenario.static_steps, start=scenario.static_start)
 if scenario.t_end is not None:
-    simulation = scenario.model.simulation(state=state, dt=scenario.dt, stages=scenario.stages)
+    simulation = scenario.simulation(state)  # its dt, stages and high-frequency damping
     results = simulation.run(scenario.t_end, record_every=scenario.record_every)
 ```
 

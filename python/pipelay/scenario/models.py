@@ -734,7 +734,8 @@ class Stage(Table):
 
 
 class Solver(Table):
-    """`model.static(steps, start)`, `model.simulation(dt, stages)`, `simulation.run(t_end, record_every)`."""
+    """`model.static(steps, start)`, `model.simulation(dt, stages, high_frequency_damping)`,
+    `simulation.run(t_end, record_every)`."""
 
     static_steps: Annotated[int | None, Integer(1)] = api(
         "initial number of (adaptive) static load steps, ≥ 1", 1
@@ -748,6 +749,12 @@ class Solver(Table):
     )
     record_every: Annotated[int, Integer(1)] = Field(
         1, description="record every k-th time step, an integer ≥ 1"
+    )
+    high_frequency_damping: Annotated[float, Number(ge=0)] = Field(
+        0.0,
+        description="ξ ≥ 0: damps the line's strains by ξ C ΔΓ over each step (a mode ω at the ratio ξωΔt/2; "
+        "the stiff modes a step cannot resolve decay by (1 − 2ξ)/(1 + 2ξ) a step), its work dissipated; "
+        "0: energy conserving",
     )
 
 

@@ -228,6 +228,13 @@ class JLay(Table):
     angle: Annotated[float | None, Number("rad")] = api(
         "the tower's lean from vertical toward the bow, in [0, π/2]", 0
     )
+    guide: Annotated[float | None, Number("m", gt=0)] = api(
+        "bend radius of a bellmouth at the exit, over which a line leaving at an angle bends, > 0",
+        words="none: no guide",
+    )
+    guide_opening: Annotated[float | None, Number("m", gt=0)] = api(
+        "the bellmouth's narrowest opening across, > 0", 1
+    )
 
 
 class ReelLay(Table):
@@ -288,13 +295,21 @@ class Cable(Table):
 
 class Head(Table):
     """`pl.Clump`: the laydown (A&R) head fitted to the pipe's end at the hand-over to the winch. Its weight
-    less buoyancy, mass with added mass and drag act at the joint of the pipe and the wire."""
+    less buoyancy, mass with added mass and drag act at the joint of the pipe and the wire; with `length` and
+    `diameter` (`pl.Winch(head_length=, head_diameter=)`) it is a body, an element of the line from the pipe's
+    end to the wire whose surface tapers from `diameter` to the wire's (the rollers and the seabed see it)."""
 
     mass: Annotated[float, Number("kg", ge=0)] = Field(description="mass in air, ≥ 0")
     volume: Annotated[float | None, Number("m³", ge=0)] = api("displaced volume, ≥ 0", 0)
     drag_area: Annotated[float | None, Number("m²", ge=0)] = api("drag area C_d·A, ≥ 0", 0)
     added_mass: Annotated[float | None, Number(ge=0)] = api(
         "added-mass coefficient on the displaced volume, ≥ 0", 1
+    )
+    length: Annotated[float | None, POSITIVE_LENGTH] = api(
+        "the head body's length, > 0 (with `diameter`)", words="none: a point body"
+    )
+    diameter: Annotated[float | None, POSITIVE_LENGTH] = api(
+        "the head body's diameter at the pipe's end, > 0 (with `length`)", words="none: a point body"
     )
 
 

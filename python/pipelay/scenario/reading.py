@@ -38,6 +38,7 @@ class Scenario:
     Attributes:
         model: the model with its supports, loads and vessel.
         dt: time step of the simulation (s).
+        high_frequency_damping: ξ of `model.simulation(..., high_frequency_damping=)`; 0: energy conserving.
         t_end: end time of the simulation (s): `solver.t_end`, else the end of the stages; None: statics
             only.
         record_every: record every k-th time step.
@@ -62,9 +63,22 @@ class Scenario:
     output: dict[str, Any]
     source: dict[str, Any]
     checks: dict[str, Any] = field(default_factory=dict)
+    high_frequency_damping: float = 0.0
     stages: pl.Stages | None = None
     origin: str = "<dict>"
     folder: str | None = None
+
+    def simulation(self, state: pl.State | None = None) -> pl.Simulation:
+        """The scenario's simulation from `state` (default: the model's statics with the solver's settings):
+        its time step, stages and high-frequency damping."""
+        if state is None:
+            state = self.model.static(steps=self.static_steps, start=self.static_start)
+        return self.model.simulation(  # type: ignore[attr-defined, no-any-return]
+            state=state,
+            dt=self.dt,
+            stages=self.stages,
+            high_frequency_damping=self.high_frequency_damping,
+        )
 
 
 @dataclass(frozen=True)
@@ -104,6 +118,7 @@ def _settings(file: models.ScenarioFile) -> dict[str, Any]:
     solver = file.solver
     return {
         "dt": solver.dt,
+        "high_frequency_damping": solver.high_frequency_damping,
         "t_end": file.run_end(),
         "record_every": solver.record_every,
         "static_steps": solver.static_steps,
@@ -138,6 +153,8 @@ _WINCH_ARGUMENTS = {
     "winch position": "vessel.winch.position",
     "winch.wire": "vessel.winch.wire",
     "wire": "vessel.winch.wire",
+    "head_length": "vessel.winch.head.length",
+    "head_diameter": "vessel.winch.head.diameter",
 }
 """The engine's names, in `attach_vessel`'s errors, of what belongs to `[vessel.winch]`."""
 _STINGER_ARGUMENTS = {
@@ -418,11 +435,16 @@ def _winch(winch: models.Winch) -> pl.Winch:
     """The A&R winch of `[vessel.winch]`, with its wire and head."""
     wire = None if winch.wire is None else _section(winch.wire, "vessel.winch.wire", "vessel.winch.wire")
     head = None
+    body: dict[str, float] = {}
     if winch.head is not None:
         with _engine("vessel.winch.head", KEYS["vessel.winch.head"]):
-            head = pl.Clump(**winch.head.given())
+            head = pl.Clump(**winch.head.given("length", "diameter"))
+        body = {
+            f"head_{key}": value for key, value in winch.head.given().items() if key in ("length", "diameter")
+        }
     with _engine("vessel.winch", KEYS["vessel.winch"], _WINCH_ARGUMENTS):
-        return pl.Winch(winch.position, wire=wire, head=head, **winch.given("position", "wire", "head"))
+        given = winch.given("position", "wire", "head")
+        return pl.Winch(winch.position, wire=wire, head=head, **given, **body)
 
 
 def _held_section(model: pl.Model, end: str) -> pl.Section:

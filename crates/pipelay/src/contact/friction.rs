@@ -255,7 +255,10 @@ mod tests {
         for bathymetry in [plane, wavy_seabed()] {
             for rule in [
                 ContactRule::Static,
-                ContactRule::EnergyMomentum { time_step: 0.1 },
+                ContactRule::EnergyMomentum {
+                    time_step: 0.1,
+                    damping: 0.0,
+                },
             ] {
                 for (slip_start, normal_force, axis, sliding) in [
                     (

@@ -228,16 +228,36 @@ pub(super) fn spline_weights(xi: f64, mirrored: [bool; 2]) -> [[f64; 4]; 3] {
     weights
 }
 
-/// Signed distance d from the roller to the spline element through `points` (see [`chord_distance`] for the
-/// sign), the weights w_j(ξ*) at its foot, the signed unit foot direction ±n, so that ∂d/∂y_j = w_j(ξ*) (±n),
-/// and the foot's position along the roller from its centre, a·(r(ξ*) − c) clamped to the roller (m). The
-/// foot ξ* ∈ [0, 1] is found by Newton's method on ∂|u(r(ξ))|²/∂ξ = 2 u·r′ = 0 from the chord's foot.
+/// Where a roller is nearest a spline element: the signed distance d from its axis (see [`chord_distance`] for
+/// the sign), the weights w_j(ξ*) at the foot ξ*, the signed unit foot direction ±n, the foot's position along
+/// the roller from its centre, a·(r(ξ*) − c) clamped to the roller (m), and ξ*.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Foot {
+    pub(super) distance: f64,
+    pub(super) weights: [f64; 4],
+    pub(super) direction: Vector3<f64>,
+    pub(super) along: f64,
+    pub(super) xi: f64,
+}
+
+/// The element's surface radius at ξ: `half_diameter` at its first node, changing by `taper` (m) to its
+/// second (a laydown head's nose; zero for a cylinder).
+fn radius_at(half_diameter: f64, taper: f64, xi: f64) -> f64 {
+    half_diameter + taper * xi
+}
+
+/// The foot of the roller on the spline element through `points` whose surface radius changes by `taper` (m)
+/// along it: ξ* ∈ [0, 1] minimises the gap |u(r(ξ))| − taper·ξ (for a cylinder, the distance), so that the
+/// gap's gradient is ∂(d − ρ(ξ*))/∂y_j = w_j(ξ*) (±n) whether ξ* is inside the element or at an end. Newton's
+/// method on the gap's derivative (u·r′/|u| − taper) from the chord's foot, Gauss–Newton's where the
+/// curvature term would make it climb.
 pub(super) fn spline_distance(
     roller: &LocalRoller,
     reach: f64,
     points: &[Vector3<f64>; 4],
     mirrored: [bool; 2],
-) -> (f64, [f64; 4], Vector3<f64>, f64) {
+    taper: f64,
+) -> Foot {
     let relative = points.map(|y| y - roller.centre);
     let combine = |w: &[f64; 4]| -> Vector3<f64> {
         w.iter()
@@ -271,10 +291,21 @@ pub(super) fn spline_distance(
         if metric == 0.0 {
             break;
         }
-        // Newton's step, or Gauss–Newton's where the curvature term would make it climb.
-        let curvature = metric + foot.dot(&bend);
-        let slope = foot.dot(&tangent);
-        let next = (xi - slope / curvature.max(0.5 * metric)).clamp(0.0, 1.0);
+        // Newton's step, or Gauss–Newton's where the curvature term would make it climb; on ½|u|² for a
+        // cylinder, on |u| − taper·ξ for a taper.
+        let (slope, curvature) = if taper == 0.0 {
+            (foot.dot(&tangent), metric + foot.dot(&bend))
+        } else {
+            let d = foot.norm().max(f64::MIN_POSITIVE);
+            let rate = foot.dot(&moving) / d;
+            (rate - taper, (metric + foot.dot(&bend) - rate * rate) / d)
+        };
+        let floor = if taper == 0.0 {
+            0.5 * metric
+        } else {
+            0.5 * metric / foot.norm().max(f64::MIN_POSITIVE)
+        };
+        let next = (xi - slope / curvature.max(floor)).clamp(0.0, 1.0);
         let converged = (next - xi).abs() <= 1e-15;
         xi = next;
         if converged {
@@ -288,16 +319,30 @@ pub(super) fn spline_distance(
     let d = foot.norm();
     let normal = if d > 0.0 { foot / d } else { Vector3::zeros() };
     match roller.signed(&foot, roller.beyond_from_centre(&point), reach) {
-        Some((distance, sign)) => (distance, weights, sign * normal, along),
-        None => (f64::INFINITY, [0.0; 4], Vector3::zeros(), along),
+        Some((distance, sign)) => Foot {
+            distance,
+            weights,
+            direction: sign * normal,
+            along,
+            xi,
+        },
+        None => Foot {
+            distance: f64::INFINITY,
+            weights: [0.0; 4],
+            direction: Vector3::zeros(),
+            along,
+            xi,
+        },
     }
 }
 
-/// The line's surface along each element: half its hydrodynamic diameter (m), and whether it is a cable's
-/// bar (whose centreline is its chord, kinked at the nodes).
+/// The line's surface along each element: half its hydrodynamic diameter at its first node (m), the change
+/// of that radius to its second (m; a laydown head's taper, else zero), and whether it is a cable's bar (whose
+/// centreline is its chord, kinked at the nodes).
 #[derive(Debug, Clone)]
 pub(super) struct Surfaces {
     pub(super) half_diameters: Vec<f64>,
+    pub(super) tapers: Vec<f64>,
     pub(super) cables: Vec<bool>,
 }
 
@@ -309,8 +354,20 @@ impl Surfaces {
                 .clone()
                 .map(|s| 0.5 * s.hydrodynamic_diameter)
                 .collect(),
+            tapers: sections
+                .clone()
+                .map(|s| {
+                    s.nose_diameter
+                        .map_or(0.0, |d| 0.5 * (d - s.hydrodynamic_diameter))
+                })
+                .collect(),
             cables: sections.map(|s| s.cable).collect(),
         }
+    }
+
+    /// Element e's surface gap from a roller's axis at `foot`: the distance less the surface's radius there.
+    pub(super) fn gap(&self, e: usize, foot: &Foot) -> f64 {
+        foot.distance - radius_at(self.half_diameters[e], self.tapers[e], foot.xi)
     }
 
     /// Whether element e's spline ends at its first or last node (mirrored there): at an end of the rod, at
@@ -354,9 +411,16 @@ pub(super) fn nearest_spline_element(
         let (control, mirrored) = surfaces.control_nodes(e);
         let points = control.map(local);
         let half_diameter = surfaces.half_diameters[e];
-        let (d, ..) = spline_distance(roller, roller.radius + half_diameter, &points, mirrored);
-        if d - half_diameter < best.0 {
-            best = (d - half_diameter, e);
+        let foot = spline_distance(
+            roller,
+            roller.radius + half_diameter,
+            &points,
+            mirrored,
+            surfaces.tapers[e],
+        );
+        let gap = surfaces.gap(e, &foot);
+        if gap < best.0 {
+            best = (gap, e);
         }
     }
     (best.0 - roller.radius, best.1)

@@ -294,16 +294,17 @@ impl RollerContact {
         let roller = &self.rollers[k];
         // The element whose surface is nearest: the smallest gap d − D/2.
         // The gap, the segment, and the foot's weights, direction and offset along the roller.
-        type Foot = (f64, Segment, [f64; 4], Vector3<f64>, f64);
-        let mut best: Option<Foot> = None;
+        type Nearest = (f64, Segment, [f64; 4], Vector3<f64>, f64);
+        let mut best: Option<Nearest> = None;
         for segment in segments {
-            let half_diameter = self.surfaces.half_diameters[segment.element];
-            let reach = roller.radius + half_diameter;
+            let e = segment.element;
+            let reach = roller.radius + self.surfaces.half_diameters[e];
             let points = segment.control.map(|i| y[i]);
-            let (d, weights, direction, along) =
-                spline_distance(roller, reach, &points, segment.mirrored);
-            if best.is_none_or(|b| d - half_diameter < b.0) {
-                best = Some((d - half_diameter, *segment, weights, direction, along));
+            let taper = self.surfaces.tapers[e];
+            let foot = spline_distance(roller, reach, &points, segment.mirrored, taper);
+            let gap = self.surfaces.gap(e, &foot);
+            if best.is_none_or(|b| gap < b.0) {
+                best = Some((gap, *segment, foot.weights, foot.direction, foot.along));
             }
         }
         let mut gradient = [Vector3::zeros(); MAX_NODES];
@@ -329,6 +330,16 @@ impl RollerContact {
             gradient,
             Some(touch),
         )
+    }
+
+    /// ∂δ/∂z of the overlap δ = √(2V/k) from the potential V and its gradient ∂V/∂z = k δ ∂δ/∂z at a state
+    /// (zero out of contact).
+    fn overlap_gradient(&self, value: f64, gradient: &[Vector3<f64>]) -> [Vector3<f64>; MAX_NODES] {
+        let overlap = (2.0 * value / self.stiffness).max(0.0).sqrt();
+        std::array::from_fn(|i| match gradient.get(i) {
+            Some(g) if overlap > 0.0 => g / (self.stiffness * overlap),
+            _ => Vector3::zeros(),
+        })
     }
 
     /// Of the spline's elements next to the nearest chord `chord`, the one whose surface is nearest roller k
@@ -690,7 +701,9 @@ impl RollerContact {
                     change2 += (z_end[i] - z_start[i]).norm_squared();
                 }
                 let value_start = contact.value_start;
-                let (_, mut gradient, _) = self.potential(k, contact.segments, &z_mid[..count]);
+                let (value_mid, mut gradient, _) =
+                    self.potential(k, contact.segments, &z_mid[..count]);
+                let overlap_gradient = self.overlap_gradient(value_mid, &gradient[..count]);
                 let along: f64 = (0..count)
                     .map(|i| gradient[i].dot(&(z_end[i] - z_start[i])))
                     .sum();
@@ -706,6 +719,29 @@ impl RollerContact {
                         gradient[i] += c * (z_end[i] - z_start[i]);
                     }
                 }
+                // High-frequency damping of the contact: ξ k Δδ along the discrete gradient of the overlap δ,
+                // whose work ξ k Δδ² ≥ 0 is all dissipated (the contact force stays a push for ξ ≤ ½).
+                let damped = match rule {
+                    ContactRule::EnergyMomentum { damping, .. } if damping > 0.0 => {
+                        let overlap = |v: f64| (2.0 * v / self.stiffness).max(0.0).sqrt();
+                        let change = overlap(value_end) - overlap(value_start);
+                        let along: f64 = (0..count)
+                            .map(|i| overlap_gradient[i].dot(&(z_end[i] - z_start[i])))
+                            .sum();
+                        let c = if change2 > 0.0 {
+                            (change - along) / change2
+                        } else {
+                            0.0
+                        };
+                        let scale = damping * self.stiffness * change;
+                        for i in 0..count {
+                            gradient[i] +=
+                                scale * (overlap_gradient[i] + c * (z_end[i] - z_start[i]));
+                        }
+                        scale * change
+                    }
+                    _ => 0.0,
+                };
                 // Friction on the material point's move Δu = Σ w_j Δz_j, in the directions of the step's start.
                 if let Some(frame) = &contact.friction {
                     let moved: Vector3<f64> = frame
@@ -728,6 +764,7 @@ impl RollerContact {
                     }
                     (slip, dissipated, friction_energy) = (step.slip, step.dissipated, step.energy);
                 }
+                dissipated += damped;
                 if let (Some((j, chain)), Some([(r_end, _), (r_start, _)])) = (hinged, &placements)
                 {
                     let u: [Vector3<f64>; MAX_NODES] =

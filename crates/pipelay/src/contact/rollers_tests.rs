@@ -161,7 +161,7 @@ fn a_wire_fitted_to_the_pipe_does_not_bend_the_pipes_surface() {
     let mut swung = positions.clone();
     swung[8] += Vector3::new(0.0, 2.0, 1.0);
     let distance = |y: &[Vector3<f64>], ends: [bool; 2]| {
-        spline_distance(&local, 1.0, &[y[5], y[6], y[7], y[8]], ends).0
+        spline_distance(&local, 1.0, &[y[5], y[6], y[7], y[8]], ends, 0.0).distance
     };
     let ends = contact.surfaces.spline_ends(6);
     assert_eq!(distance(&positions, ends), distance(&swung, ends));
@@ -192,7 +192,7 @@ fn step_tangent_matches_differences_of_the_residual() {
                 contact.slips[k] = Vector2::new(1e-5 * k as f64, -2e-6);
             }
         }
-        step_tangent_matches(&mut contact, &positions, &rotations);
+        step_tangent_matches(&mut contact, &positions, &rotations, 0.0);
     }
 }
 
@@ -200,8 +200,12 @@ fn step_tangent_matches(
     contact: &mut RollerContact,
     positions: &[Vector3<f64>],
     rotations: &[UnitQuaternion<f64>],
+    damping: f64,
 ) {
-    let rule = ContactRule::EnergyMomentum { time_step: 0.1 };
+    let rule = ContactRule::EnergyMomentum {
+        time_step: 0.1,
+        damping,
+    };
     let dofs = 6 * positions.len();
     let increments: Vec<f64> = (0..dofs)
         .map(|i| 1e-3 * ((i as f64) * 0.37).sin())
@@ -256,4 +260,106 @@ fn step_tangent_matches(
     }
     println!("worst tangent error {worst:.3e} of {largest:.3e} (sliding: {sliding})");
     assert!(worst < 1e-5 * largest, "{worst:e} of {largest:e}");
+}
+
+/// A laydown head's taper: under a roller whose axis runs across a straight element (from 0.3 m to 0.04 m of
+/// radius along it, the roller's axis 1 m below it at x_c), the foot is where the gap √((x − x_c)² + h²) − r(x)
+/// is least, x* = x_c + s h/√(1 − s²) (s < 0 the radius's slope: toward the thicker end), not under the axis;
+/// the gap is the closed form's, and its gradient in the nodes' positions is w_j(ξ*) n (central differences),
+/// as for a cylinder.
+#[test]
+fn a_tapered_element_touches_a_roller_where_its_gap_is_least() {
+    let (contact, _, _) = pipe_over_stinger();
+    let mut roller = contact.rollers[0];
+    roller.axis = Vector3::y();
+    roller.normal = Vector3::z();
+    roller.half_length = f64::INFINITY;
+    let (length, x_c, h) = (4.0, 1.5, 1.0);
+    roller.centre = Vector3::new(x_c, 0.0, -h);
+    let (r0, r1) = (0.3, 0.04);
+    let taper = r1 - r0;
+    let nodes = [0.0, length / 3.0, 2.0 * length / 3.0, length].map(|x| Vector3::new(x, 0.0, 0.0));
+    let points = [nodes[0], nodes[0], nodes[1], nodes[1]];
+    let ends = [true, true];
+    // The element from node 0 to node 1 of a line straight along x, one third of it: 4/3 m.
+    let span = length / 3.0;
+    let foot = spline_distance(&roller, 2.0, &points, ends, taper);
+    let slope = taper / span;
+    let expected_x = x_c + slope * h / (1.0 - slope * slope).sqrt();
+    assert!(
+        (foot.xi * span - expected_x).abs() < 1e-9,
+        "{} vs {expected_x}",
+        foot.xi * span
+    );
+    let gap = foot.distance - (r0 + taper * foot.xi);
+    let closed = ((expected_x - x_c).powi(2) + h * h).sqrt() - (r0 + slope * expected_x);
+    assert!((gap - closed).abs() < 1e-12, "{gap} vs {closed}");
+    // The gap's gradient: w_j n by the envelope theorem; central differences of the gap in node 1's z.
+    let gap_at = |points: &[Vector3<f64>; 4]| {
+        let foot = spline_distance(&roller, 2.0, points, ends, taper);
+        foot.distance - (r0 + taper * foot.xi)
+    };
+    let d = 1e-6;
+    for (slot, node) in [(1usize, 0usize), (2, 1)] {
+        for axis in 0..3 {
+            let mut plus = points;
+            let mut minus = points;
+            // A mirrored end's slot holds its neighbour: move both slots of the node.
+            for s in [slot, if slot == 1 { 0 } else { 3 }] {
+                plus[s][axis] += d;
+                minus[s][axis] -= d;
+            }
+            let difference = (gap_at(&plus) - gap_at(&minus)) / (2.0 * d);
+            let analytic = foot.weights[slot] * foot.direction[axis];
+            assert!(
+                (difference - analytic).abs() < 1e-6,
+                "node {node} axis {axis}: {difference} vs {analytic}"
+            );
+        }
+    }
+}
+
+/// The rollers' high-frequency damping ξ k Δδ: over a step the contact forces do the work of the contact
+/// energy's change plus what they dissipate (to round-off), that dissipation is positive with damping and zero
+/// without, and the damped step's tangent still matches differences of its residual.
+#[test]
+fn damped_rollers_dissipate_their_work() {
+    let (mut contact, positions, rotations) = pipe_over_stinger();
+    let dofs = 6 * positions.len();
+    let increments: Vec<f64> = (0..dofs)
+        .map(|i| 2e-3 * ((i as f64) * 0.37).sin())
+        .collect();
+    let zero = vec![0.0; dofs];
+    for damping in [0.0, 0.25] {
+        let rule = ContactRule::EnergyMomentum {
+            time_step: 0.1,
+            damping,
+        };
+        let mut residual = vec![0.0; dofs];
+        let evaluate = |contact: &mut RollerContact, inc: &[f64], residual: &mut [f64]| {
+            residual.fill(0.0);
+            contact.evaluate(
+                rule,
+                &positions,
+                &rotations,
+                &[],
+                Some(inc),
+                residual,
+                None,
+                None,
+            );
+        };
+        evaluate(&mut contact, &zero, &mut residual);
+        let start = contact.energy_end;
+        evaluate(&mut contact, &increments, &mut residual);
+        let work: f64 = residual.iter().zip(&increments).map(|(r, d)| r * d).sum();
+        let change = contact.energy_end - start;
+        let dissipated = contact.dissipated;
+        assert!(
+            (work - change - dissipated).abs() < 1e-9 * (change.abs() + dissipated + 1.0),
+            "ξ = {damping}: work {work} vs {change} + {dissipated}"
+        );
+        assert_eq!(dissipated > 0.0, damping > 0.0, "{dissipated}");
+    }
+    step_tangent_matches(&mut pipe_over_stinger().0, &positions, &rotations, 0.25);
 }

@@ -6,6 +6,7 @@
 pub enum ContactRule {
     /// Forces at the trial state (statics; the start is the last converged load step, for friction).
     Static,
-    /// Discrete gradient over the step, friction at the step mean, damping (time step Δt, s).
-    EnergyMomentum { time_step: f64 },
+    /// Discrete gradient over the step, friction at the step mean, damping (time step Δt, s); the rollers'
+    /// high-frequency damping ξ (0: none), ξ k Δδ on the overlap's change over the step.
+    EnergyMomentum { time_step: f64, damping: f64 },
 }

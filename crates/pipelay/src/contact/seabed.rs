@@ -422,7 +422,7 @@ impl SeabedContact {
             let mut force = -self.resultant[a] * q;
             let mut block = Matrix6::zeros();
             let mut stiffness = self.gap_gradient_derivative[a] * self.resultant[a];
-            if let ContactRule::EnergyMomentum { time_step } = rule {
+            if let ContactRule::EnergyMomentum { time_step, .. } = rule {
                 let gap_mid = 0.5 * (self.gap_start[a] + self.gap_end[a].value);
                 if self.damping[a] > 0.0 && gap_mid > 0.0 {
                     let mid = self.bathymetry.penetration(&(node.start + 0.5 * dx));
@@ -685,7 +685,10 @@ mod tests {
         for bathymetry in [plane, wavy_seabed()] {
             for rule in [
                 ContactRule::Static,
-                ContactRule::EnergyMomentum { time_step: 0.1 },
+                ContactRule::EnergyMomentum {
+                    time_step: 0.1,
+                    damping: 0.0,
+                },
             ] {
                 for scale in [0.3, 1.0] {
                     let mut contact = SeabedContact::new(
@@ -750,7 +753,10 @@ mod tests {
                 contact.nodes.copy_from_slice(&steps);
                 let mut r = vec![0.0; 24];
                 let work = contact.evaluate(
-                    ContactRule::EnergyMomentum { time_step: 0.1 },
+                    ContactRule::EnergyMomentum {
+                        time_step: 0.1,
+                        damping: 0.0,
+                    },
                     &slips,
                     &mut r,
                     None,

@@ -1,6 +1,7 @@
 //! The hand-back of the line from the A&R winch to the tensioner at the end of a recovery, the reverse of the
 //! hand-over ([`crate::dynamics::hand_over`]). The winch hauls its wire in until the pipe's end is back at the
-//! hold point (the wire's last element as long as at the hand-over, under its tension), slowing down over the
+//! hold point (the wire's last element as long as at the hand-over, under its tension; with a head body, its
+//! nose there), slowing down over the
 //! last metres within its acceleration limit ([`approach_speed`]). The tensioner then closes on the pipe where
 //! its end is, with the end's rotation (the clamp takes the end's pose relative to the vessel, so neither the
 //! pipe's shape nor its forces jump); the wire's element and the winch's node leave the mesh; the pipe's end
@@ -62,7 +63,14 @@ pub fn hand_back(
 ) -> Option<HandBack> {
     let attachment = model.vessel.as_ref()?;
     let winch_node = attachment.node;
-    let end = winch_node.checked_sub(1)?;
+    // The elements that come off: the wire's and a head body's.
+    let removed = 1 + usize::from(
+        attachment
+            .winch
+            .as_ref()
+            .is_some_and(|w| w.head_body.is_some()),
+    );
+    let end = winch_node.checked_sub(removed)?;
     let configuration = &state.configuration;
     let (origin, body) = vessel_pose(
         attachment,
@@ -85,21 +93,21 @@ pub fn hand_back(
     state.accelerations[end] = state.accelerations[winch_node];
 
     let rod = &mut model.rod;
-    rod.nodes.pop();
-    rod.frames.pop();
-    rod.elements.pop();
-    rod.segment_of.pop();
+    rod.nodes.truncate(end + 1);
+    rod.frames.truncate(end + 1);
+    rod.elements.truncate(end);
+    rod.segment_of.truncate(end);
     let configuration = &mut state.configuration;
-    configuration.positions.pop();
-    configuration.rotations.pop();
-    state.velocities.pop();
-    state.accelerations.pop();
-    state.body_angular_velocities.pop();
-    state.slips.pop();
-    state.gauss.pop();
-    state.plastic.truncate(rod.element_count());
+    configuration.positions.truncate(end + 1);
+    configuration.rotations.truncate(end + 1);
+    state.velocities.truncate(end + 1);
+    state.accelerations.truncate(end + 1);
+    state.body_angular_velocities.truncate(end + 1);
+    state.slips.truncate(end + 1);
+    state.gauss.truncate(end);
+    state.plastic.truncate(end);
     state.pay_out_speed = 0.0;
-    reactions.pop();
+    reactions.truncate(end + 1);
     if let Some(attachment) = model.vessel.as_mut() {
         attachment.node = end;
     }

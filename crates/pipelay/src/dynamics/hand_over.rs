@@ -7,17 +7,20 @@
 //! rotation becomes free (the rod–cable joint is a pin) and the tensioner's shear and moment are let go; its
 //! velocity becomes the material's, the vessel's plus the pay-out speed along the pipe (the winch takes over
 //! at the tensioner's speed).
-//! The laydown head is fitted at the pipe's end ([`crate::model::Model::hold_by_winch`]). The energy the wire
-//! and head bring in is booked with pay-out's by the integrator.
+//! The laydown head is fitted at the pipe's end: a point body ([`crate::model::Model::hold_by_winch`]), or a
+//! body with a length and a diameter, an element of the line from the pipe's end along the wire's way
+//! ([`crate::rod::section::Section::head`]), stretched as the pipe by the axial force, the wire then running
+//! from its nose. The energy the wire and head bring in is booked with pay-out's by the integrator.
 // Indexing cannot go out of bounds here: the vessel's node is end B, the last node of the mesh.
 #![allow(clippy::indexing_slicing)]
-use crate::dynamics::state::DynamicState;
+use crate::dynamics::state::{element_gauss_point, DynamicState};
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::rod::cable::gauss_point as cable_gauss_point;
+use crate::rod::dynamic_element::GaussPoint;
 use crate::rod::element::ElementReference;
 use crate::vessel::coupling::body_rotation;
-use nalgebra::{Vector2, Vector3, Vector6};
+use nalgebra::{Matrix3, Vector2, Vector3, Vector6};
 
 /// Hands the line over to the winch: appends the wire's element and node and moves the vessel's hold to
 /// it. `reactions` follow the nodes. Returns the axial force the wire takes on (N).
@@ -47,25 +50,11 @@ pub fn hand_over(
     }
     let rotation = state.configuration.rotations[node];
     let offset = body_rotation(attachment, &rotation) * (winch.position - attachment.hang_off());
-    let wire = winch.wire;
+    let (wire, head) = (winch.wire, winch.head_body);
     // The axial force at the hold point: that of the top element.
     let force = state.axial_force(model, node - 1);
     let chord = offset.norm();
-    let length =
-        chord / (1.0 + force.max(0.0) / model.rod.sections[wire].translational_stiffness.x);
     let direction = offset / chord;
-
-    let rod = &mut model.rod;
-    let reference_end = rod.nodes[node] + direction * length;
-    rod.nodes.push(reference_end);
-    let frame = rod.frames[node];
-    rod.frames.push(frame);
-    rod.elements.push(ElementReference {
-        length,
-        strain: Vector3::zeros(),
-        curvature: Vector3::zeros(),
-    });
-    rod.segment_of.push(wire);
 
     // The pipe's end was a point of the vessel that pipe passed through at the pay-out speed: as the pipe's
     // material end it moves on with the pipe, at that speed away from the vessel along the top element.
@@ -76,26 +65,92 @@ pub fn hand_over(
     let positions = &state.configuration.positions;
     let along = (positions[node - 1] - positions[node]).normalize() * speed;
     let spin = rotation * state.body_angular_velocities[node];
-    let configuration = &mut state.configuration;
-    configuration
-        .positions
-        .push(configuration.positions[node] + offset);
-    configuration.rotations.push(rotation);
-    state
-        .velocities
-        .push(state.velocities[node] + spin.cross(&offset));
+    let vessel_velocity = state.velocities[node];
     state.velocities[node] += along;
-    state.accelerations.push(state.accelerations[node]);
-    state
-        .body_angular_velocities
-        .push(state.body_angular_velocities[node]);
-    state.slips.push(Vector2::zeros());
-    state.gauss.push(cable_gauss_point(&offset, length));
-    reactions.push(reactions[node]);
-    reactions[node] = Vector6::zeros();
+
+    // A head body first, from the pipe's end along the wire's way, stretched by the axial force; then the
+    // wire, from its nose (or the pipe's end) to the winch.
+    let mut reach = 0.0;
+    let mut last = node;
+    if let Some(head) = head {
+        let stretch = 1.0 + force / model.rod.sections[head.section].translational_stiffness.x;
+        reach = head.length * stretch;
+        append(
+            model,
+            state,
+            reactions,
+            head.section,
+            head.length,
+            direction * head.length,
+            direction * reach,
+        );
+        last += 1;
+        // The head moves with the pipe's end.
+        state.velocities[last] = state.velocities[node] + spin.cross(&(direction * reach));
+        let gauss = element_gauss_point(model, &state.configuration, node);
+        state.gauss[node] = gauss;
+    }
+    let length = (chord - reach)
+        / (1.0 + force.max(0.0) / model.rod.sections[wire].translational_stiffness.x);
+    append(
+        model,
+        state,
+        reactions,
+        wire,
+        length,
+        direction * length,
+        offset - direction * reach,
+    );
+    // The winch's node is a point of the vessel.
+    state.velocities[last + 1] = vessel_velocity + spin.cross(&offset);
+    state.gauss[last] = cable_gauss_point(&(offset - direction * reach), length);
+    // The vessel's reaction moves to the winch's node.
+    reactions[node..=last].fill(Vector6::zeros());
     if let Some(attachment) = model.vessel.as_mut() {
-        attachment.node = node + 1;
+        attachment.node = last + 1;
     }
     model.hold_by_winch();
     Ok(force)
+}
+
+/// Appends an element of `section` and `length` (m) at end B, its reference end `reference` (m) beyond the
+/// last node's reference and its end `extent` (m) beyond the last node; the new node takes the last node's
+/// rotation, acceleration, slip and reaction, and a velocity the caller sets.
+fn append(
+    model: &mut Model,
+    state: &mut DynamicState,
+    reactions: &mut Vec<Vector6<f64>>,
+    section: usize,
+    length: f64,
+    reference: Vector3<f64>,
+    extent: Vector3<f64>,
+) {
+    let last = model.rod.element_count();
+    let rod = &mut model.rod;
+    rod.nodes.push(rod.nodes[last] + reference);
+    rod.frames.push(rod.frames[last]);
+    rod.elements.push(ElementReference {
+        length,
+        strain: Vector3::zeros(),
+        curvature: Vector3::zeros(),
+    });
+    rod.segment_of.push(section);
+    let configuration = &mut state.configuration;
+    configuration
+        .positions
+        .push(configuration.positions[last] + extent);
+    configuration.rotations.push(configuration.rotations[last]);
+    state.velocities.push(state.velocities[last]);
+    state.accelerations.push(state.accelerations[last]);
+    state
+        .body_angular_velocities
+        .push(state.body_angular_velocities[last]);
+    state.slips.push(Vector2::zeros());
+    // A placeholder the caller replaces with the element's own.
+    state.gauss.push(GaussPoint {
+        rotation: Matrix3::identity(),
+        strain: Vector3::zeros(),
+        curvature: Vector3::zeros(),
+    });
+    reactions.push(reactions[last]);
 }

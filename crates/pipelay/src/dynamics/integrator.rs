@@ -71,6 +71,9 @@ pub struct DynamicOptions {
     pub max_iterations: usize,
     /// Stress evaluation: average strain (energy–momentum) or midpoint configuration (plain midpoint).
     pub stress_rule: StressRule,
+    /// High-frequency damping ξ ≥ 0 of the line's strains ([`crate::rod::dynamic_element::with_high_frequency_damping`]):
+    /// 0 conserves energy; ξ damps a mode of circular frequency ω at the ratio ξωΔt/2, all its work dissipated.
+    pub high_frequency_damping: f64,
 }
 
 impl Default for DynamicOptions {
@@ -80,6 +83,7 @@ impl Default for DynamicOptions {
             tolerance: 1e-10,
             max_iterations: 25,
             stress_rule: StressRule::AverageStrain,
+            high_frequency_damping: 0.0,
         }
     }
 }
@@ -562,7 +566,6 @@ impl Integrator {
     /// tensioner holds, and books the energy the wire and head take away.
     fn hand_back(&mut self) {
         let before = self.observe().energy().total();
-        let winch_node = self.model.rod.element_count();
         let Some(back) =
             hand_back::hand_back(&mut self.model, &mut self.state, &mut self.reactions)
         else {
@@ -571,7 +574,7 @@ impl Integrator {
         if let Some(stages) = &self.stages {
             stages.rest_after_hand_back(&mut self.model, back.time);
         }
-        self.rebuild(Some(MeshChange::Removed(winch_node)));
+        self.rebuild(None);
         let after = self.observe().energy().total();
         self.ledger.book_pay_out(after - before);
         self.handed_back = Some(back.time);
@@ -851,10 +854,12 @@ impl Integrator {
             new.forces = old.forces;
             new.reactions = old.reactions;
             new.offsets = old.offsets;
+            // Elements taken off at end B (the hand-back's) leave their rollers at the line's last element.
+            let last = self.model.rod.element_count() - 1;
             new.nearest_elements = old
                 .nearest_elements
                 .iter()
-                .map(|&e| change.map_or(e, |c| c.renumbered(e)))
+                .map(|&e| change.map_or(e, |c| c.renumbered(e)).min(last))
                 .collect();
         }
         self.contact = assembler.contact.take();

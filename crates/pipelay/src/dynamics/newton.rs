@@ -5,6 +5,7 @@
 use crate::dynamics::integrator::{Integrator, StepReport};
 use crate::error::{Error, Result};
 use crate::linalg::factorisation::Factorisation;
+use crate::statics::newton::roller_step_factor;
 
 /// Largest residual ratio at which a Newton iteration keeps an earlier iterate's factorisation (simplified
 /// Newton); a slower fall refreshes the tangent.
@@ -115,9 +116,18 @@ impl Integrator {
             {
                 break;
             }
+            // A correction that would carry a node near the rollers through them is shortened, as in statics: the
+            // contact sees the line only within its reach on the rollers' far side.
+            let factor = roller_step_factor(
+                &self.model,
+                &self.assembler,
+                &self.state.configuration,
+                &self.correction,
+            );
             let mut correction2 = 0.0;
             let mut size2 = 0.0;
             for (correction, &dof) in self.correction.iter().zip(&self.assembler.dofs.free_dofs) {
+                let correction = factor * correction;
                 self.increments[dof] += correction;
                 correction2 += correction.powi(2);
                 size2 += self.increments[dof].powi(2);

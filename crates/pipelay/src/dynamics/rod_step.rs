@@ -18,7 +18,8 @@ use crate::linalg::pool;
 use crate::model::Model;
 use crate::rod::cable::{damping_step as cable_damping_step, step as cable_step};
 use crate::rod::dynamic_element::{
-    step as element_step, step_with as element_step_with, GaussPoint, StepStrains, StressRule,
+    elastic_step_law, step as element_step, step_with as element_step_with,
+    with_high_frequency_damping, GaussPoint, StepStrains, StressRule,
 };
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::rod::plastic_state::PlasticState;
@@ -45,7 +46,8 @@ pub struct ElementWork {
     pub supplied: f64,
     /// Energy the drag dissipates.
     pub dissipated: f64,
-    /// Work of the internal forces F·Δ (for the element that grows with pay-out).
+    /// Work of the internal forces F·Δ less the high-frequency damping's (for the element that grows with
+    /// pay-out: the stresses' work, whose difference from the stored energy's change pay-out brings in).
     pub internal: f64,
     /// The plastic part of `dissipated`: a yielding wall's.
     pub plastic: f64,
@@ -110,6 +112,8 @@ pub struct RodStep<'a> {
     /// The winch's law over the step, where its speed depends on its wire's tension (the growing element is
     /// then the wire's top).
     pub winch: Option<WinchLaw>,
+    /// High-frequency damping ξ ([`with_high_frequency_damping`]; 0: none).
+    pub high_frequency_damping: f64,
     pub stress_rule: StressRule,
     /// The yielding elements' wall fibres (None: no wall yields), and each element's fibres' plastic strains
     /// at the step's start (empty where it does not yield).
@@ -246,6 +250,8 @@ impl RodStep<'_> {
             .filter(|&(element, _)| element == e)
             .map_or(reference.length, |(_, length)| length);
         let mut plastic_dissipated = 0.0;
+        let mut damping_dissipated = 0.0;
+        let damping = self.high_frequency_damping;
         let step = if cable {
             let ea = c_t[(0, 0)];
             let winch = self
@@ -270,6 +276,25 @@ impl RodStep<'_> {
             let mut law = |strains: &StepStrains| {
                 let law = fibres.step_law(&strains.start, &strains.end, start, plastic_end);
                 plastic_dissipated = reference.length * law.dissipated;
+                let (law, damped) = with_high_frequency_damping(law, strains, damping, &c_t, &c_r);
+                damping_dissipated = reference.length * damped;
+                law
+            };
+            element_step_with(
+                &chord,
+                &increments,
+                &self.gauss[e],
+                length_start,
+                reference,
+                self.stress_rule,
+                &mut law,
+                tangent.as_deref_mut(),
+            )
+        } else if damping > 0.0 {
+            let mut law = |strains: &StepStrains| {
+                let law = elastic_step_law(&c_t, &c_r, strains);
+                let (law, damped) = with_high_frequency_damping(law, strains, damping, &c_t, &c_r);
+                damping_dissipated = reference.length * damped;
                 law
             };
             element_step_with(
@@ -296,19 +321,21 @@ impl RodStep<'_> {
             )
         };
         let mut work = ElementWork {
-            internal: step.forces.dot(&increments),
-            dissipated: plastic_dissipated,
+            internal: step.forces.dot(&increments) - damping_dissipated,
+            dissipated: plastic_dissipated + damping_dissipated,
             plastic: plastic_dissipated,
             ..ElementWork::default()
         };
         let mut forces = step.forces;
-        if cable && axial_damping > 0.0 {
+        // A cable's high-frequency damping: ξ EA Δε, the axial damping B ε̇ with B = ξ EA Δt.
+        let cable_damping = axial_damping + damping * c_t[(0, 0)] * dt;
+        if cable && cable_damping > 0.0 {
             let (damping, dissipated) = cable_damping_step(
                 &chord,
                 &increments,
                 length_start,
                 reference.length,
-                axial_damping,
+                cable_damping,
                 dt,
                 tangent.as_deref_mut(),
             );

@@ -134,6 +134,7 @@ impl Integrator {
             waves: &self.wave_kinematics,
             growth: self.growth.map(|g| (g.element, g.length_start)),
             winch: self.growth.and_then(|g| g.winch),
+            high_frequency_damping: self.options.high_frequency_damping,
             stress_rule: self.options.stress_rule,
             fibres: plastic.as_ref(),
             plastic: &state.plastic,
@@ -191,7 +192,10 @@ impl Integrator {
                         axis_map: 0.5 * cayley_tangent(&half_theta),
                     };
                 });
-            let rule = ContactRule::EnergyMomentum { time_step: dt };
+            let rule = ContactRule::EnergyMomentum {
+                time_step: dt,
+                damping: self.options.high_frequency_damping,
+            };
             self.assembler
                 .add_contact(&mut contact, rule, &state.slips, with_tangent);
             for (node, force) in contact.forces.iter().enumerate() {
@@ -203,7 +207,10 @@ impl Integrator {
             self.contact = Some(contact);
         }
         self.assembler.add_rollers(
-            ContactRule::EnergyMomentum { time_step: dt },
+            ContactRule::EnergyMomentum {
+                time_step: dt,
+                damping: self.options.high_frequency_damping,
+            },
             &state.configuration,
             Some(&self.increments),
             Some(&mut self.magnitude),

@@ -252,9 +252,14 @@ pub fn lay_summary(
             .map(|(k, (_, e))| (k, *e))
             .min_by_key(|(_, e)| if node == 0 { usize::MAX - e } else { *e })
     });
-    let support = |k: usize| attachment.rollers().get(k).map_or(k, |r| r.support);
+    // A J-lay guide's roller is no stinger's: the line leaves there, but at no numbered roller.
+    let support = |k: usize| match attachment.rollers().get(k) {
+        Some(roller) if roller.guide => None,
+        Some(roller) => Some(roller.support),
+        None => Some(k),
+    };
     let (liftoff_roller, liftoff_node) = match liftoff {
-        Some((k, e)) => (Some(support(k)), if node == 0 { e + 1 } else { e }),
+        Some((k, e)) => (support(k), if node == 0 { e + 1 } else { e }),
         None => (None, node),
     };
     // The pipe's angle below the horizontal at each node, going down from the hold point; a cable's node (the
@@ -425,7 +430,8 @@ fn tip_clearance(
     else {
         return f64::NAN;
     };
-    let Some(last) = placed.last().map(|r| r.support) else {
+    // The stinger's last support (a J-lay guide has no tip).
+    let Some(last) = placed.iter().rev().find(|r| !r.guide).map(|r| r.support) else {
         return f64::NAN;
     };
     let node = attachment.node;
@@ -435,7 +441,7 @@ fn tip_clearance(
     placed
         .iter()
         .zip(elements)
-        .filter(|(roller, _)| roller.support == last)
+        .filter(|(roller, _)| !roller.guide && roller.support == last)
         .map(|(roller, &element)| {
             roller_gap(&model.rod, positions, roller, &body, &origin, element)
         })

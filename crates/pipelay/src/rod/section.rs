@@ -36,6 +36,10 @@ pub struct Section {
     /// A cable's axial internal damping B (N·s): a taut cable's damping force B ε̇ along its chord (MoorDyn's
     /// BA); zero for rods.
     pub axial_damping: f64,
+    /// A laydown head's section ([`Section::head`]): the surface's diameter at each element's second node, to
+    /// which it tapers linearly from `hydrodynamic_diameter` at its first (m; the rollers see the taper);
+    /// `None`: a cylinder.
+    pub nose_diameter: Option<f64>,
 }
 
 /// The wall of a pipe section.
@@ -183,6 +187,7 @@ impl Section {
             wall: None,
             cable: false,
             axial_damping: 0.0,
+            nose_diameter: None,
         })
     }
 
@@ -214,6 +219,48 @@ impl Section {
             wall: None,
             cable: true,
             axial_damping: 0.0,
+            nose_diameter: None,
+        })
+    }
+
+    /// A laydown head of `length` (m) as one element of a line whose pipe has the section `pipe`: the pipe's
+    /// stiffness (over a few metres the head bends and stretches as little as a rigid body), the head's `mass`
+    /// (kg) and displaced `volume` (m³) spread over its length, its surface of `diameter` (m) at the pipe's
+    /// end tapering to `nose_diameter` (m) at the wire's padeye, its drag area C_d·A (m²) as a normal drag
+    /// coefficient on that diameter and its added-mass coefficient on its volume as the section's (both
+    /// ways). Not a pipe wall: design checks skip it.
+    #[allow(clippy::too_many_arguments)]
+    pub fn head(
+        pipe: &Section,
+        length: f64,
+        diameter: f64,
+        nose_diameter: f64,
+        mass: f64,
+        volume: f64,
+        drag_area: f64,
+        added_mass: f64,
+    ) -> Result<Self> {
+        positive("head length", length, "m")?;
+        positive("head diameter", diameter, "m")?;
+        positive("mass", mass, "kg")?;
+        let area = std::f64::consts::FRAC_PI_4 * diameter * diameter;
+        let mass_per_length = mass / length;
+        let added = added_mass * volume / (area * length);
+        Ok(Section {
+            translational_stiffness: pipe.translational_stiffness,
+            rotational_stiffness: pipe.rotational_stiffness,
+            mass: mass_per_length,
+            inertia: pipe.inertia * (mass_per_length / pipe.mass.max(f64::MIN_POSITIVE)),
+            outer_diameter: pipe.outer_diameter,
+            hydrodynamic_diameter: diameter,
+            displaced_area: volume / length,
+            drag: [0.0, drag_area / (diameter * length)],
+            added_mass: [added, added],
+            rotational_damping: pipe.rotational_damping,
+            wall: None,
+            cable: false,
+            axial_damping: 0.0,
+            nose_diameter: Some(nose_diameter),
         })
     }
 

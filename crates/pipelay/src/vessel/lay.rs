@@ -76,7 +76,13 @@ pub struct Roller {
     /// The articulated stinger's section the roller rides on ([`crate::vessel::articulation`]); None on the
     /// vessel.
     pub section: Option<usize>,
+    /// A roller of a J-lay tower's guide at its exit ([`LayEquipment::with_guide`]), not of a stinger: the
+    /// line runs through the guide and bends over it, it does not rest on it.
+    pub guide: bool,
 }
+
+/// How many rollers make a J-lay tower's guide ([`LayEquipment::with_guide`]).
+pub const GUIDE_ROLLERS: usize = 8;
 
 /// Default roller radius (m) and contact stiffness (N/m): a stiff steel roller on its bearing.
 pub const ROLLER_RADIUS: f64 = 0.25;
@@ -162,6 +168,7 @@ pub fn stinger_rollers(
                 support: k,
                 friction: RollerFriction::default(),
                 section: None,
+                guide: false,
             }
         })
         .collect();
@@ -174,7 +181,7 @@ pub fn stinger_rollers(
 pub fn supports(rollers: &[Roller]) -> Vec<(Vector3<f64>, Vector3<f64>)> {
     let mut supports: Vec<(Vector3<f64>, Vector3<f64>)> = Vec::new();
     let mut previous = None;
-    for roller in rollers {
+    for roller in rollers.iter().filter(|r| !r.guide) {
         match supports.last_mut() {
             Some(last) if previous == Some(roller.support) => last.1 += roller.normal,
             _ => supports.push((roller.station, roller.normal)),
@@ -226,6 +233,7 @@ pub fn rollers_at(
                 support,
                 friction: RollerFriction::default(),
                 section: None,
+                guide: false,
             })
         })
         .collect()
@@ -284,6 +292,45 @@ impl LayEquipment {
             articulation: None,
             reeling: None,
         })
+    }
+
+    /// This J-lay tower with a guide at its exit: a bellmouth of bend radius `radius` (m) whose narrowest
+    /// opening, in the exit's plane, is `opening` (m) across. It is [`GUIDE_ROLLERS`] rollers of that radius in
+    /// a ring around the tower's axis, each tangent to the ring and as long as the ring's side, so that a line
+    /// leaving the exit at an angle bends over the bellmouth's surface instead of running through the tower.
+    pub fn with_guide(mut self, radius: f64, opening: f64) -> Result<Self> {
+        positive("guide", radius, "m")?;
+        positive("guide_opening", opening, "m")?;
+        if self.rollers.iter().any(|r| !r.guide) || self.reeling.is_some() {
+            return Err(Error::input(
+                "guide",
+                radius,
+                "is a J-lay tower's: a stinger's rollers already guide the line",
+            ));
+        }
+        let along = self.end_frame.column(0).into_owned();
+        let across = self.end_frame.column(1).into_owned();
+        let ring = 0.5 * opening + radius;
+        let half_angle = std::f64::consts::PI / GUIDE_ROLLERS as f64;
+        self.rollers = (0..GUIDE_ROLLERS)
+            .map(|k| {
+                let angle = 2.0 * half_angle * k as f64;
+                let outward = across * angle.cos() + along.cross(&across) * angle.sin();
+                Roller {
+                    centre: self.hang_off + ring * outward,
+                    axis: along.cross(&outward),
+                    radius,
+                    length: 2.0 * ring * half_angle.tan(),
+                    normal: -outward,
+                    station: self.hang_off + 0.5 * opening * outward,
+                    support: k,
+                    friction: RollerFriction::default(),
+                    section: None,
+                    guide: true,
+                }
+            })
+            .collect();
+        Ok(self)
     }
 
     /// Reel-lay: the pipe, reeled by `reeling`, held at the ramp's exit `position` along the ramp, which

@@ -91,6 +91,7 @@ impl RollerBox {
                 support,
                 friction: self.friction,
                 section: None,
+                guide: false,
             };
         // Where the rising rollers (the V's, or a U's sides) start: at P, or at the bottom roller's ends.
         let foot = |side: f64| {

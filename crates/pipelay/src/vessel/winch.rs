@@ -23,8 +23,11 @@ pub struct Winch {
     pub wire: usize,
     /// Length of the wire elements pay-out adds (m).
     pub element_length: f64,
-    /// The laydown head fitted to the pipe's end at the hand-over (its arc length is set then).
+    /// The laydown head fitted to the pipe's end at the hand-over (its arc length is set then): a point body,
+    /// or its mass, volume, drag and added mass when it has a `head_body`.
     pub head: Option<Attachment>,
+    /// The head as a body of length and diameter: an element of the line between the pipe's end and the wire.
+    pub head_body: Option<HeadBody>,
     /// Whether the winch holds the line (after the hand-over, or from the start for a line whose top is wire).
     pub holds: bool,
     pub drive: Drive,
@@ -36,6 +39,18 @@ pub struct Winch {
     pub pipe_element_length: f64,
     /// Where and when the tensioner took the pipe back, once it has ([`crate::dynamics::hand_back`]).
     pub hand_back: Option<HandBack>,
+}
+
+/// A laydown head with a length and a diameter: one element of the line from the pipe's end to the wire's
+/// padeye ([`crate::rod::section::Section::head`]), its surface tapering from its diameter to the wire's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HeadBody {
+    /// Length (m).
+    pub length: f64,
+    /// Diameter at the pipe's end (m).
+    pub diameter: f64,
+    /// Its section: an index into the rod's sections (set by [`crate::model::Model::add_winch`]).
+    pub section: usize,
 }
 
 /// The hand-back of the line from the winch to the tensioner: its time and the clamp it made, where the pipe's
@@ -252,14 +267,42 @@ impl Winch {
             modes: Vec::new(),
             pipe_element_length: element_length,
             hand_back: None,
+            head_body: None,
         })
     }
 
-    /// The unstretched length of the wire from the hold point `hang_off` (body frame) to the winch under the
+    /// The winch with a head of `length` and `diameter` (m, both positive) fitted at the hand-over as a body.
+    pub fn with_head_body(self, length: f64, diameter: f64) -> Result<Self> {
+        positive("head_length", length, "m")?;
+        positive("head_diameter", diameter, "m")?;
+        if self.head.is_none() {
+            return Err(Error::input(
+                "head_length",
+                length,
+                "needs head=pl.Clump(...): the head's mass, volume, drag area and added mass",
+            ));
+        }
+        Ok(Winch {
+            head_body: Some(HeadBody {
+                length,
+                diameter,
+                section: 0,
+            }),
+            ..self
+        })
+    }
+
+    /// The head body's length (m), zero for a point head.
+    pub fn head_length(&self) -> f64 {
+        self.head_body.map_or(0.0, |body| body.length)
+    }
+
+    /// The unstretched length of the wire from the hold point `hang_off` (body frame), or from a head body's
+    /// nose there, to the winch under the
     /// tension `tension` (N) of a wire of axial stiffness `ea` (N): hauled in to it, the pipe's end is back at
     /// the hold point, and the tensioner takes the pipe back.
     pub fn hand_back_length(&self, hang_off: &Vector3<f64>, tension: f64, ea: f64) -> f64 {
-        (self.position - hang_off).norm() / (1.0 + tension.max(0.0) / ea)
+        ((self.position - hang_off).norm() - self.head_length()) / (1.0 + tension.max(0.0) / ea)
     }
 
     /// The tension the winch holds at `time` (s) in constant-tension mode, `None` at its commanded speed.
