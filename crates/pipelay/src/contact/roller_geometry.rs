@@ -370,13 +370,15 @@ impl Surfaces {
         foot.distance - radius_at(self.half_diameters[e], self.tapers[e], foot.xi)
     }
 
-    /// Whether element e's spline ends at its first or last node (mirrored there): at an end of the rod, at
-    /// a joint of two elements of different diameters (a pipe's end and the wire fitted to it, say), so
-    /// that the one's direction does not bend the other's surface, and at both ends of a cable's bar, which
-    /// makes the spline its chord.
+    /// Whether element e's spline ends at its first or last node (mirrored there): at an end of the rod and at
+    /// a joint of two elements of different diameters or kinds (a pipe's end and the wire fitted to it, say),
+    /// so that the one's direction does not bend the other's surface. A cable's bars run on through the
+    /// spline like a rod's elements: as a wire pays out over rollers or a guide its nodes pass them, and on
+    /// its chords each passage would kink the surface the roller sees (the spline lies about ℓθ/16 outside
+    /// the chords where the wire bends by θ).
     pub(super) fn spline_ends(&self, e: usize) -> [bool; 2] {
         let (diameters, cables) = (&self.half_diameters, &self.cables);
-        let joint = |other: usize| diameters[other] != diameters[e] || cables[other] || cables[e];
+        let joint = |other: usize| diameters[other] != diameters[e] || cables[other] != cables[e];
         [
             e == 0 || joint(e - 1),
             e + 1 == diameters.len() || joint(e + 1),

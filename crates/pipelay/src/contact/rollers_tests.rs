@@ -168,11 +168,15 @@ fn a_wire_fitted_to_the_pipe_does_not_bend_the_pipes_surface() {
     let running_on = [false, false];
     let change = (distance(&positions, running_on) - distance(&swung, running_on)).abs();
     assert!(change > 0.01, "{change}");
-    // A cable's bars are their chords: the spline ends at each of their nodes.
+    // A cable's bars run on through the spline; it ends where a cable meets a rod of the same diameter.
     for e in 7..11 {
         contact.surfaces.cables[e] = true;
     }
-    assert_eq!(contact.surfaces.spline_ends(8), [true, true]);
+    assert_eq!(contact.surfaces.spline_ends(8), [false, false]);
+    contact.surfaces.half_diameters[6] = 0.04;
+    assert_eq!(contact.surfaces.spline_ends(6), [true, true]);
+    assert_eq!(contact.surfaces.spline_ends(7), [true, false]);
+    // A mirrored end at both nodes makes the spline its chord.
     let [weights, _, _] = spline_weights(0.3, [true, true]);
     for (w, linear) in weights.iter().zip([0.0, 0.7, 0.3, 0.0]) {
         assert!((w - linear).abs() < 1e-15, "{weights:?}");

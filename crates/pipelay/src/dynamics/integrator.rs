@@ -23,6 +23,7 @@
 #![allow(clippy::indexing_slicing)]
 use crate::assembly::assembler::Assembler;
 use crate::assembly::dofs::NODE_DOFS;
+use crate::contact::rule::ContactRule;
 use crate::contact::seabed::SeabedContact;
 use crate::dynamics::hand_back;
 use crate::dynamics::hand_over;
@@ -850,7 +851,6 @@ impl Integrator {
         let mut assembler = Assembler::new(&self.model);
         if let (Some(new), Some(old)) = (&mut assembler.rollers, rollers) {
             new.carry_slips(&old);
-            new.energy_end = old.energy_end;
             new.forces = old.forces;
             new.reactions = old.reactions;
             new.offsets = old.offsets;
@@ -876,6 +876,19 @@ impl Integrator {
         self.element_work = vec![ElementWork::default(); count - 1];
         self.node_dissipation = vec![0.0; count];
         self.round_off = round_off(&self.model);
+        // A node inserted or taken off changes the spline the rollers see, so their energy is that of the
+        // new mesh at the current state (a step of zero increments), for the ledger to book the change.
+        self.assembler.add_rollers(
+            ContactRule::EnergyMomentum {
+                time_step: self.options.time_step,
+                damping: 0.0,
+            },
+            &self.state.configuration,
+            Some(&self.increments),
+            None,
+            false,
+        );
+        self.assembler.clear(false);
     }
 
     /// Accepts the converged increments: positions, rotations, velocities, Gauss points, reactions, ledger.
