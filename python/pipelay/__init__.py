@@ -69,6 +69,7 @@ from pipelay.analysis.stinger_design import StingerDesign, design_stinger
 from pipelay.analysis.supports import SupportLoads, support_loads
 from pipelay.analysis.suspect import PhysicsWarning
 from pipelay.analysis.sweep import sweep
+from pipelay.cosimulation import Controller
 from pipelay.results import load, resume, streaming
 
 
@@ -151,6 +152,7 @@ __all__ = [
     "Capability",
     "Clump",
     "Coating",
+    "Controller",
     "ConvergenceError",
     "Current",
     "DriftCoefficients",

@@ -920,6 +920,23 @@ class PID:
         observer: Observer | None = None,
         bumpless: bool = True,
     ) -> PID: ...
+    @staticmethod
+    def external(
+        law: Callable[[float, float, _FloatArray, _FloatArray], _ArrayLike],
+        start: float = 0.0,
+        thrust_limit: _ArrayLike | None = None,
+        allocation: Literal["qp"] | None = None,
+        observer: Observer | None = None,
+    ) -> PID:
+        """A controller whose command comes from outside pipelay: `law(t, dt, eta, nu)` returns τ (6,) over the
+        step from t to t + dt (s) (body frame: N, N·m; surge, sway and yaw kept, within `thrust_limit` (3,)) from
+        the pose η (6,) and velocity ν (6,) the loop sees at t (the observer's estimate, if given, else the
+        low-frequency pose and velocity), called once per time step at its start from `start` (s);
+        `allocation="qp"` sends it to the thrusters. Statics hold the vessel by the holding thrust, which is the
+        command until the law's first. `pl.Controller.fmu` makes the law of a controller FMU."""
+    @property
+    def is_external(self) -> bool:
+        """Whether the command comes from outside pipelay (`PID.external`)."""
     @property
     def reference(self) -> _FloatArray:
         """η_ref (6,) at t = 0."""
@@ -1125,6 +1142,12 @@ class Simulation:
     @property
     def state(self) -> State:
         """The current state."""
+    @property
+    def eta_low_frequency(self) -> _FloatArray | None:
+        """The vessel's low-frequency pose now (6,) in e (m, rad), what the DP controls; None without a vessel."""
+    @property
+    def energy(self) -> float:
+        """The system's energy now (J): the ledger's total, E(t) − E(0) = W(t) − D(t)."""
     @property
     def supplied_work(self) -> float:
         """Work supplied since the simulation started (J)."""

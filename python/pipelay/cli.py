@@ -205,6 +205,7 @@ def _parser() -> argparse.ArgumentParser:
     _fatigue_parser(commands)
     _view_parsers(commands)
     _lay_table_parser(commands)
+    _fmu_parser(commands)
     capability = commands.add_parser(
         "capability",
         help="DP capability: the largest wind held at each heading, with the pipe's static pull",
@@ -936,6 +937,38 @@ def _fatigue(args: argparse.Namespace) -> int:
     return 1 if found.failures else 0
 
 
+def _fmu_parser(commands: Any) -> None:
+    """The arguments of `pipelay fmu`."""
+    fmu = commands.add_parser(
+        "fmu", help="the scenario as an FMI 2.0 co-simulation FMU (the plant: pipe and vessel, driven by τ)"
+    )
+    fmu.add_argument("scenario", type=Path, help="scenario file (TOML) with a [vessel]")
+    fmu.add_argument(
+        "-o", "--output", type=Path, required=True, help="the FMU (NAME.fmu; NAME its model identifier)"
+    )
+    fmu.add_argument(
+        "--kind",
+        choices=["plant"],
+        default="plant",
+        help="plant: the pipe and the vessel, inputs the thrust τ in surge, sway and yaw (the only kind built)",
+    )
+    fmu.add_argument(
+        "--parameter",
+        action="append",
+        metavar="KEY",
+        help="a dotted scenario key (a number in the scenario) the master may set, repeatable; default: every "
+        "number of sea.current, sea.waves and sea.wind",
+    )
+
+
+def _fmu(args: argparse.Namespace) -> int:
+    from pipelay.cosimulation.build import build_fmu
+
+    path = build_fmu(args.scenario, args.output, parameters=args.parameter)
+    print(f"FMU: {path} (FMI 2.0 co-simulation; runs where Python and pipelay are installed)")
+    return 0
+
+
 def _lay_table_parser(commands: Any) -> None:
     """The arguments of `pipelay lay-table`."""
     table = commands.add_parser(
@@ -1114,6 +1147,7 @@ def main(argv: list[str] | None = None) -> int:
         "view": _view,
         "report": _report,
         "lay-table": _lay_table,
+        "fmu": _fmu,
     }[args.command]
     try:
         if getattr(args, "plots", None) is not None:

@@ -25,21 +25,55 @@ fn wrap<T: 'static>(
 ) -> TimeFunction<T> {
     Arc::new(move |time| {
         Python::attach(|py| {
-            let value = callable.bind(py).call1((time,)).map_err(|e| {
-                if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
-                    INTERRUPTED.store(true, Ordering::SeqCst);
-                }
-                let kind = e
-                    .get_type(py)
-                    .name()
-                    .map_or_else(|_| "Exception".to_string(), |n| n.to_string());
-                let message = format!("{argument}({time}) raised {kind}: {}", e.value(py));
-                remember_callable_error(&message, e);
-                message
-            })?;
+            let value = callable
+                .bind(py)
+                .call1((time,))
+                .map_err(|e| raised(py, e, argument, time))?;
             convert(&value, argument).map_err(|e| e.to_string())
         })
     })
+}
+
+/// The message of the error `error` that `argument`, called at `time`, raised (kept for
+/// [`crate::errors::to_py`]); Ctrl-C is remembered ([`take_interrupt`]).
+fn raised(py: Python<'_>, error: PyErr, argument: &str, time: f64) -> String {
+    if error.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+        INTERRUPTED.store(true, Ordering::SeqCst);
+    }
+    let kind = error
+        .get_type(py)
+        .name()
+        .map_or_else(|_| "Exception".to_string(), |n| n.to_string());
+    let message = format!("{argument}({time}) raised {kind}: {}", error.value(py));
+    remember_callable_error(&message, error);
+    message
+}
+
+/// A callable of (t, Δt, η (6,), ν (6,)) returning τ (6,): an external controller's command law
+/// ([`pipelay::vessel::control::CommandLaw`]).
+pub fn command_law(
+    callable: &Bound<'_, PyAny>,
+    argument: &'static str,
+) -> PyResult<pipelay::vessel::control::CommandLaw> {
+    if !callable.is_callable() {
+        return Err(crate::errors::input(
+            argument,
+            callable.repr().map_or("?".into(), |r| r.to_string()),
+            "must be a callable of (t, dt, η (6,), ν (6,)) returning τ (6,)",
+        ));
+    }
+    let callable = callable.clone().unbind();
+    Ok(Arc::new(move |time, dt, eta, velocity| {
+        Python::attach(|py| {
+            let eta = crate::convert::to_numpy(py, eta.as_slice());
+            let velocity = crate::convert::to_numpy(py, velocity.as_slice());
+            let value = callable
+                .bind(py)
+                .call1((time, dt, eta, velocity))
+                .map_err(|e| raised(py, e, argument, time))?;
+            vector6(&value, argument).map_err(|e| e.to_string())
+        })
+    }))
 }
 
 fn scalar(value: &Bound<'_, PyAny>, argument: &str) -> PyResult<f64> {

@@ -953,6 +953,19 @@ impl Simulation {
     fn state(&self) -> State {
         State::from_integrator(&self.integrator, self.last_iterations)
     }
+    /// The vessel's low-frequency pose now (6,) in e (m, rad), what the DP controls; None without a vessel.
+    #[getter]
+    fn eta_low_frequency<'py>(&self, py: Python<'py>) -> Option<Bound<'py, numpy::PyArray1<f64>>> {
+        self.integrator
+            .observe()
+            .vessel_low_frequency()
+            .map(|eta| crate::convert::to_numpy(py, eta.as_slice()))
+    }
+    /// The system's energy now (J): the ledger's total, E(t) − E(0) = W(t) − D(t).
+    #[getter]
+    fn energy(&self) -> f64 {
+        self.integrator.observe().energy().total()
+    }
     /// Work supplied since the simulation started (J).
     #[getter]
     fn supplied_work(&self) -> f64 {

@@ -270,6 +270,19 @@ impl PyRoute {
     }
 }
 
+/// Whether `allocation` asks for the thrust allocation: "qp" or None.
+fn allocation_of(allocation: Option<&str>) -> PyResult<bool> {
+    match allocation {
+        None => Ok(false),
+        Some("qp") => Ok(true),
+        Some(other) => Err(input(
+            "allocation",
+            format!("{other:?}"),
+            "must be \"qp\" (thrust allocation by quadratic programming) or None (τ acts directly)",
+        )),
+    }
+}
+
 /// A PID controller on η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t),
 /// η̃̇ = J(η)ν − η̇_ref(t), from `start` (s). PD when ki is None. `reference`: η_ref (6,), a pl.Route, or a
 /// callable of t returning (6,) (with `reference_rate`, a callable returning η̇_ref, or central differences
@@ -302,17 +315,7 @@ impl PyPid {
         observer: Option<&Observer>,
         bumpless: bool,
     ) -> PyResult<Self> {
-        let allocation = match allocation {
-            None => false,
-            Some("qp") => true,
-            Some(other) => {
-                return Err(input(
-                    "allocation",
-                    format!("{other:?}"),
-                    "must be \"qp\" (thrust allocation by quadratic programming) or None (τ acts directly)",
-                ))
-            }
-        };
+        let allocation = allocation_of(allocation)?;
         let Some(reference) = reference else {
             return Err(input(
                 "reference",
@@ -362,6 +365,47 @@ impl PyPid {
             )
         })
         .map_err(to_py)
+    }
+
+    /// A controller whose command comes from outside pipelay: `law(t, dt, eta, nu)` returns τ (6,) over the
+    /// step from t to t + dt (s) (body frame: N, N·m; surge, sway and yaw are kept, within `thrust_limit` (3,))
+    /// from the pose η (6,) and velocity ν (6,) the loop sees at t (the `observer`'s estimate, if given, else
+    /// the low-frequency pose and velocity), called once per time step at its start from `start` (s);
+    /// `allocation="qp"` sends it to the thrusters. Statics hold the vessel by the holding thrust, which is
+    /// the command until the law's first. `pl.Controller.fmu` makes the law of a controller FMU.
+    #[staticmethod]
+    #[pyo3(signature = (law, start=0.0, thrust_limit=None, allocation=None, observer=None))]
+    fn external(
+        law: &Bound<'_, PyAny>,
+        start: f64,
+        thrust_limit: Option<&Bound<'_, PyAny>>,
+        allocation: Option<&str>,
+        observer: Option<&Observer>,
+    ) -> PyResult<Self> {
+        let allocation = allocation_of(allocation)?;
+        let mut controller =
+            Pid::external(crate::callables::command_law(law, "law")?, start).map_err(to_py)?;
+        if let Some(limit) = thrust_limit {
+            let limit = Vector3::from(array::<3>(limit, "thrust_limit")?);
+            if limit.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
+                return Err(input(
+                    "thrust_limit",
+                    format!("{:?}", limit.as_slice()),
+                    "must hold finite bounds > 0 (N, N, N·m)",
+                ));
+            }
+            controller.thrust_limit = Some(limit);
+        }
+        Ok(PyPid(controller.with_station_keeping(
+            allocation,
+            observer.map(|o| o.0.clone()),
+        )))
+    }
+
+    /// Whether the command comes from outside pipelay (`PID.external`).
+    #[getter]
+    fn is_external(&self) -> bool {
+        self.0.external.is_some()
     }
 
     #[getter]

@@ -453,14 +453,15 @@ def _held_section(model: pl.Model, end: str) -> pl.Section:
     return rod.sections[int(rod.segment_of[0 if end == "A" else -1])]
 
 
-def _attach(model: pl.Model, file: models.ScenarioFile) -> None:
-    """Build the vessel, its lay equipment, winch, controller and environment; attach them (with the hull's
-    loads if `hull_loads` says so)."""
+def _attach(model: pl.Model, file: models.ScenarioFile, controller: pl.PID | None = None) -> None:
+    """Build the vessel, its lay equipment, winch, controller (`controller` in place of `[controller]`'s, if
+    given) and environment; attach them (with the hull's loads if `hull_loads` says so)."""
     vessel = cast(models.ModelVessel | models.MatrixVessel, file.vessel)
     lay = None if vessel.lay is None else _lay(vessel.lay, _held_section(model, vessel.end))
     winch = None if vessel.winch is None else _winch(vessel.winch)
     body = _vessel(vessel)
-    controller = None if file.controller is None else _controller(file.controller)
+    if controller is None and file.controller is not None:
+        controller = _controller(file.controller)
     environment = []
     for i, force in enumerate(file.environment):
         with _engine(f"environment[{i}]", KEYS["environment"]):
@@ -504,8 +505,8 @@ def _stages(file: models.ScenarioFile) -> pl.Stages | None:
         return pl.Stages(stages)
 
 
-def _build(file: models.ScenarioFile) -> pl.Model:
-    """Make the API calls of a checked document."""
+def _build(file: models.ScenarioFile, controller: pl.PID | None = None) -> pl.Model:
+    """Make the API calls of a checked document (with `controller` in place of `[controller]`'s)."""
     rod = _rod(file)
     sea = None if file.sea is None else _sea(file.sea)
     gravity = file.gravity.acceleration if isinstance(file.gravity, models.Gravity) else file.gravity
@@ -520,7 +521,9 @@ def _build(file: models.ScenarioFile) -> pl.Model:
         with _engine(f"attachments[{i}]", KEYS["attachments"]):
             model.attach(attachment.arc_length, pl.Clump(**attachment.given("arc_length")))
     if file.vessel is not None:
-        _attach(model, file)
+        _attach(model, file, controller)
+    elif controller is not None:
+        raise pl.InputError("controller: the scenario has no [vessel] for a controller to act on")
     if file.pay_out is not None:
         speed = _pay_out(file.pay_out, file.controller)
         with _engine("pay_out", KEYS["pay_out"]):
@@ -529,7 +532,11 @@ def _build(file: models.ScenarioFile) -> pl.Model:
 
 
 def parse_scenario(
-    data: dict[str, Any], origin: str = "<dict>", folder: str | os.PathLike[str] | None = None
+    data: dict[str, Any],
+    origin: str = "<dict>",
+    folder: str | os.PathLike[str] | None = None,
+    *,
+    controller: pl.PID | None = None,
 ) -> Scenario:
     """The scenario described by `data`, a parsed TOML document (its keys: the documentation's Scenario
     reference).
@@ -537,13 +544,14 @@ def parse_scenario(
     Every key is checked before the model is built; nothing is solved (the engine checks the `[[stages]]`,
     `Scenario.stages`, against the model again when a simulation takes them). `origin` names the source in
     messages; file paths in it (`vessel.raos`, the hull tables) are relative to `folder` (default: the folder
-    of `origin` if it is a file, else the current one). Raises pl.InputError whose message starts with the key
-    path and ends with `(in origin)`.
+    of `origin` if it is a file, else the current one). `controller` (a pl.PID, say `pl.PID.external` or
+    `pl.Controller.fmu`) takes the place of `[controller]`'s. Raises pl.InputError whose message starts with the
+    key path and ends with `(in origin)`.
     """
     relative_to = _folder(origin, folder)
     try:
         file = _check(data, relative_to)
-        model = _build(file)
+        model = _build(file, controller)
         stages = _stages(file)
     except pl.InputError as error:
         raise pl.InputError(f"{error} (in {origin})") from None

@@ -486,7 +486,42 @@ impl Integrator {
         {
             self.restart_from_statics(stage)?;
         }
+        self.command_station_keeping()?;
         pool::run(self.parallel(), || self.substeps(self.options.time_step))
+    }
+
+    /// An external controller's command for the step from now, if it has started by the step's midpoint.
+    fn command_station_keeping(&mut self) -> Result<()> {
+        let (Some(attachment), Some(motion), Some(station_keeping)) = (
+            &self.model.vessel,
+            &self.state.vessel,
+            &mut self.station_keeping,
+        ) else {
+            return Ok(());
+        };
+        let time = self.state.time;
+        let Some(controller) = attachment
+            .controller
+            .as_ref()
+            .filter(|c| time + 0.5 * self.options.time_step >= c.start)
+        else {
+            return Ok(());
+        };
+        let node = attachment.node;
+        let configuration = &self.state.configuration;
+        let (position, body) = low_frequency_pose(
+            attachment,
+            &configuration.positions[node],
+            &configuration.rotations[node],
+            self.vessel_waves.as_ref().map(|w| &w.now),
+        );
+        station_keeping.command(
+            controller,
+            time,
+            self.options.time_step,
+            &eta_of(&position, &body),
+            &motion.velocity,
+        )
     }
 
     /// Starts stage `stage` from statics of the configuration as it is: the vessel held where it is (its surge,

@@ -12,7 +12,7 @@
 use crate::error::Result;
 use crate::model::Model;
 use crate::vessel::allocation::{allocate, Previous};
-use crate::vessel::control::{clamp_integral, eta_error, pid_thrust, Pid};
+use crate::vessel::control::{clamp_integral, eta_error, pid_thrust, thrust_only, Pid};
 use crate::vessel::observer::PassiveObserver;
 use crate::vessel::thrusters::{generalised_force, ThrusterState};
 use crate::vessel::VesselAttachment;
@@ -38,6 +38,8 @@ pub struct StationKeeping {
     pub tau: Vector6<f64>,
     /// Whether the last allocation could not deliver its command.
     pub saturated: bool,
+    /// An external controller's last command (body frame), held until its next ([`Self::command`]).
+    pub external_command: Option<Vector6<f64>>,
     decision: Option<Decision>,
 }
 
@@ -98,8 +100,27 @@ impl StationKeeping {
             tau_commanded: *hold_thrust,
             tau,
             saturated: false,
+            external_command: controller.external.as_ref().map(|_| *hold_thrust),
             decision: None,
         }))
+    }
+
+    /// An external controller's command for the step from `time` to `time` + `dt` (s), from the pose `eta` and velocity
+    /// `velocity` it sees (the observer's estimate, if there is one, instead): called once per time step, before
+    /// its substeps, so that a controller with a state of its own is stepped once per step.
+    pub fn command(
+        &mut self,
+        controller: &Pid,
+        time: f64,
+        dt: f64,
+        eta: &Vector6<f64>,
+        velocity: &Vector6<f64>,
+    ) -> Result<()> {
+        if let Some(external) = &controller.external {
+            let (seen, seen_velocity) = self.estimate().unwrap_or((*eta, *velocity));
+            self.external_command = Some(external.over(time, dt, &seen, &seen_velocity)?);
+        }
+        Ok(())
     }
 
     /// The estimate (η̂, ν̂) of the low-frequency pose and velocity, if there is an observer.
@@ -134,7 +155,10 @@ impl StationKeeping {
             None => planar(total),
         };
         let (seen, seen_velocity) = self.estimate().unwrap_or((*eta, *velocity));
-        let command = pid_thrust(controller, &seen, &seen_velocity, integral, reference);
+        let command = match self.external_command {
+            Some(command) => thrust_only(command, controller.thrust_limit.as_ref()),
+            None => pid_thrust(controller, &seen, &seen_velocity, integral, reference),
+        };
         let error = eta_error(&seen, &reference.0);
         let integral_next = clamp_integral(controller, &(integral + dt * error));
         let thrusters = &attachment.vessel.thrusters;

@@ -247,6 +247,58 @@ pub struct Pid {
     /// Bumpless transfer: a controller that starts after t = 0 takes over the static holding thrust in its
     /// integral ([`transfer_integral`]) instead of starting from ∫η̃ = 0 (no effect where K_i = 0).
     pub bumpless: bool,
+    /// A command given from outside the engine, in place of the PID's ([`Pid::external`]).
+    pub external: Option<ExternalCommand>,
+}
+
+/// A law of the command τ (6,) (body frame: N, N·m) of a controller outside the engine (a controller FMU, a
+/// co-simulation master) over the step from t (s) to t + Δt, of t, Δt (s) and the pose η (6,) and velocity ν (6,)
+/// the sampled loop sees at t (the observer's estimate, if there is one, else the low-frequency pose and
+/// velocity).
+pub type CommandLaw = std::sync::Arc<
+    dyn Fn(f64, f64, &Vector6<f64>, &Vector6<f64>) -> std::result::Result<Vector6<f64>, String>
+        + Send
+        + Sync,
+>;
+
+/// A controller's command from outside the engine: its law, called once per time step at the step's start, the
+/// command held over the step (a zero-order hold, as a DP computer's or a co-simulation's communication step).
+#[derive(Clone)]
+pub struct ExternalCommand(pub CommandLaw);
+
+impl std::fmt::Debug for ExternalCommand {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "ExternalCommand")
+    }
+}
+
+impl PartialEq for ExternalCommand {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl ExternalCommand {
+    /// The command over the step from `time` to `time` + `dt` (s) for the pose `eta` and velocity `velocity`
+    /// seen; a failure or a non-finite value names `controller` and the time.
+    pub fn over(
+        &self,
+        time: f64,
+        dt: f64,
+        eta: &Vector6<f64>,
+        velocity: &Vector6<f64>,
+    ) -> Result<Vector6<f64>> {
+        let value = (self.0)(time, dt, eta, velocity)
+            .map_err(|message| Error::input("controller", format!("t = {time} s"), message))?;
+        finite("controller", value.as_slice()).map_err(|_| {
+            Error::input(
+                "controller",
+                format!("τ = {:?} at t = {time} s", value.as_slice()),
+                "must command finite thrust (N, N·m)",
+            )
+        })?;
+        Ok(value)
+    }
 }
 
 /// Checks a gain matrix: finite, symmetric and positive semi-definite (K_p and K_d so, the controller is
@@ -452,7 +504,32 @@ impl Pid {
             allocation: false,
             observer: None,
             bumpless: true,
+            external: None,
         })
+    }
+
+    /// A controller whose command comes from `law` ([`ExternalCommand`]), from `start` (s): a sampled loop
+    /// (with allocation and an observer, if given) whose PID is replaced by the law; statics hold the vessel
+    /// by the holding thrust, which the command is until the law's first answer.
+    pub fn external(law: CommandLaw, start: f64) -> Result<Self> {
+        let mut controller = Pid::new(
+            Matrix6::zeros(),
+            Matrix6::zeros(),
+            Matrix6::zeros(),
+            Reference::Fixed(Vector6::zeros()),
+            start,
+            None,
+            None,
+            None,
+        )?;
+        controller.external = Some(ExternalCommand(law));
+        Ok(controller)
+    }
+
+    /// Whether statics hold the vessel by this controller (it acts from t ≤ 0 and is a PID), else by the
+    /// holding thrust.
+    pub fn holds_in_statics(&self) -> bool {
+        self.start <= 0.0 && self.external.is_none()
     }
 
     /// The same controller with bumpless transfer on or off ([`Pid::bumpless`]).
@@ -486,7 +563,7 @@ impl Pid {
     /// allocation or an observer. Otherwise its τ is implicit in the step (at the midpoint), which keeps the
     /// closed loop passive step by step.
     pub fn is_sampled(&self) -> bool {
-        self.allocation || self.observer.is_some()
+        self.allocation || self.observer.is_some() || self.external.is_some()
     }
 }
 
@@ -580,6 +657,54 @@ pub fn clamp_integral(controller: &Pid, integral: &Vector6<f64>) -> Vector6<f64>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An external controller is sampled, lets statics hold the vessel by thrust, passes its law's τ through,
+    /// and names `controller` and the time for a law that fails or commands a non-finite thrust.
+    #[test]
+    fn an_external_command_is_its_laws_answer_or_an_error_naming_the_controller() {
+        let law: CommandLaw = std::sync::Arc::new(|time, dt, eta, velocity| {
+            if time > 1.0 {
+                return Err("the DP computer is down".into());
+            }
+            let yaw = if time == 0.5 { f64::NAN } else { 0.0 };
+            Ok(Vector6::new(eta[0] + dt, velocity[1], 0.0, 0.0, 0.0, yaw))
+        });
+        let controller = Pid::external(law, 0.0).unwrap();
+        assert!(controller.is_sampled() && !controller.holds_in_statics());
+        let external = controller.external.as_ref().unwrap();
+        let (eta, velocity) = (Vector6::repeat(2.0), Vector6::repeat(3.0));
+        let tau = external.over(0.0, 0.5, &eta, &velocity).unwrap();
+        assert_eq!(tau, Vector6::new(2.5, 3.0, 0.0, 0.0, 0.0, 0.0));
+        let non_finite = external
+            .over(0.5, 0.5, &eta, &velocity)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            non_finite.contains("controller") && non_finite.contains("finite"),
+            "{non_finite}"
+        );
+        let failed = external
+            .over(2.0, 0.5, &eta, &velocity)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            failed.contains("controller") && failed.contains("t = 2 s"),
+            "{failed}"
+        );
+        assert!(failed.contains("the DP computer is down"), "{failed}");
+        let pid = Pid::new(
+            Matrix6::identity(),
+            Matrix6::identity(),
+            Matrix6::zeros(),
+            Reference::Fixed(Vector6::zeros()),
+            0.0,
+            None,
+            None,
+            None,
+        )
+        .unwrap();
+        assert!(pid.holds_in_statics() && !pid.is_sampled());
+    }
 
     #[test]
     fn a_route_waits_for_its_start_then_moves_at_its_speed() {

@@ -46,7 +46,11 @@ pub fn body_rotation(
 /// vessel in statics, turn the last bits of positions of size `extent` (m) into force (and of the heading into
 /// moment).
 pub fn static_round_off(attachment: &VesselAttachment, extent: f64) -> f64 {
-    let (k, k_yaw) = match attachment.controller.as_ref().filter(|c| c.start <= 0.0) {
+    let (k, k_yaw) = match attachment
+        .controller
+        .as_ref()
+        .filter(|c| c.holds_in_statics())
+    {
         Some(controller) => (
             controller.kp[(0, 0)].max(controller.kp[(1, 1)]),
             controller.kp[(5, 5)],
@@ -235,7 +239,10 @@ pub fn static_forces(
     let mut moment =
         -(gradient[1] * body.column(1).cross(&e3) - gradient[2] * body.column(0).cross(&e3));
     // Surge, sway, yaw.
-    let (hold_force, hold_moment) = match attachment.controller.as_ref().filter(|c| c.start <= 0.0)
+    let (hold_force, hold_moment) = match attachment
+        .controller
+        .as_ref()
+        .filter(|c| c.holds_in_statics())
     {
         Some(controller) => controller_static(controller, attachment, position, &body, target),
         None => {

@@ -99,11 +99,11 @@ impl WaveMotion {
 }
 
 /// Where the vessel keeps station at time t: (x, y, ψ) of its controller's reference, or of its starting pose
-/// without a controller.
+/// without a controller or with one outside pipelay (whose reference pipelay does not know).
 pub fn station(attachment: &VesselAttachment, time: f64) -> Result<Vector3<f64>> {
     let pose = match &attachment.controller {
-        Some(controller) => controller.reference.at(time)?.0,
-        None => attachment.eta,
+        Some(controller) if controller.external.is_none() => controller.reference.at(time)?.0,
+        _ => attachment.eta,
     };
     Ok(Vector3::new(pose.x, pose.y, pose.b))
 }

@@ -1,0 +1,216 @@
+"""pipelay as an FMI 2.0 co-simulation slave (pythonfmu): the *plant*, pipe and vessel, driven by the thrust τ a
+master's controller commands.
+
+The FMU carries its scenario and `pipelay_fmu.json` (what `build_fmu` decided) in its resources; the slave
+builds the model when the master leaves initialisation (with the parameters the master set, as overrides of the
+scenario's keys), solves its statics and, at each `doStep(t, h)`, runs the simulation from t to t + h with the
+inputs held. Its outputs are those of the state at the communication point.
+
+The FMU runs where Python and pipelay are installed: pythonfmu's binary starts the host's Python and imports
+this module.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real
+
+__all__ = ["PLANT_INPUTS", "PLANT_OUTPUTS", "PipelayPlant", "Signal"]
+
+SETTINGS = "pipelay_fmu.json"
+
+
+@dataclass(frozen=True)
+class Signal:
+    """An FMU variable: its name, unit (FMI unit name) and what it is."""
+
+    name: str
+    unit: str
+    description: str
+
+
+PLANT_INPUTS = (
+    Signal("tau_surge", "N", "commanded thrust in surge, body frame"),
+    Signal("tau_sway", "N", "commanded thrust in sway, body frame (to starboard)"),
+    Signal("tau_yaw", "N.m", "commanded thrust moment in yaw, body frame"),
+)
+_POSE = (("x", "m"), ("y", "m"), ("z", "m"), ("roll", "rad"), ("pitch", "rad"), ("yaw", "rad"))
+_VELOCITY = (("u", "m/s"), ("v", "m/s"), ("w", "m/s"), ("p", "rad/s"), ("q", "rad/s"), ("r", "rad/s"))
+_CHI = (("X", "N"), ("Y", "N"), ("Z", "N"), ("K", "N.m"), ("M", "N.m"), ("N", "N.m"))
+# The lay summary's scalars, its keys, units and meanings (the documentation's Lay equipment › Lay tables).
+LAY_OUTPUTS = (
+    ("top_tension", "N", "the effective tension at the tensioner or tower"),
+    ("departure_angle", "rad", "below the horizontal where the pipe leaves the equipment"),
+    ("layback", "m", "horizontal distance from the hold point to the touchdown"),
+    ("touchdown_arc_length", "m", "arc length from end A to the touchdown"),
+    ("overbend_strain", "1", "the largest strain over the stinger (a fraction)"),
+    ("sagbend_strain", "1", "the largest strain in the sagbend (a fraction)"),
+    (
+        "tip_clearance",
+        "m",
+        "the gap to the stinger's last roller (<= 0: the pipe rests on it; NaN: no stinger)",
+    ),
+)
+PLANT_OUTPUTS = (
+    *(
+        Signal(f"eta_{n}", u, f"vessel pose η, its total motion (measured): {n} (CO in e, z down)")
+        for n, u in _POSE
+    ),
+    *(
+        Signal(f"eta_lf_{n}", u, f"vessel pose η, its low-frequency part (what DP controls): {n}")
+        for n, u in _POSE
+    ),
+    *(Signal(f"nu_{n}", u, f"vessel velocity ν: {n} (body frame)") for n, u in _VELOCITY),
+    *(
+        Signal(f"chi_{n}", u, f"the pipe's force and moment on the vessel: {n} (body frame, about CO)")
+        for n, u in _CHI
+    ),
+    *(Signal(name, unit, description) for name, unit, description in LAY_OUTPUTS),
+    Signal("thrust_surge", "N", "thrust delivered in surge, body frame"),
+    Signal("thrust_sway", "N", "thrust delivered in sway, body frame"),
+    Signal("thrust_yaw", "N.m", "thrust moment delivered in yaw, body frame"),
+    Signal("energy", "J", "the pipe–vessel system's energy"),
+    Signal("supplied_work", "J", "work supplied since the start (thrust, environment)"),
+)
+
+
+def scalar_keys(data: dict[str, Any], tables: tuple[str, ...]) -> dict[str, float]:
+    """The numbers under the dotted `tables` of a parsed scenario, by dotted key (arrays' entries as key[i])."""
+    found: dict[str, float] = {}
+
+    def walk(node: Any, key: str) -> None:
+        if isinstance(node, bool):
+            return
+        if isinstance(node, int | float):
+            found[key] = float(node)
+        elif isinstance(node, dict):
+            for name, value in node.items():
+                walk(value, f"{key}.{name}")
+        elif isinstance(node, list) and all(
+            isinstance(v, int | float) and not isinstance(v, bool) for v in node
+        ):
+            for i, value in enumerate(node):
+                found[f"{key}[{i}]"] = float(value)
+
+    for table in tables:
+        node: Any = data
+        for part in table.split("."):
+            node = node.get(part) if isinstance(node, dict) else None
+        if node is not None:
+            walk(node, table)
+    return found
+
+
+class PipelayPlant(Fmi2Slave):
+    """The pipe and the vessel of a scenario, driven by the thrust τ in surge, sway and yaw."""
+
+    author = "pipelay"
+    description = "pipelay plant: the pipe and the DP vessel of a scenario, driven by the commanded thrust"
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        resources = Path(self.resources)
+        settings = json.loads((resources / SETTINGS).read_text())
+        self.scenario_path = resources / settings["scenario"]
+        self.dt = float(settings["dt"])
+        self.values: dict[str, float] = {}
+        self.parameters: dict[str, float] = dict(settings["parameters"])
+        self.simulation: Any = None
+        for signal in PLANT_INPUTS:
+            self.values[signal.name] = 0.0
+            self._register(signal.name, Fmi2Causality.input, Fmi2Variability.continuous, signal.description)
+        for name in self.parameters:
+            self.values[name] = self.parameters[name]
+            self._register(name, Fmi2Causality.parameter, Fmi2Variability.fixed, f"scenario key {name}")
+        for signal in PLANT_OUTPUTS:
+            self.values[signal.name] = 0.0
+            self._register(signal.name, Fmi2Causality.output, Fmi2Variability.continuous, signal.description)
+
+    def _register(self, name: str, causality: Fmi2Causality, variability: Fmi2Variability, text: str) -> None:
+        def getter() -> float:
+            return self.values[name]
+
+        def setter(value: float) -> None:
+            self.values[name] = float(value)
+
+        self.register_variable(
+            Real(
+                name,
+                causality=causality,
+                variability=variability,
+                description=text,
+                getter=getter,
+                setter=setter,
+            ),
+            nested=False,
+        )
+
+    def _command(self, t: float, dt: float, eta: np.ndarray, nu: np.ndarray) -> np.ndarray:
+        """The external controller's law: the master's τ inputs, held over the step."""
+        tau = np.zeros(6)
+        tau[0], tau[1], tau[5] = (self.values[s.name] for s in PLANT_INPUTS)
+        return tau
+
+    def exit_initialization_mode(self) -> None:
+        import pipelay as pl
+        from pipelay.scenario import parse_scenario
+        from pipelay.scenario.overrides import apply_overrides
+
+        data = tomllib.loads(self.scenario_path.read_text())
+        case = {name: self.values[name] for name in self.parameters}
+        data = apply_overrides(data, case)
+        allocation = (data.get("controller") or {}).get("allocation")
+        controller = pl.PID.external(self._command, allocation=allocation)
+        scenario = parse_scenario(data, origin=str(self.scenario_path), controller=controller)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", pl.PhysicsWarning)
+            self.simulation = scenario.simulation()  # statics with the scenario's settings, its stages
+        self._read(self.simulation.state)
+
+    def do_step(self, current_time: float, step_size: float) -> bool:
+        import pipelay as pl
+
+        steps = max(1, round(step_size / self.dt))
+        if not math.isclose(steps * self.dt, step_size, rel_tol=1e-9):
+            self.log(f"the communication step {step_size} s is not a multiple of the time step {self.dt} s")
+            return False
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", pl.PhysicsWarning)
+                for _ in range(steps):
+                    self.simulation.step()
+        except (pl.ConvergenceError, pl.InputError) as error:
+            self.log(str(error))
+            return False
+        self._read(self.simulation.state)
+        return True
+
+    def _read(self, state: Any) -> None:
+        """The outputs of the state `state`."""
+        values = self.values
+        for (name, _), value in zip(_POSE, state.eta, strict=True):
+            values[f"eta_{name}"] = float(value)
+        for (name, _), value in zip(_POSE, self.simulation.eta_low_frequency, strict=True):
+            values[f"eta_lf_{name}"] = float(value)
+        for (name, _), value in zip(_VELOCITY, state.nu, strict=True):
+            values[f"nu_{name}"] = float(value)
+        for (name, _), value in zip(_CHI, state.chi, strict=True):
+            values[f"chi_{name}"] = float(value)
+        tau = state.tau
+        values["thrust_surge"], values["thrust_sway"], values["thrust_yaw"] = (
+            float(tau[k]) for k in (0, 1, 5)
+        )
+        summary = state.lay_summary() or {}
+        for name, _, _ in LAY_OUTPUTS:
+            value = summary.get(name)
+            values[name] = float("nan") if value is None else float(value)
+        values["energy"] = float(self.simulation.energy)
+        values["supplied_work"] = float(self.simulation.supplied_work)
