@@ -78,6 +78,27 @@ def pd(eta: np.ndarray, nu: np.ndarray) -> np.ndarray:
     return tau
 
 
+def vessel_motion(times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A prescribed vessel motion about the example's static pose `ETA0`: surge, sway and yaw oscillations (η (T, 6)
+    in e, ν (T, 6) body frame, its exact rate)."""
+    eta = np.tile(ETA0, (len(times), 1))
+    eta[:, 0] += 2.0 * np.sin(0.2 * times)
+    eta[:, 1] += 1.0 * np.sin(0.15 * times)
+    eta[:, 5] += 0.02 * np.sin(0.1 * times)
+    rate = np.column_stack(
+        [0.4 * np.cos(0.2 * times), 0.15 * np.cos(0.15 * times), 0.002 * np.cos(0.1 * times)]
+    )
+    nu = np.zeros((len(times), 6))
+    yaw = eta[:, 5]
+    nu[:, 0] = np.cos(yaw) * rate[:, 0] + np.sin(yaw) * rate[:, 1]  # R(ψ)ᵀ ẋ (roll and pitch are zero)
+    nu[:, 1] = -np.sin(yaw) * rate[:, 0] + np.cos(yaw) * rate[:, 1]
+    nu[:, 5] = rate[:, 2]
+    return eta, nu
+
+
+ETA0 = np.array([878.005725, 0.0, -799.944773, 0.0, 0.0, 0.0])  # m, rad: near the example's static pose
+
+
 def in_child(kind: str, folder: Path, out: Path) -> dict[str, np.ndarray]:
     """Runs `kind` with the FMUs in `folder` in a child process; its signals."""
     done = subprocess.run(
@@ -138,6 +159,30 @@ def _plant_fmu(folder: Path) -> dict[str, np.ndarray]:
     }
 
 
+def _pipe_fmu(folder: Path) -> dict[str, np.ndarray]:
+    """The pipe FMU under fmpy, its hold point carried by the prescribed vessel motion sampled at its
+    communication step."""
+    import fmpy
+    from pipelay.cosimulation.slave import PIPE_INPUTS
+
+    times = np.arange(0.0, DURATION + DT / 2, DT)
+    eta, nu = vessel_motion(times)
+    signal = np.zeros(len(times), dtype=[("time", float)] + [(s.name, float) for s in PIPE_INPUTS])
+    signal["time"] = times
+    for k, s in enumerate(PIPE_INPUTS):
+        signal[s.name] = np.column_stack([eta, nu])[:, k]
+    names = [f"chi_{n}" for n in CHI] + ["energy", "supplied_work", "dissipated"]
+    result = fmpy.simulate_fmu(
+        str(folder / "pipe.fmu"),
+        stop_time=DURATION,
+        step_size=DT,
+        output_interval=DT,
+        input=signal,
+        output=names,
+    )
+    return {name: result[name] for name in ("time", *names)}
+
+
 def _osp(folder: Path) -> dict[str, np.ndarray]:
     """The OSP system structure beside the FMUs run by libcosim: the plant's outputs at the end."""
     from libcosimpy.CosimExecution import CosimExecution
@@ -157,6 +202,8 @@ def _osp(folder: Path) -> dict[str, np.ndarray]:
 
 if __name__ == "__main__":
     KIND, FOLDER, OUT = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
-    SIGNALS = {"controller": _controller_fmu, "plant": _plant_fmu, "osp": _osp}[KIND](FOLDER)
+    SIGNALS = {"controller": _controller_fmu, "plant": _plant_fmu, "pipe": _pipe_fmu, "osp": _osp}[KIND](
+        FOLDER
+    )
     np.savez(OUT, **SIGNALS)
     print(json.dumps(sorted(SIGNALS)))

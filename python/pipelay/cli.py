@@ -948,9 +948,10 @@ def _fmu_parser(commands: Any) -> None:
     )
     fmu.add_argument(
         "--kind",
-        choices=["plant"],
+        choices=["plant", "pipe"],
         default="plant",
-        help="plant: the pipe and the vessel, inputs the thrust τ in surge, sway and yaw (the only kind built)",
+        help="plant: the pipe and the vessel, inputs the thrust τ in surge, sway and yaw; pipe: the pipe alone, "
+        "inputs the vessel's pose and velocity, out its force on the vessel (a vessel without a stinger)",
     )
     fmu.add_argument(
         "--parameter",
@@ -964,7 +965,7 @@ def _fmu_parser(commands: Any) -> None:
 def _fmu(args: argparse.Namespace) -> int:
     from pipelay.cosimulation.build import build_fmu
 
-    path = build_fmu(args.scenario, args.output, parameters=args.parameter)
+    path = build_fmu(args.scenario, args.output, kind=args.kind, parameters=args.parameter)
     print(f"FMU: {path} (FMI 2.0 co-simulation; runs where Python and pipelay are installed)")
     return 0
 

@@ -58,9 +58,9 @@ def _referenced_files(data: Any, folder: Path) -> set[str]:
 
 
 def _unit_of(name: str, key_units: dict[str, str]) -> str | None:
-    from pipelay.cosimulation.slave import PLANT_INPUTS, PLANT_OUTPUTS
+    from pipelay.cosimulation.slave import PIPE_INPUTS, PIPE_OUTPUTS, PLANT_INPUTS, PLANT_OUTPUTS
 
-    for signal in (*PLANT_INPUTS, *PLANT_OUTPUTS):
+    for signal in (*PLANT_INPUTS, *PLANT_OUTPUTS, *PIPE_INPUTS, *PIPE_OUTPUTS):
         if signal.name == name:
             return signal.unit
     return key_units.get(name)
@@ -117,11 +117,15 @@ def build_fmu(
     scenario: str | os.PathLike[str],
     output: str | os.PathLike[str],
     *,
+    kind: str = "plant",
     parameters: list[str] | None = None,
 ) -> Path:
-    """Builds the plant FMU of the scenario file `scenario` at `output` (.fmu) and returns its path.
+    """Builds the FMU of the scenario file `scenario` at `output` (.fmu) and returns its path.
 
-    Inputs: the thrust τ in surge, sway (N) and yaw (N·m), body frame, held over each communication step (through
+    `kind="pipe"`: the pipe alone, its hold point carried by the vessel's pose η and velocity ν (inputs, as the
+    plant's outputs of those names), the pipe's force and moment on the vessel χ out, with the energy and the
+    supplied work; for a scenario whose vessel has no stinger (`pipelay.cosimulation.pipe.HeldPipe`).
+    `kind="plant"`, the pipe and the vessel. Inputs: the thrust τ in surge, sway (N) and yaw (N·m), body frame, held over each communication step (through
     the thrusters' allocation if the scenario's `[controller]` has `allocation = "qp"`). Outputs: η, ν, the pipe's
     force and moment on the vessel χ, the delivered thrust, the lay summary's scalars, the energy and the supplied
     work. Parameters: the dotted scenario keys `parameters` (numbers in the scenario), by default every number
@@ -136,10 +140,16 @@ def build_fmu(
     source = Path(scenario)
     loaded = load_scenario(source)  # checked now, not in the master
     data = tomllib.loads(source.read_text())
+    if kind not in ("plant", "pipe"):
+        raise pl.InputError(f'kind: {kind!r} must be "plant" (pipe and vessel) or "pipe" (the pipe alone)')
     if "vessel" not in data:
         raise pl.InputError(
-            f"scenario: {str(source)!r} has no [vessel]: the plant FMU is a vessel with its pipe"
+            f"scenario: {str(source)!r} has no [vessel]: the {kind} FMU needs a vessel's hold point"
         )
+    if kind == "pipe":
+        from pipelay.cosimulation.pipe import HeldPipe
+
+        HeldPipe(data, source)  # checked now, not in the master
     if parameters is None:
         numbers = scalar_keys(data, DEFAULT_PARAMETER_TABLES)
         chosen = {key: value for key, value in numbers.items() if not _NOT_PARAMETERS.match(key)}
@@ -159,13 +169,14 @@ def build_fmu(
     if not identifier or identifier[0].isdigit():
         identifier = f"pipelay_{identifier}"
     folder = source.absolute().parent
+    base = {"plant": "PipelayPlant", "pipe": "PipelayPipe"}[kind]
     with tempfile.TemporaryDirectory(prefix="pipelay_fmu_") as temporary:
         work = Path(temporary)
         script = work / f"{identifier}.py"
         script.write_text(
-            "from pipelay.cosimulation.slave import PipelayPlant\n\n\n"
-            f"class {identifier}(PipelayPlant):\n"
-            f'    """pipelay plant of {source.name}."""\n'
+            f"from pipelay.cosimulation.slave import {base}\n\n\n"
+            f"class {identifier}({base}):\n"
+            f'    """pipelay {kind} of {source.name}."""\n'
         )
         resources = work / "resources"
         resources.mkdir()

@@ -23,7 +23,15 @@ from typing import Any
 import numpy as np
 from pythonfmu import Fmi2Causality, Fmi2Slave, Fmi2Variability, Real
 
-__all__ = ["PLANT_INPUTS", "PLANT_OUTPUTS", "PipelayPlant", "Signal"]
+__all__ = [
+    "PIPE_INPUTS",
+    "PIPE_OUTPUTS",
+    "PLANT_INPUTS",
+    "PLANT_OUTPUTS",
+    "PipelayPipe",
+    "PipelayPlant",
+    "Signal",
+]
 
 SETTINGS = "pipelay_fmu.json"
 
@@ -59,6 +67,19 @@ LAY_OUTPUTS = (
         "the gap to the stinger's last roller (<= 0: the pipe rests on it; NaN: no stinger)",
     ),
 )
+PIPE_INPUTS = (
+    *(Signal(f"eta_{n}", u, f"vessel pose η: {n} (CO in e, z down; zyx Euler angles)") for n, u in _POSE),
+    *(Signal(f"nu_{n}", u, f"vessel velocity ν: {n} (body frame)") for n, u in _VELOCITY),
+)
+PIPE_OUTPUTS = (
+    *(
+        Signal(f"chi_{n}", u, f"the pipe's force and moment on the vessel: {n} (body frame, about CO)")
+        for n, u in _CHI
+    ),
+    Signal("energy", "J", "the pipe's energy"),
+    Signal("supplied_work", "J", "work supplied since the start (the hold point's motion, the sea)"),
+    Signal("dissipated", "J", "energy dissipated since the start"),
+)
 PLANT_OUTPUTS = (
     *(
         Signal(f"eta_{n}", u, f"vessel pose η, its total motion (measured): {n} (CO in e, z down)")
@@ -79,6 +100,7 @@ PLANT_OUTPUTS = (
     Signal("thrust_yaw", "N.m", "thrust moment delivered in yaw, body frame"),
     Signal("energy", "J", "the pipe–vessel system's energy"),
     Signal("supplied_work", "J", "work supplied since the start (thrust, environment)"),
+    Signal("dissipated", "J", "energy dissipated since the start"),
 )
 
 
@@ -109,11 +131,12 @@ def scalar_keys(data: dict[str, Any], tables: tuple[str, ...]) -> dict[str, floa
     return found
 
 
-class PipelayPlant(Fmi2Slave):
-    """The pipe and the vessel of a scenario, driven by the thrust τ in surge, sway and yaw."""
+class ScenarioSlave(Fmi2Slave):
+    """An FMU of a scenario: its settings and scenario from the resources, its variables by name."""
 
     author = "pipelay"
-    description = "pipelay plant: the pipe and the DP vessel of a scenario, driven by the commanded thrust"
+    inputs: tuple[Signal, ...] = ()
+    outputs: tuple[Signal, ...] = ()
 
     def __init__(self, **kwargs: Any) -> None:
         super().__init__(**kwargs)
@@ -124,13 +147,13 @@ class PipelayPlant(Fmi2Slave):
         self.values: dict[str, float] = {}
         self.parameters: dict[str, float] = dict(settings["parameters"])
         self.simulation: Any = None
-        for signal in PLANT_INPUTS:
+        for signal in self.inputs:
             self.values[signal.name] = 0.0
             self._register(signal.name, Fmi2Causality.input, Fmi2Variability.continuous, signal.description)
         for name in self.parameters:
             self.values[name] = self.parameters[name]
             self._register(name, Fmi2Causality.parameter, Fmi2Variability.fixed, f"scenario key {name}")
-        for signal in PLANT_OUTPUTS:
+        for signal in self.outputs:
             self.values[signal.name] = 0.0
             self._register(signal.name, Fmi2Causality.output, Fmi2Variability.continuous, signal.description)
 
@@ -153,6 +176,47 @@ class PipelayPlant(Fmi2Slave):
             nested=False,
         )
 
+    def _scenario(self) -> dict[str, Any]:
+        """The parsed scenario with the parameters the master set."""
+        from pipelay.scenario.overrides import apply_overrides
+
+        data = tomllib.loads(self.scenario_path.read_text())
+        return apply_overrides(data, {name: self.values[name] for name in self.parameters})
+
+    def do_step(self, current_time: float, step_size: float) -> bool:
+        import pipelay as pl
+
+        steps = max(1, round(step_size / self.dt))
+        if not math.isclose(steps * self.dt, step_size, rel_tol=1e-9):
+            self.log(f"the communication step {step_size} s is not a multiple of the time step {self.dt} s")
+            return False
+        self._hold(current_time)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", pl.PhysicsWarning)
+                for _ in range(steps):
+                    self.simulation.step()
+        except (pl.ConvergenceError, pl.InputError) as error:
+            self.log(str(error))
+            return False
+        self._read()
+        return True
+
+    def _hold(self, time: float) -> None:
+        """Takes the inputs at the communication point `time` (s) for the step from it."""
+
+    def _read(self) -> None:
+        """Sets the outputs from the simulation's state."""
+        raise NotImplementedError
+
+
+class PipelayPlant(ScenarioSlave):
+    """The pipe and the vessel of a scenario, driven by the thrust τ in surge, sway and yaw."""
+
+    description = "pipelay plant: the pipe and the DP vessel of a scenario, driven by the commanded thrust"
+    inputs = PLANT_INPUTS
+    outputs = PLANT_OUTPUTS
+
     def _command(self, t: float, dt: float, eta: np.ndarray, nu: np.ndarray) -> np.ndarray:
         """The external controller's law: the master's τ inputs, held over the step."""
         tau = np.zeros(6)
@@ -162,39 +226,18 @@ class PipelayPlant(Fmi2Slave):
     def exit_initialization_mode(self) -> None:
         import pipelay as pl
         from pipelay.scenario import parse_scenario
-        from pipelay.scenario.overrides import apply_overrides
 
-        data = tomllib.loads(self.scenario_path.read_text())
-        case = {name: self.values[name] for name in self.parameters}
-        data = apply_overrides(data, case)
+        data = self._scenario()
         allocation = (data.get("controller") or {}).get("allocation")
         controller = pl.PID.external(self._command, allocation=allocation)
         scenario = parse_scenario(data, origin=str(self.scenario_path), controller=controller)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", pl.PhysicsWarning)
             self.simulation = scenario.simulation()  # statics with the scenario's settings, its stages
-        self._read(self.simulation.state)
+        self._read()
 
-    def do_step(self, current_time: float, step_size: float) -> bool:
-        import pipelay as pl
-
-        steps = max(1, round(step_size / self.dt))
-        if not math.isclose(steps * self.dt, step_size, rel_tol=1e-9):
-            self.log(f"the communication step {step_size} s is not a multiple of the time step {self.dt} s")
-            return False
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", pl.PhysicsWarning)
-                for _ in range(steps):
-                    self.simulation.step()
-        except (pl.ConvergenceError, pl.InputError) as error:
-            self.log(str(error))
-            return False
-        self._read(self.simulation.state)
-        return True
-
-    def _read(self, state: Any) -> None:
-        """The outputs of the state `state`."""
+    def _read(self) -> None:
+        state = self.simulation.state
         values = self.values
         for (name, _), value in zip(_POSE, state.eta, strict=True):
             values[f"eta_{name}"] = float(value)
@@ -208,9 +251,50 @@ class PipelayPlant(Fmi2Slave):
         values["thrust_surge"], values["thrust_sway"], values["thrust_yaw"] = (
             float(tau[k]) for k in (0, 1, 5)
         )
-        summary = state.lay_summary() or {}
-        for name, _, _ in LAY_OUTPUTS:
-            value = summary.get(name)
-            values[name] = float("nan") if value is None else float(value)
-        values["energy"] = float(self.simulation.energy)
-        values["supplied_work"] = float(self.simulation.supplied_work)
+        read_lay_and_energy(values, state, self.simulation)
+
+
+def read_lay_and_energy(values: dict[str, float], state: Any, simulation: Any) -> None:
+    """The lay summary's scalars of `state` and the energy and supplied work of `simulation` into `values`."""
+    summary = state.lay_summary() or {}
+    for name, _, _ in LAY_OUTPUTS:
+        value = summary.get(name)
+        values[name] = float("nan") if value is None else float(value)
+    values["energy"] = float(simulation.energy)
+    values["supplied_work"] = float(simulation.supplied_work)
+    values["dissipated"] = float(simulation.dissipated)
+
+
+class PipelayPipe(ScenarioSlave):
+    """The pipe of a scenario alone, its hold point carried by the vessel motion the master gives
+    (`pipelay.cosimulation.pipe.HeldPipe`)."""
+
+    description = (
+        "pipelay pipe: the pipe of a scenario, its hold point moved by the vessel's pose and velocity"
+    )
+    inputs = PIPE_INPUTS
+    outputs = PIPE_OUTPUTS
+
+    def exit_initialization_mode(self) -> None:
+        from pipelay.cosimulation.pipe import HeldPipe
+
+        self.pipe = HeldPipe(self._scenario(), self.scenario_path)
+        if all(self.values[f"eta_{n}"] == 0.0 for n, _ in _POSE):
+            # A pose the master never set: the statics', where the scenario holds the vessel.
+            for (name, _), value in zip(_POSE, self.pipe.eta, strict=True):
+                self.values[f"eta_{name}"] = float(value)
+        self.simulation = self.pipe.simulation()
+        self._read()
+
+    def _hold(self, time: float) -> None:
+        eta = np.array([self.values[f"eta_{n}"] for n, _ in _POSE])
+        nu = np.array([self.values[f"nu_{n}"] for n, _ in _VELOCITY])
+        self.pipe.hold(time, eta, nu)
+
+    def _read(self) -> None:
+        chi = self.pipe.chi(self.simulation.state, self.simulation.time)
+        for (name, _), value in zip(_CHI, chi, strict=True):
+            self.values[f"chi_{name}"] = float(value)
+        self.values["energy"] = float(self.simulation.energy)
+        self.values["supplied_work"] = float(self.simulation.supplied_work)
+        self.values["dissipated"] = float(self.simulation.dissipated)
