@@ -903,7 +903,9 @@ class PID:
     on the observer's estimate (both make it a loop sampled once per step). With `bumpless` (the default), a
     controller that starts after t = 0 takes the static holding thrust τ_h over in its integral: −Jᵀ(η)K_i z₀ =
     τ_h in surge, sway and yaw where K_i reaches, so the thrust is continuous at `start` with the vessel at its
-    reference; `bumpless=False` starts ∫η̃ at 0 (the paper's PID)."""
+    reference; `bumpless=False` starts ∫η̃ at 0 (the paper's PID). `passivity="certify"`: the time-domain passivity
+    observer and controller keep the controller's work on the vessel within its storage at the start, every step
+    (about a fixed reference); "observe": the observer books it, nothing more."""
 
     def __new__(
         cls,
@@ -919,6 +921,7 @@ class PID:
         allocation: Literal["qp"] | None = None,
         observer: Observer | None = None,
         bumpless: bool = True,
+        passivity: Literal["observe", "certify"] | None = None,
     ) -> PID: ...
     @staticmethod
     def external(
@@ -927,6 +930,7 @@ class PID:
         thrust_limit: _ArrayLike | None = None,
         allocation: Literal["qp"] | None = None,
         observer: Observer | None = None,
+        passivity: Literal["observe", "certify"] | None = None,
     ) -> PID:
         """A controller whose command comes from outside pipelay: `law(t, dt, eta, nu)` returns τ (6,) over the
         step from t to t + dt (s) (body frame: N, N·m; surge, sway and yaw kept, within `thrust_limit` (3,)) from
@@ -937,6 +941,10 @@ class PID:
     @property
     def is_external(self) -> bool:
         """Whether the command comes from outside pipelay (`PID.external`)."""
+    @property
+    def passivity(self) -> Literal["observe", "certify"] | None:
+        """ "certify" if the time-domain passivity controller certifies the loop, "observe" if its observer only
+        books the controller's work, else None."""
     @property
     def reference(self) -> _FloatArray:
         """η_ref (6,) at t = 0."""
@@ -1290,8 +1298,21 @@ class Results:
     @property
     def chi(self) -> _FloatArray | None:
         """The pipe's force and moment on the vessel χ (T, 6), body frame, None without a vessel."""
-    def passivity_margin(self) -> float:
-        """max over t of E(t) − E(0) − W(t) (J): at round-off for this passive scheme."""
+    def passivity_margin(self, loop: bool = False) -> float:
+        """max over t of E(t) − E(0) − W(t) (J), W the supplied work: the plant's certificate, at round-off. With
+        `loop=True`, the closed loop's, for a controller that certifies it (`passivity="certify"`): max over t of
+        E(t) − E(0) − W(t) − R(t), R the `passivity_reserve`; ≤ 0 when certified."""
+    @property
+    def passivity_reserve(self) -> _FloatArray | None:
+        """The energy a certifying controller may still give the vessel (T,) (J): its storage at the start less
+        its work since; ≥ 0 when certified. None without one."""
+    @property
+    def passivity_withheld(self) -> _FloatArray | None:
+        """The controller's work the passivity controller withheld since the simulation started (T,) (J); None
+        without one."""
+    @property
+    def passivity_steps(self) -> _FloatArray | None:
+        """The steps the passivity controller acted in since the simulation started (T,); None without one."""
     @property
     def nodes(self) -> int:
         """Number of nodes n + 1."""

@@ -392,13 +392,49 @@ impl Results {
     fn chi<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
         self.series(py, &self.history.chi)
     }
-    /// Passivity margin max over t of E(t) − E(0) − ∫νᵀτ (J), with ∫νᵀτ the work of the thrust (here: all
-    /// supplied work). Never above solver tolerance for a passive system.
-    fn passivity_margin(&self) -> f64 {
+    /// Passivity margin max over t of E(t) − E(0) − W(t) (J), W the supplied work (thrust and environment): the
+    /// plant's certificate, never above the solver's tolerance. With `loop_=True` (Python: `loop=True`), the
+    /// closed loop's, for a controller that certifies it (`passivity="certify"`): max over t of
+    /// E(t) − E(0) − W_env(t) − R(0) = E(t) − E(0) − W(t) − R(t), R the `passivity_reserve` (the energy the
+    /// controller may still give): ≤ 0 when the loop, allocation, thrusters and observer in it, stores no more
+    /// than the environment supplied and the controller held. InputError for a run without it.
+    #[pyo3(signature = (r#loop = false))]
+    fn passivity_margin(&self, r#loop: bool) -> PyResult<f64> {
         let h = &self.history;
-        (0..h.len())
-            .map(|i| h.total_energy(i) - h.total_energy(0) - h.supplied_work[i])
-            .fold(f64::NEG_INFINITY, f64::max)
+        if r#loop && h.passivity_reserve.len() != h.len() {
+            return Err(input(
+                "loop",
+                "True",
+                "needs a run whose controller certifies the loop (passivity=\"certify\")",
+            ));
+        }
+        let reserve = |i: usize| if r#loop { h.passivity_reserve[i] } else { 0.0 };
+        Ok((0..h.len())
+            .map(|i| h.total_energy(i) - h.total_energy(0) - h.supplied_work[i] - reserve(i))
+            .fold(f64::NEG_INFINITY, f64::max))
+    }
+    /// With a controller that certifies the loop (`passivity="certify"`): the energy it may still give the
+    /// vessel (T,) (J), its storage at the start less its work on the vessel since; ≥ 0 at every record when
+    /// certified. None otherwise.
+    #[getter]
+    fn passivity_reserve<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        let data = &self.history.passivity_reserve;
+        (!data.is_empty()).then(|| PyArray1::from_slice(py, data))
+    }
+    /// With a controller that certifies the loop: the work its passivity controller withheld from the
+    /// controller (the work at full thrust less the work done, summed) since the simulation started (T,) (J).
+    /// None otherwise.
+    #[getter]
+    fn passivity_withheld<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        let data = &self.history.passivity_withheld;
+        (!data.is_empty()).then(|| PyArray1::from_slice(py, data))
+    }
+    /// With a controller that certifies the loop: the steps its passivity controller acted in since the
+    /// simulation started (T,). None otherwise.
+    #[getter]
+    fn passivity_steps<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
+        let data = &self.history.passivity_steps;
+        (!data.is_empty()).then(|| PyArray1::from_slice(py, data))
     }
 
     fn __len__(&self) -> usize {
@@ -558,6 +594,9 @@ impl Results {
         if h.pay_out_energy.is_empty() {
             h.pay_out_energy = vec![0.0; h.time.len()];
         }
+        h.passivity_reserve = optional("passivity_reserve")?;
+        h.passivity_withheld = optional("passivity_withheld")?;
+        h.passivity_steps = optional("passivity_steps")?;
         // Files written before yielding walls existed have none: nothing yielded.
         h.plastic_dissipation = optional("plastic_dissipation")?;
         if h.plastic_dissipation.is_empty() {

@@ -9,6 +9,7 @@ use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3, Vector6};
 use pipelay::dynamics::history::History;
 use pipelay::dynamics::integrator::{DynamicOptions, Integrator};
 use pipelay::dynamics::ledger::Ledger;
+use pipelay::dynamics::passivity::PassivityLedger;
 use pipelay::dynamics::stages::Stages;
 use pipelay::dynamics::state::{DynamicState, VesselMotion};
 use pipelay::model::Model;
@@ -669,6 +670,18 @@ impl Simulation {
                 v.acceleration.iter().copied().collect(),
                 6,
             )?;
+            let p = &v.passivity;
+            rows(
+                "passivity",
+                vec![
+                    p.controller_work,
+                    p.budget,
+                    p.withheld,
+                    p.steps as f64,
+                    p.throughput,
+                ],
+                5,
+            )?;
         }
         Ok(dict)
     }
@@ -813,6 +826,20 @@ impl Simulation {
                     pipe_force: part(4),
                     setpoint_offset: tension_loop[0],
                     filtered_tension: tension_loop[1],
+                    passivity: optional_values(
+                        arrays,
+                        "passivity",
+                        5,
+                        "must hold the controller's work, its budget, the work withheld, the steps and \
+                         the throughput",
+                    )?
+                    .map_or_else(Default::default, |p| PassivityLedger {
+                        controller_work: p[0],
+                        budget: p[1],
+                        withheld: p[2],
+                        steps: p[3] as u64,
+                        throughput: p[4],
+                    }),
                 })
             }
             None => None,

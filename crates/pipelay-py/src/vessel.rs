@@ -5,7 +5,7 @@ use crate::raos::Raos;
 use crate::station_keeping::{Allocation, DriftCoefficients, HullCoefficients, Observer, Thruster};
 use nalgebra::{Matrix6, Vector3, Vector6};
 use numpy::{PyArray1, PyArray2};
-use pipelay::vessel::control::{Pid, Reference, TensionControl};
+use pipelay::vessel::control::{Passivity, Pid, Reference, TensionControl};
 use pipelay::vessel::EnvironmentForce;
 use pyo3::prelude::*;
 
@@ -283,6 +283,21 @@ fn allocation_of(allocation: Option<&str>) -> PyResult<bool> {
     }
 }
 
+/// The time-domain passivity observer `passivity` asks for: "observe", "certify" or None.
+fn passivity_of(passivity: Option<&str>) -> PyResult<Option<Passivity>> {
+    match passivity {
+        None => Ok(None),
+        Some("observe") => Ok(Some(Passivity::Observe)),
+        Some("certify") => Ok(Some(Passivity::Certify)),
+        Some(other) => Err(input(
+            "passivity",
+            format!("{other:?}"),
+            "must be \"certify\" (the passivity controller certifies the loop), \"observe\" (its observer \
+             books the controller's work, nothing more) or None",
+        )),
+    }
+}
+
 /// A PID controller on η (eqs. 44–45): τ = −Jᵀ(η)(K_p η̃ + K_d η̃̇ + K_i ∫η̃), η̃ = η − η_ref(t),
 /// η̃̇ = J(η)ν − η̇_ref(t), from `start` (s). PD when ki is None. `reference`: η_ref (6,), a pl.Route, or a
 /// callable of t returning (6,) (with `reference_rate`, a callable returning η̇_ref, or central differences
@@ -291,7 +306,9 @@ fn allocation_of(allocation: Option<&str>) -> PyResult<bool> {
 /// and yaw (N·m). `allocation="qp"`: the command goes to the vessel's thrusters through a QP each step;
 /// `observer` (a pl.Observer): the controller acts on its estimate. `bumpless`: a controller that starts
 /// after t = 0 takes over the static holding thrust τ_h in its integral (K_i z₀ = −J⁻ᵀ τ_h where K_i reaches),
-/// so that the thrust is continuous at its start; False: ∫η̃ starts at 0 (the paper's PID).
+/// so that the thrust is continuous at its start; False: ∫η̃ starts at 0 (the paper's PID). `passivity="certify"`:
+/// the time-domain passivity observer and controller keep the controller's work on the vessel within its
+/// storage at the start, every step; "observe": the observer books it, nothing more (a fixed reference only).
 #[pyclass(module = "pipelay", name = "PID", frozen)]
 #[derive(Clone)]
 pub struct PyPid(pub Pid);
@@ -299,7 +316,7 @@ pub struct PyPid(pub Pid);
 #[pymethods]
 impl PyPid {
     #[new]
-    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None, tension=None, allocation=None, observer=None, bumpless=true))]
+    #[pyo3(signature = (kp, kd, ki=None, reference=None, start=0.0, integral_limit=None, thrust_limit=None, reference_rate=None, tension=None, allocation=None, observer=None, bumpless=true, passivity=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         kp: &Bound<'_, PyAny>,
@@ -314,8 +331,10 @@ impl PyPid {
         allocation: Option<&str>,
         observer: Option<&Observer>,
         bumpless: bool,
+        passivity: Option<&str>,
     ) -> PyResult<Self> {
         let allocation = allocation_of(allocation)?;
+        let certify = passivity_of(passivity)?;
         let Some(reference) = reference else {
             return Err(input(
                 "reference",
@@ -358,12 +377,12 @@ impl PyPid {
                 .transpose()?,
             tension.map(|t| t.0),
         )
-        .map(|pid| {
-            PyPid(
-                pid.with_station_keeping(allocation, observer.map(|o| o.0.clone()))
-                    .with_bumpless(bumpless),
-            )
+        .and_then(|pid| {
+            pid.with_station_keeping(allocation, observer.map(|o| o.0.clone()))
+                .with_bumpless(bumpless)
+                .with_passivity(certify)
         })
+        .map(PyPid)
         .map_err(to_py)
     }
 
@@ -374,15 +393,17 @@ impl PyPid {
     /// `allocation="qp"` sends it to the thrusters. Statics hold the vessel by the holding thrust, which is
     /// the command until the law's first. `pl.Controller.fmu` makes the law of a controller FMU.
     #[staticmethod]
-    #[pyo3(signature = (law, start=0.0, thrust_limit=None, allocation=None, observer=None))]
+    #[pyo3(signature = (law, start=0.0, thrust_limit=None, allocation=None, observer=None, passivity=None))]
     fn external(
         law: &Bound<'_, PyAny>,
         start: f64,
         thrust_limit: Option<&Bound<'_, PyAny>>,
         allocation: Option<&str>,
         observer: Option<&Observer>,
+        passivity: Option<&str>,
     ) -> PyResult<Self> {
         let allocation = allocation_of(allocation)?;
+        let certify = passivity_of(passivity)?;
         let mut controller =
             Pid::external(crate::callables::command_law(law, "law")?, start).map_err(to_py)?;
         if let Some(limit) = thrust_limit {
@@ -396,16 +417,26 @@ impl PyPid {
             }
             controller.thrust_limit = Some(limit);
         }
-        Ok(PyPid(controller.with_station_keeping(
-            allocation,
-            observer.map(|o| o.0.clone()),
-        )))
+        controller
+            .with_station_keeping(allocation, observer.map(|o| o.0.clone()))
+            .with_passivity(certify)
+            .map(PyPid)
+            .map_err(to_py)
     }
 
     /// Whether the command comes from outside pipelay (`PID.external`).
     #[getter]
     fn is_external(&self) -> bool {
         self.0.external.is_some()
+    }
+    /// "certify" if the time-domain passivity controller certifies the loop, "observe" if its observer only
+    /// books the controller's work, else None.
+    #[getter]
+    fn passivity(&self) -> Option<&'static str> {
+        self.0.passivity.map(|p| match p {
+            Passivity::Observe => "observe",
+            Passivity::Certify => "certify",
+        })
     }
 
     #[getter]

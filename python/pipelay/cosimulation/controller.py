@@ -161,6 +161,7 @@ class Controller:
         allocation: Literal["qp"] | None = None,
         observer: pl.Observer | None = None,
         thrust_limit: npt.ArrayLike | None = None,
+        passivity: Literal["observe", "certify"] | None = None,
     ) -> pl.PID:
         """The controller FMU at `path` (FMI 2.0 co-simulation) as the vessel's controller.
 
@@ -170,9 +171,16 @@ class Controller:
         `parameters` sets its parameters. Called once per time step from `start` (s), the FMU stepped by Δt with
         its inputs at the step's start and its outputs held over the step; with `allocation="qp"` the command
         goes to the thrusters, with `observer` the FMU sees the observer's estimate. Statics hold the vessel by
-        the holding thrust. Raises pl.InputError naming the argument for a variable the FMU does not have.
+        the holding thrust. `passivity="certify"`: the time-domain passivity controller keeps the FMU's work on the
+        vessel within zero, its storage as pipelay sees it (Thrusters › Energy and passivity); "observe" books it.
+        Raises pl.InputError naming the argument for a variable the FMU does not have.
         """
         law = FmuLaw(path, inputs, outputs, parameters)
         return pl.PID.external(
-            law, start=start, thrust_limit=thrust_limit, allocation=allocation, observer=observer
+            law,
+            start=start,
+            thrust_limit=thrust_limit,
+            allocation=allocation,
+            observer=observer,
+            passivity=passivity,
         )

@@ -172,6 +172,21 @@ LAYOUT: dict[str, tuple[tuple[str, ...], str, str]] = {
     "nu": (("time", "dof"), "m s-1, rad s-1", "vessel velocity [u, v, w, p, q, r], body frame"),
     "tau": (("time", "dof"), "N, N m", "thrust applied, body frame"),
     "chi": (("time", "dof"), "N, N m", "force and moment of the pipe on the vessel, body frame"),
+    "passivity_reserve": (
+        ("time",),
+        "J",
+        "the energy a certifying controller may still give the vessel: its storage at the start less its work",
+    ),
+    "passivity_withheld": (
+        ("time",),
+        "J",
+        "the controller's work the passivity controller withheld since the simulation started",
+    ),
+    "passivity_steps": (
+        ("time",),
+        "1",
+        "the steps the passivity controller acted in since the simulation started",
+    ),
 }
 ENERGY_KEYS = ["pipe_kinetic", "pipe_strain", "pipe_gravity", "vessel_kinetic", "vessel_potential"]
 
@@ -210,6 +225,9 @@ GROUPS: dict[str, tuple[str, ...]] = {
         "tau_commanded",
         "thrust",
         "azimuth",
+        "passivity_reserve",
+        "passivity_withheld",
+        "passivity_steps",
     ),
     "seabed": ("touchdown", "touchdown_arc_length", "laid_length"),
     "lay": (

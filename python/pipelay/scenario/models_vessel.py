@@ -681,6 +681,12 @@ class ControllerTable(Table):
         '`"qp"`: the command goes to the vessel\'s thrusters through a quadratic program (thrust allocation)',
         words="none: the command acts on the vessel directly",
     )
+    passivity: Annotated[Literal["observe", "certify"] | None, Choice(("observe", "certify"))] = api(
+        '`"certify"`: the time-domain passivity observer and controller keep the controller\'s work on the vessel '
+        'within its storage at the start, every step; `"observe"`: the observer books it, nothing more (about a '
+        "fixed `reference`; Thrusters › Energy and passivity)",
+        words="none: the loop is not observed",
+    )
     tension: Tension | None = None
     observer: Observer | None = None
 

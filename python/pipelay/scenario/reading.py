@@ -165,7 +165,11 @@ _STINGER_ARGUMENTS = {
     "roller positions": "vessel.lay.stinger.positions",
     "roller axes": "vessel.lay.stinger.axes",
 }
-_CONTROLLER_ARGUMENTS = {"allocation": "controller.allocation", "observer": "controller.observer"}
+_CONTROLLER_ARGUMENTS = {
+    "allocation": "controller.allocation",
+    "observer": "controller.observer",
+    "passivity": "controller.passivity",
+}
 """The engine's names, in `attach_vessel`'s errors, of what belongs to `[controller]`."""
 _HULL_TABLES: dict[str, Callable[..., Any]] = {
     "wind_coefficients": pl.HullCoefficients.read,

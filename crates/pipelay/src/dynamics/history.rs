@@ -54,6 +54,8 @@ pub struct Snapshot<'a> {
     pub iterations: usize,
     /// The most substeps any step since the last record was taken in (1: none split).
     pub substeps: usize,
+    /// With a controller that certifies the loop: the passivity observer's ledger.
+    pub passivity: Option<crate::dynamics::passivity::PassivityLedger>,
 }
 
 /// A vessel's station keeping at one record.
@@ -152,6 +154,13 @@ pub struct History {
     pub pay_out_energy: Vec<f64>,
     /// Energy the yielding walls dissipated since the start of the run (J; part of `dissipated`).
     pub plastic_dissipation: Vec<f64>,
+    /// With a controller that certifies the loop ([`crate::dynamics::passivity`]), each (T,): the energy it may
+    /// still give the vessel, E₀ − W_c (J, ≥ 0 when certified); the controller's work the passivity controller
+    /// withheld (J) and the steps it acted in, since the simulation started (a resumed one continues them).
+    /// Empty otherwise.
+    pub passivity_reserve: Vec<f64>,
+    pub passivity_withheld: Vec<f64>,
+    pub passivity_steps: Vec<f64>,
     /// Ledger values at the start of the run, so that the record starts from zero.
     supplied_offset: f64,
     dissipated_offset: f64,
@@ -202,7 +211,8 @@ impl History {
         let seabed = !self.touchdown_arc_length.is_empty();
         let six = |series: &Vec<f64>| if series.is_empty() { 0 } else { 6 };
         let k = self.thrusters_count;
-        let fields: [(&str, usize, usize); 40] = [
+        let passivity = usize::from(!self.passivity_reserve.is_empty());
+        let fields: [(&str, usize, usize); 43] = [
             (
                 "eta_low_frequency",
                 self.eta_low_frequency.len(),
@@ -286,6 +296,13 @@ impl History {
             ("dissipated", self.dissipated.len(), 1),
             ("iterations", self.iterations.len(), 1),
             ("substeps", self.substeps.len(), 1),
+            ("passivity_reserve", self.passivity_reserve.len(), passivity),
+            (
+                "passivity_withheld",
+                self.passivity_withheld.len(),
+                passivity,
+            ),
+            ("passivity_steps", self.passivity_steps.len(), passivity),
             ("eta", self.eta.len(), if vessel { 6 } else { 0 }),
             ("nu", self.nu.len(), if vessel { 6 } else { 0 }),
             ("tau", self.tau.len(), if vessel { 6 } else { 0 }),
@@ -450,6 +467,11 @@ impl History {
             .push(snapshot.dissipated - self.dissipated_offset);
         self.iterations.push(snapshot.iterations);
         self.substeps.push(snapshot.substeps);
+        if let Some(ledger) = &snapshot.passivity {
+            self.passivity_reserve.push(ledger.reserve());
+            self.passivity_withheld.push(ledger.withheld);
+            self.passivity_steps.push(ledger.steps as f64);
+        }
         Ok(())
     }
 }

@@ -31,6 +31,7 @@ use crate::dynamics::history::{History, Snapshot, StationRecord};
 use crate::dynamics::ledger::{Ledger, StepWork};
 use crate::dynamics::nodal::{node_start, NodalProperties};
 use crate::dynamics::observables::Observables;
+use crate::dynamics::passivity;
 use crate::dynamics::pay_out::Growth;
 use crate::dynamics::remesh;
 use crate::dynamics::remesh::MeshChange;
@@ -161,6 +162,10 @@ pub struct Integrator {
     /// A sampled DP loop (allocation, observer), and the thrust it holds over the current step.
     pub(super) station_keeping: Option<StationKeeping>,
     pub(super) applied_thrust: Option<Vector6<f64>>,
+    /// The passivity controller's scale of the controller's thrust in the step being solved (1: not acting),
+    /// and the controller's work the step's first solution, at full thrust, did (J).
+    pub(super) passivity_scale: f64,
+    passivity_full_work: f64,
     /// The stages of the run, if it has any (applied to the model by [`Stages::apply`]).
     pub(super) stages: Option<Stages>,
     /// The axial force the winch's wire took on at the hand-over (N), once it happened in this run.
@@ -272,6 +277,8 @@ impl Integrator {
             hull_values: HullValues::default(),
             station_keeping,
             applied_thrust: None,
+            passivity_scale: 1.0,
+            passivity_full_work: 0.0,
             contact,
             round_off,
             increments: vec![0.0; model.dof_count()],
@@ -402,6 +409,14 @@ impl Integrator {
             plastic_dissipation: self.ledger.plastic_dissipated(),
             iterations,
             substeps,
+            passivity: self
+                .model
+                .vessel
+                .as_ref()
+                .and_then(|v| v.controller.as_ref())
+                .filter(|c| c.passivity.is_some())
+                .and(self.state.vessel.as_ref())
+                .map(|motion| motion.passivity),
         }
     }
 
@@ -742,9 +757,26 @@ impl Integrator {
         );
         self.predict(&targets, dt);
         self.wave_kinematics.clear();
-        let outcome = self
+        self.passivity_scale = 1.0;
+        let mut outcome = self
             .newton(&scales, time_mid, dt)
             .and_then(|report| self.accept_step(dt, &report).map(|()| report));
+        self.passivity_full_work = self.vessel_step.as_ref().map_or(0.0, |s| s.controller_work);
+        // The passivity controller: where the step would give the vessel more than the controller's reserve,
+        // it is solved again with the controller's thrust scaled down until it fits (cut, at the last).
+        for solve in 0..=passivity::MAX_SOLVES {
+            let Some(scale) = outcome.as_ref().ok().and_then(|_| self.passivity_needed()) else {
+                break;
+            };
+            self.passivity_scale = if solve == passivity::MAX_SOLVES {
+                0.0
+            } else {
+                scale
+            };
+            outcome = self
+                .newton(&scales, time_mid, dt)
+                .and_then(|report| self.accept_step(dt, &report).map(|()| report));
+        }
         if outcome.is_err() {
             if let Some(growth) = self.growth.take() {
                 growth.undo(&mut self.model, &mut self.nodal);
@@ -788,6 +820,17 @@ impl Integrator {
         self.ledger.book_pay_out(grown + stored + settled);
         self.remesh();
         Ok(report)
+    }
+
+    /// The thrust scale to solve the step just solved again with, if the controller certifies the loop and the
+    /// step gives the vessel more than its reserve ([`passivity::PassivityLedger::next_scale`]).
+    fn passivity_needed(&self) -> Option<f64> {
+        let attachment = self.model.vessel.as_ref()?;
+        attachment.controller.as_ref().filter(|c| c.certifies())?;
+        let (motion, step) = (self.state.vessel.as_ref()?, self.vessel_step.as_ref()?);
+        let ledger = &motion.passivity;
+        (self.passivity_scale > 0.0 && !ledger.fits(step.controller_work))
+            .then(|| ledger.next_scale(self.passivity_scale, step.controller_work))
     }
 
     /// Bumpless transfer: in the step that holds the controller's start
@@ -978,6 +1021,17 @@ impl Integrator {
             motion.acceleration = (step.velocity_next - motion.velocity) / dt;
             motion.velocity = step.velocity_next;
             motion.thrust = step.thrust;
+            if attachment
+                .controller
+                .as_ref()
+                .is_some_and(|c| c.passivity.is_some())
+            {
+                motion.passivity.book(
+                    step.controller_work,
+                    self.passivity_scale,
+                    self.passivity_full_work,
+                );
+            }
             motion.setpoint_offset = self.offset_next;
             motion.filtered_tension = self.filtered_next;
             // The rod's force on the vessel, −(vessel's force on the rod), is the vessel end's reaction.

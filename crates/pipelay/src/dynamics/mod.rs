@@ -22,6 +22,7 @@ pub mod ledger;
 pub mod newton;
 pub mod nodal;
 pub mod observables;
+pub mod passivity;
 pub mod pay_out;
 pub mod remesh;
 pub mod rod_step;

@@ -64,6 +64,34 @@ pub struct VesselMotion {
     pub setpoint_offset: f64,
     /// The lay-tension loop's filtered top tension (N).
     pub filtered_tension: f64,
+    /// The passivity observer's ledger of the controller's port ([`crate::dynamics::passivity`]).
+    pub passivity: crate::dynamics::passivity::PassivityLedger,
+}
+
+/// The storage E₀ (J) a certified controller starts with at `configuration` and `time`: ½η̃ᵀK_pη̃ at the vessel's
+/// pose about its reference (zero without a certified controller).
+fn starting_storage(model: &Model, configuration: &Configuration, time: f64) -> f64 {
+    let Some(attachment) = model.vessel.as_ref() else {
+        return 0.0;
+    };
+    let Some(controller) = attachment
+        .controller
+        .as_ref()
+        .filter(|c| c.passivity.is_some())
+    else {
+        return 0.0;
+    };
+    let node = attachment.node;
+    let (position, body) = crate::vessel::coupling::vessel_pose(
+        attachment,
+        &configuration.positions[node],
+        &configuration.rotations[node],
+    );
+    let eta = crate::vessel::coupling::eta_of(&position, &body);
+    controller
+        .reference
+        .at(time)
+        .map_or(0.0, |(reference, _)| controller.storage(&eta, &reference))
 }
 
 /// The yielding elements' plastic state in `configuration` reached along a monotonic path from `starts` (each
@@ -176,6 +204,10 @@ impl DynamicState {
                 pipe_force,
                 setpoint_offset: 0.0,
                 filtered_tension: top,
+                passivity: crate::dynamics::passivity::PassivityLedger {
+                    budget: starting_storage(model, &configuration, time),
+                    ..Default::default()
+                },
             }
         });
         Ok(DynamicState {

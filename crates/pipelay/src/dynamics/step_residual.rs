@@ -260,6 +260,7 @@ impl Integrator {
                     environment,
                     values: self.hull_values,
                 }),
+                passivity_scale: self.passivity_scale,
             };
             let contribution = vessel.contribution(
                 &state.configuration.positions[node],

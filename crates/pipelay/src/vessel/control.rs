@@ -249,6 +249,18 @@ pub struct Pid {
     pub bumpless: bool,
     /// A command given from outside the engine, in place of the PID's ([`Pid::external`]).
     pub external: Option<ExternalCommand>,
+    /// The time-domain passivity observer, and its controller if it certifies the loop
+    /// ([`crate::dynamics::passivity`]); None: neither.
+    pub passivity: Option<Passivity>,
+}
+
+/// What the time-domain passivity observer of the DP loop does ([`crate::dynamics::passivity`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Passivity {
+    /// It books the controller's work on the vessel against its storage, and nothing more.
+    Observe,
+    /// Its passivity controller damps the vessel wherever the controller would give more than its storage.
+    Certify,
 }
 
 /// A law of the command τ (6,) (body frame: N, N·m) of a controller outside the engine (a controller FMU, a
@@ -505,7 +517,37 @@ impl Pid {
             observer: None,
             bumpless: true,
             external: None,
+            passivity: None,
         })
+    }
+
+    /// The same controller with the time-domain passivity observer (and controller) `passivity`
+    /// ([`crate::dynamics::passivity`]). It books station keeping about a fixed reference (or a controller
+    /// from outside, whose reference pipelay does not see): a moving reference supplies work it does not book.
+    pub fn with_passivity(mut self, passivity: Option<Passivity>) -> Result<Self> {
+        if passivity.is_some()
+            && self.external.is_none()
+            && !matches!(self.reference, Reference::Fixed(_))
+        {
+            return Err(Error::input(
+                "passivity",
+                "an observer with a route or a reference of time",
+                "books station keeping about a fixed reference: give the reference as η_ref (6,)",
+            ));
+        }
+        self.passivity = passivity;
+        Ok(self)
+    }
+
+    /// Whether the passivity controller certifies the loop.
+    pub fn certifies(&self) -> bool {
+        self.passivity == Some(Passivity::Certify)
+    }
+
+    /// The controller's storage ½η̃ᵀK_pη̃ (J) at the pose `eta` about `reference`: what it may give back.
+    pub fn storage(&self, eta: &Vector6<f64>, reference: &Vector6<f64>) -> f64 {
+        let error = eta_error(eta, reference);
+        0.5 * error.dot(&(self.kp * error))
     }
 
     /// A controller whose command comes from `law` ([`ExternalCommand`]), from `start` (s): a sampled loop

@@ -333,6 +333,9 @@ pub struct DynamicVessel<'a> {
     pub applied_thrust: Option<Vector6<f64>>,
     /// Wind, current and wave drift on the hull over the step, if the vessel feels them.
     pub hull: Option<super::hull_loads::HullStep<'a>>,
+    /// The passivity controller's scale of the controller's thrust over the step (1: as commanded;
+    /// [`crate::dynamics::passivity`]).
+    pub passivity_scale: f64,
 }
 
 /// Outcome of the vessel's contribution at trial increments.
@@ -352,6 +355,8 @@ pub struct VesselContribution {
     pub supplied: f64,
     /// Δt ν_{n+½}·D(ν_{n+½}) (J).
     pub dissipated: f64,
+    /// The controller's part of `supplied`, Δt ν_{n+½}·τ, while it acts (J; zero before its start).
+    pub controller_work: f64,
 }
 
 impl DynamicVessel<'_> {
@@ -385,6 +390,15 @@ impl DynamicVessel<'_> {
                 )
             }
             None => (self.hold_thrust, Vector6::zeros()),
+        };
+        let thrust = if attachment
+            .controller
+            .as_ref()
+            .is_some_and(|c| time_mid >= c.start)
+        {
+            self.passivity_scale * thrust
+        } else {
+            thrust
         };
         let mut environment = environment_at(attachment, time_mid);
         if let Some(hull) = &self.hull {
@@ -487,6 +501,10 @@ impl DynamicVessel<'_> {
             tangent.set_column(j, &((evaluate(&plus).0.residual - step.residual) / h));
         }
         let v = step.velocity_mid;
+        let acting = attachment
+            .controller
+            .as_ref()
+            .is_some_and(|c| time_mid >= c.start);
         VesselContribution {
             residual: step.residual,
             tangent,
@@ -497,6 +515,7 @@ impl DynamicVessel<'_> {
             error_mid,
             supplied: dt * v.dot(&(thrust + environment)) - wave_work,
             dissipated: dt * v.dot(&attachment.vessel.damping_force(&v)),
+            controller_work: if acting { dt * v.dot(&thrust) } else { 0.0 },
         }
     }
 }
@@ -562,6 +581,7 @@ mod tests {
                 waves,
                 applied_thrust: None,
                 hull: None,
+                passivity_scale: 1.0,
             };
             let step =
                 vessel.contribution(&node_position, &node_rotation, &increment, dt, 0.0, false);
