@@ -15,6 +15,7 @@ import sys
 import tomllib
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -131,25 +132,28 @@ def _controller_fmu(folder: Path) -> dict[str, np.ndarray]:
     return {"eta": results.eta, "tau": results.tau, "positions": results.positions}  # type: ignore[attr-defined]
 
 
+def _simulate(
+    fmpy: Any, fmu: Path, times: np.ndarray, inputs: list[str], values: np.ndarray, outputs: list[str]
+) -> Any:
+    """fmpy's run of `fmu` to DURATION at the step DT, its `inputs` given `values` (T, k) at `times`."""
+    signal = np.zeros(len(times), dtype=[("time", float)] + [(name, float) for name in inputs])
+    signal["time"] = times
+    for k, name in enumerate(inputs):
+        signal[name] = values[:, k]
+    return fmpy.simulate_fmu(
+        str(fmu), stop_time=DURATION, step_size=DT, output_interval=DT, input=signal, output=outputs
+    )
+
+
 def _plant_fmu(folder: Path) -> dict[str, np.ndarray]:
     """The plant FMU under fmpy, driven by the thrust signal sampled at its communication step."""
     import fmpy
     from pipelay.cosimulation.slave import PLANT_INPUTS
 
     times = np.arange(0.0, DURATION + DT / 2, DT)
-    samples = thrust_signal(times)
-    signal = np.zeros(len(times), dtype=[("time", float)] + [(s.name, float) for s in PLANT_INPUTS])
-    signal["time"] = times
-    for k, s in enumerate(PLANT_INPUTS):
-        signal[s.name] = samples[:, k]
     names = [f"eta_{n}" for n in POSE] + [f"chi_{n}" for n in CHI] + ["top_tension"]
-    result = fmpy.simulate_fmu(
-        str(folder / "jlay.fmu"),
-        stop_time=DURATION,
-        step_size=DT,
-        output_interval=DT,
-        input=signal,
-        output=names,
+    result = _simulate(
+        fmpy, folder / "jlay.fmu", times, [s.name for s in PLANT_INPUTS], thrust_signal(times), names
     )
     return {
         "time": result["time"],
@@ -167,19 +171,9 @@ def _pipe_fmu(folder: Path) -> dict[str, np.ndarray]:
 
     times = np.arange(0.0, DURATION + DT / 2, DT)
     eta, nu = vessel_motion(times)
-    signal = np.zeros(len(times), dtype=[("time", float)] + [(s.name, float) for s in PIPE_INPUTS])
-    signal["time"] = times
-    for k, s in enumerate(PIPE_INPUTS):
-        signal[s.name] = np.column_stack([eta, nu])[:, k]
     names = [f"chi_{n}" for n in CHI] + ["energy", "supplied_work", "dissipated"]
-    result = fmpy.simulate_fmu(
-        str(folder / "pipe.fmu"),
-        stop_time=DURATION,
-        step_size=DT,
-        output_interval=DT,
-        input=signal,
-        output=names,
-    )
+    inputs = [s.name for s in PIPE_INPUTS]
+    result = _simulate(fmpy, folder / "pipe.fmu", times, inputs, np.column_stack([eta, nu]), names)
     return {name: result[name] for name in ("time", *names)}
 
 

@@ -118,8 +118,16 @@ def test_a_subset_of_groups_and_bad_names(paper_state, tmp_path: Path) -> None:
     model.simulation(state, dt=0.25).run(5.0, progress=False, output=path, record=("vessel", "energy"))
     with h5netcdf.File(path, "r") as file:
         written = {name for name in file.variables if name in pl.results.LAYOUT}
-        # The thrusters' series and the observer's estimate exist only with allocation and an observer.
-        optional = {"thrust", "azimuth", "eta_estimate"}
+        # The thrusters' series, the observer's estimate and the passivity observer's exist only with allocation,
+        # an observer and a controller that books its passivity.
+        optional = {
+            "thrust",
+            "azimuth",
+            "eta_estimate",
+            "passivity_reserve",
+            "passivity_withheld",
+            "passivity_steps",
+        }
         assert written == (set(GROUPS["vessel"]) - optional) | set(GROUPS["energy"])
         assert file.dimensions["time"].size == 21
     with pytest.raises(

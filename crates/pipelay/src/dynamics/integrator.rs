@@ -195,6 +195,23 @@ fn assembler_at_rest(
     (assembler, reactions, contact)
 }
 
+/// The vessel's low-frequency pose η in `configuration`, its wave-frequency offset at the step's start (in
+/// `waves`) taken off.
+fn low_frequency_eta(
+    attachment: &crate::vessel::VesselAttachment,
+    configuration: &crate::assembly::configuration::Configuration,
+    waves: Option<&VesselWaves>,
+) -> Vector6<f64> {
+    let node = attachment.node;
+    let (position, body) = low_frequency_pose(
+        attachment,
+        &configuration.positions[node],
+        &configuration.rotations[node],
+        waves.map(|w| &w.now),
+    );
+    eta_of(&position, &body)
+}
+
 /// Round-off floor of the residual norm (N): internal forces carry errors of about 1e-16·EA per element, a
 /// vessel's restoring about 1e-16·G.
 fn round_off(model: &Model) -> f64 {
@@ -522,19 +539,16 @@ impl Integrator {
         else {
             return Ok(());
         };
-        let node = attachment.node;
-        let configuration = &self.state.configuration;
-        let (position, body) = low_frequency_pose(
+        let eta = low_frequency_eta(
             attachment,
-            &configuration.positions[node],
-            &configuration.rotations[node],
-            self.vessel_waves.as_ref().map(|w| &w.now),
+            &self.state.configuration,
+            self.vessel_waves.as_ref(),
         );
         station_keeping.command(
             controller,
             time,
             self.options.time_step,
-            &eta_of(&position, &body),
+            &eta,
             &motion.velocity,
         )
     }
@@ -848,16 +862,12 @@ impl Integrator {
         else {
             return;
         };
-        let node = attachment.node;
-        let configuration = &self.state.configuration;
-        let (position, body) = low_frequency_pose(
+        let eta = low_frequency_eta(
             attachment,
-            &configuration.positions[node],
-            &configuration.rotations[node],
-            self.vessel_waves.as_ref().map(|w| &w.now),
+            &self.state.configuration,
+            self.vessel_waves.as_ref(),
         );
-        motion.integral =
-            transfer_integral(controller, &eta_of(&position, &body), &motion.hold_thrust);
+        motion.integral = transfer_integral(controller, &eta, &motion.hold_thrust);
     }
 
     /// The hull's environment over the step and, for a sampled controller that has started, the thrust it
@@ -882,17 +892,13 @@ impl Integrator {
                 &configuration.positions[node],
                 &configuration.rotations[node],
             );
-            let (low_position, low_body) = low_frequency_pose(
-                attachment,
-                &configuration.positions[node],
-                &configuration.rotations[node],
-                self.vessel_waves.as_ref().map(|w| &w.now),
-            );
+            let low_frequency =
+                low_frequency_eta(attachment, configuration, self.vessel_waves.as_ref());
             self.applied_thrust = Some(station_keeping.decide(
                 attachment,
                 controller,
                 &eta_of(&position, &body),
-                &eta_of(&low_position, &low_body),
+                &low_frequency,
                 &motion.velocity,
                 &motion.integral,
                 &self.reference_mid,

@@ -270,29 +270,24 @@ impl RodStep<'_> {
                     .map(|law| law as &dyn Fn(f64) -> (f64, f64)),
                 tangent.as_deref_mut(),
             )
-        } else if let Some(fibres) = self.fibres.and_then(|p| p.fibres(e)) {
-            // A yielding wall: its resultants averaged over its fibres' strain paths; its dissipation booked.
+        } else if let Some(fibres) = self
+            .fibres
+            .and_then(|p| p.fibres(e))
+            .map(Some)
+            .or((damping > 0.0).then_some(None))
+        {
+            // A yielding wall's resultants averaged over its fibres' strain paths (its dissipation booked), or
+            // the elastic law's; then the high-frequency damping's stresses.
             let start = &self.plastic[e];
             let mut law = |strains: &StepStrains| {
-                let law = fibres.step_law(&strains.start, &strains.end, start, plastic_end);
-                plastic_dissipated = reference.length * law.dissipated;
-                let (law, damped) = with_high_frequency_damping(law, strains, damping, &c_t, &c_r);
-                damping_dissipated = reference.length * damped;
-                law
-            };
-            element_step_with(
-                &chord,
-                &increments,
-                &self.gauss[e],
-                length_start,
-                reference,
-                self.stress_rule,
-                &mut law,
-                tangent.as_deref_mut(),
-            )
-        } else if damping > 0.0 {
-            let mut law = |strains: &StepStrains| {
-                let law = elastic_step_law(&c_t, &c_r, strains);
+                let law = match fibres {
+                    Some(fibres) => {
+                        let law = fibres.step_law(&strains.start, &strains.end, start, plastic_end);
+                        plastic_dissipated = reference.length * law.dissipated;
+                        law
+                    }
+                    None => elastic_step_law(&c_t, &c_r, strains),
+                };
                 let (law, damped) = with_high_frequency_damping(law, strains, damping, &c_t, &c_r);
                 damping_dissipated = reference.length * damped;
                 law
