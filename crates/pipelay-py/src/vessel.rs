@@ -404,24 +404,19 @@ impl PyPid {
     ) -> PyResult<Self> {
         let allocation = allocation_of(allocation)?;
         let certify = passivity_of(passivity)?;
-        let mut controller =
-            Pid::external(crate::callables::command_law(law, "law")?, start).map_err(to_py)?;
-        if let Some(limit) = thrust_limit {
-            let limit = Vector3::from(array::<3>(limit, "thrust_limit")?);
-            if limit.iter().any(|l| !(l.is_finite() && *l > 0.0)) {
-                return Err(input(
-                    "thrust_limit",
-                    format!("{:?}", limit.as_slice()),
-                    "must hold finite bounds > 0 (N, N, N·m)",
-                ));
-            }
-            controller.thrust_limit = Some(limit);
-        }
-        controller
-            .with_station_keeping(allocation, observer.map(|o| o.0.clone()))
-            .with_passivity(certify)
-            .map(PyPid)
-            .map_err(to_py)
+        let thrust_limit = thrust_limit
+            .map(|l| array::<3>(l, "thrust_limit").map(Vector3::from))
+            .transpose()?;
+        Pid::external(
+            crate::callables::command_law(law, "law")?,
+            start,
+            thrust_limit,
+        )
+        .map_err(to_py)?
+        .with_station_keeping(allocation, observer.map(|o| o.0.clone()))
+        .with_passivity(certify)
+        .map(PyPid)
+        .map_err(to_py)
     }
 
     /// Whether the command comes from outside pipelay (`PID.external`).

@@ -12,7 +12,6 @@ import os
 import re
 import shutil
 import tempfile
-import tomllib
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -139,7 +138,7 @@ def build_fmu(
 
     source = Path(scenario)
     loaded = load_scenario(source)  # checked now, not in the master
-    data = tomllib.loads(source.read_text())
+    data = loaded.source  # the parsed document, as the file has it
     if kind not in ("plant", "pipe"):
         raise pl.InputError(f'kind: {kind!r} must be "plant" (pipe and vessel) or "pipe" (the pipe alone)')
     if "vessel" not in data:

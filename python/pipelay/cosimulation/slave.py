@@ -255,11 +255,16 @@ class PipelayPlant(ScenarioSlave):
 
 
 def read_lay_and_energy(values: dict[str, float], state: Any, simulation: Any) -> None:
-    """The lay summary's scalars of `state` and the energy and supplied work of `simulation` into `values`."""
+    """The lay summary's scalars of `state` and the energy ledger of `simulation` into `values`."""
     summary = state.lay_summary() or {}
     for name, _, _ in LAY_OUTPUTS:
         value = summary.get(name)
         values[name] = float("nan") if value is None else float(value)
+    read_ledger(values, simulation)
+
+
+def read_ledger(values: dict[str, float], simulation: Any) -> None:
+    """The energy, the supplied work and the dissipation of `simulation` (J) into `values`."""
     values["energy"] = float(simulation.energy)
     values["supplied_work"] = float(simulation.supplied_work)
     values["dissipated"] = float(simulation.dissipated)
@@ -295,6 +300,4 @@ class PipelayPipe(ScenarioSlave):
         chi = self.pipe.chi(self.simulation.state, self.simulation.time)
         for (name, _), value in zip(_CHI, chi, strict=True):
             self.values[f"chi_{name}"] = float(value)
-        self.values["energy"] = float(self.simulation.energy)
-        self.values["supplied_work"] = float(self.simulation.supplied_work)
-        self.values["dissipated"] = float(self.simulation.dissipated)
+        read_ledger(self.values, self.simulation)

@@ -34,7 +34,6 @@ use crate::dynamics::observables::Observables;
 use crate::dynamics::passivity;
 use crate::dynamics::pay_out::Growth;
 use crate::dynamics::remesh;
-use crate::dynamics::remesh::MeshChange;
 use crate::dynamics::rod_step::{rod_constants, ElementWork, NodeStart, RodConstants};
 use crate::dynamics::stages::Stages;
 use crate::dynamics::state::DynamicState;
@@ -620,7 +619,7 @@ impl Integrator {
     fn hand_over(&mut self) -> Result<()> {
         let before = self.observe().energy().total();
         let force = hand_over::hand_over(&mut self.model, &mut self.state, &mut self.reactions)?;
-        self.rebuild(None);
+        self.rebuild();
         let after = self.observe().energy().total();
         self.ledger.book_pay_out(after - before);
         self.handed_over = Some(force);
@@ -639,7 +638,7 @@ impl Integrator {
         if let Some(stages) = &self.stages {
             stages.rest_after_hand_back(&mut self.model, back.time);
         }
-        self.rebuild(None);
+        self.rebuild();
         let after = self.observe().energy().total();
         self.ledger.book_pay_out(after - before);
         self.handed_back = Some(back.time);
@@ -916,35 +915,29 @@ impl Integrator {
             return;
         };
         let before = self.observe().energy().total();
-        let Some(change) = remesh::remesh(
+        if remesh::remesh(
             &mut self.model,
             &mut self.state,
             &mut self.reactions,
             growth.speed,
-        ) else {
+        )
+        .is_none()
+        {
             return;
-        };
-        self.rebuild(Some(change));
+        }
+        self.rebuild();
         let after = self.observe().energy().total();
         self.ledger.book_pay_out(after - before);
     }
 
-    /// Rebuilds what depends on the mesh after it changed by `change` (`None`: elements appended at end B).
-    fn rebuild(&mut self, change: Option<MeshChange>) {
+    /// Rebuilds what depends on the mesh after it changed (a split or join, or elements appended at or taken off
+    /// end B). The rollers keep their friction slips; their forces, nearest elements and energy are evaluated
+    /// afresh on the new mesh (below).
+    fn rebuild(&mut self) {
         let rollers = self.assembler.rollers.take();
         let mut assembler = Assembler::new(&self.model);
         if let (Some(new), Some(old)) = (&mut assembler.rollers, rollers) {
             new.carry_slips(&old);
-            new.forces = old.forces;
-            new.reactions = old.reactions;
-            new.offsets = old.offsets;
-            // Elements taken off at end B (the hand-back's) leave their rollers at the line's last element.
-            let last = self.model.rod.element_count() - 1;
-            new.nearest_elements = old
-                .nearest_elements
-                .iter()
-                .map(|&e| change.map_or(e, |c| c.renumbered(e)).min(last))
-                .collect();
         }
         self.contact = assembler.contact.take();
         self.assembler = assembler;
@@ -960,8 +953,9 @@ impl Integrator {
         self.element_work = vec![ElementWork::default(); count - 1];
         self.node_dissipation = vec![0.0; count];
         self.round_off = round_off(&self.model);
-        // A node inserted or taken off changes the spline the rollers see, so their energy is that of the
-        // new mesh at the current state (a step of zero increments), for the ledger to book the change.
+        // A node inserted or taken off changes the spline the rollers see, so their energy (and forces) are
+        // those of the new mesh at the current state (a step of zero increments), for the ledger to book the
+        // change.
         self.assembler.add_rollers(
             ContactRule::EnergyMomentum {
                 time_step: self.options.time_step,

@@ -27,18 +27,6 @@ pub enum MeshChange {
     Removed(usize),
 }
 
-impl MeshChange {
-    /// The index after the change of the element whose index was `element` before it (an element joined
-    /// into its neighbour takes the joined element's index).
-    pub fn renumbered(self, element: usize) -> usize {
-        match self {
-            MeshChange::Inserted(node) if element + 1 >= node => element + 1,
-            MeshChange::Removed(node) if element + 1 >= node => element.saturating_sub(1),
-            _ => element,
-        }
-    }
-}
-
 /// Splits or joins the end element if its length has left [0.5ℓ, 1.5ℓ]; `reactions` follow the nodes.
 /// `speed` is the pay-out speed (m/s), with which the pipe leaves the end relative to it.
 pub fn remesh(

@@ -550,10 +550,15 @@ impl Pid {
         0.5 * error.dot(&(self.kp * error))
     }
 
-    /// A controller whose command comes from `law` ([`ExternalCommand`]), from `start` (s): a sampled loop
-    /// (with allocation and an observer, if given) whose PID is replaced by the law; statics hold the vessel
-    /// by the holding thrust, which the command is until the law's first answer.
-    pub fn external(law: CommandLaw, start: f64) -> Result<Self> {
+    /// A controller whose command comes from `law` ([`ExternalCommand`]), from `start` (s), within
+    /// `thrust_limit` (as [`Pid::new`]'s): a sampled loop (with allocation and an observer, if given) whose PID
+    /// is replaced by the law; statics hold the vessel by the holding thrust, which the command is until the
+    /// law's first answer.
+    pub fn external(
+        law: CommandLaw,
+        start: f64,
+        thrust_limit: Option<Vector3<f64>>,
+    ) -> Result<Self> {
         let mut controller = Pid::new(
             Matrix6::zeros(),
             Matrix6::zeros(),
@@ -561,7 +566,7 @@ impl Pid {
             Reference::Fixed(Vector6::zeros()),
             start,
             None,
-            None,
+            thrust_limit,
             None,
         )?;
         controller.external = Some(ExternalCommand(law));
@@ -711,7 +716,7 @@ mod tests {
             let yaw = if time == 0.5 { f64::NAN } else { 0.0 };
             Ok(Vector6::new(eta[0] + dt, velocity[1], 0.0, 0.0, 0.0, yaw))
         });
-        let controller = Pid::external(law, 0.0).unwrap();
+        let controller = Pid::external(law, 0.0, None).unwrap();
         assert!(controller.is_sampled() && !controller.holds_in_statics());
         let external = controller.external.as_ref().unwrap();
         let (eta, velocity) = (Vector6::repeat(2.0), Vector6::repeat(3.0));

@@ -377,28 +377,21 @@ impl DynamicVessel<'_> {
             .as_ref()
             .filter(|c| time_mid >= c.start)
         {
+            // The controller's thrust, as the passivity controller scales it.
             Some(_) if self.applied_thrust.is_some() => (
-                self.applied_thrust.unwrap_or_else(Vector6::zeros),
+                self.passivity_scale * self.applied_thrust.unwrap_or_else(Vector6::zeros),
                 Vector6::zeros(),
             ),
             Some(controller) => {
                 let error = eta_error(&eta, &self.reference.0);
                 let integral = clamp_integral(controller, &(self.integral + 0.5 * dt * error));
                 (
-                    pid_thrust(controller, &eta, velocity_mid, &integral, &self.reference),
+                    self.passivity_scale
+                        * pid_thrust(controller, &eta, velocity_mid, &integral, &self.reference),
                     error,
                 )
             }
             None => (self.hold_thrust, Vector6::zeros()),
-        };
-        let thrust = if attachment
-            .controller
-            .as_ref()
-            .is_some_and(|c| time_mid >= c.start)
-        {
-            self.passivity_scale * thrust
-        } else {
-            thrust
         };
         let mut environment = environment_at(attachment, time_mid);
         if let Some(hull) = &self.hull {
