@@ -159,12 +159,22 @@ class Section:
         """A cable (wire rope, chain) of nominal `diameter` (m), `mass` (kg/m) and axial stiffness `EA` (N):
         tension only, no bending or torsion; drag defaults to (0, 1.2), added mass to (0, 1); `damping` B
         (N·s): the axial internal damping of a taut cable, force B·ε̇."""
+    def with_structural_damping(
+        self, period: float, axial: float = 0.0, bending: float = 0.0, torsion: float = 0.0
+    ) -> Section:
+        """This section with structural (Kelvin–Voigt) damping: axial, bending and torsional fractions of
+        critical damping (-) at `period` (s). Resultants gain β·C times the strain rates, β = ζ·period/π (shear
+        with the axial ratio): a mode of period T is damped at ζ·period/T. Its work is dissipated. A cable takes
+        only `axial`, which adds β·EA to its `damping`."""
+    @property
+    def structural_damping(self) -> tuple[float, float, float, float] | None:
+        """(axial, bending, torsion) fractions of critical (-) and their period (s), or None."""
     @property
     def is_cable(self) -> bool:
         """Whether this is a cable's section (`Section.cable`)."""
     @property
     def damping(self) -> float:
-        """A cable's axial internal damping B (N·s); 0 for rods."""
+        """A cable's axial internal damping B (N·s), its structural damping's β·EA included; 0 for rods."""
     @property
     def EA(self) -> float:
         """Axial stiffness (N)."""

@@ -276,10 +276,43 @@ impl Section {
             .map_err(to_py)
     }
 
-    /// A cable's axial internal damping B (N·s): the damping force B·ε̇ of a taut cable; 0 for rods.
+    /// A cable's axial internal damping B (N·s): the damping force B·ε̇ of a taut cable, its structural
+    /// damping's β·EA included; 0 for rods.
     #[getter]
     fn damping(&self) -> f64 {
-        self.0.axial_damping
+        if self.0.cable {
+            self.0.cable_axial_damping()
+        } else {
+            0.0
+        }
+    }
+
+    /// This section with structural (Kelvin–Voigt) damping: `axial`, `bending` and `torsion` fractions of
+    /// critical damping (-, ≥ 0) at the period `period` (s, > 0), the way MoorDyn's BA/-zeta and OrcaFlex's
+    /// target damping are given. The resultants gain β C times the strain rates, β = ζ·period/π (shear with
+    /// the axial ratio), so a mode of period T is damped at ζ·period/T: the stated ratio at the period, more
+    /// for shorter ones. Its work is dissipated (in `Results.dissipated`). A cable takes only `axial`, which
+    /// adds β·EA to its `damping`.
+    #[pyo3(signature = (period, axial=0.0, bending=0.0, torsion=0.0))]
+    fn with_structural_damping(
+        &self,
+        period: f64,
+        axial: f64,
+        bending: f64,
+        torsion: f64,
+    ) -> PyResult<Self> {
+        section::StructuralDamping::new(axial, bending, torsion, period)
+            .and_then(|damping| self.0.clone().with_structural_damping(damping))
+            .map(Section)
+            .map_err(to_py)
+    }
+
+    /// The structural damping (axial, bending, torsion fractions of critical (-), period (s)), or None.
+    #[getter]
+    fn structural_damping(&self) -> Option<(f64, f64, f64, f64)> {
+        self.0
+            .structural_damping
+            .map(|d| (d.axial, d.bending, d.torsion, d.period))
     }
 
     /// Whether this is a cable's section (`Section.cable`): axial stiffness only.

@@ -206,6 +206,26 @@ class PipeMaterial(Table):
         return self
 
 
+class StructuralDamping(Table):
+    """`Section.with_structural_damping`: Kelvin–Voigt damping of the section's strains, each as a fraction of
+    critical damping at one period (MoorDyn's BA/-zeta, OrcaFlex's target damping).
+
+    The resultants gain β·C times the strain rates, β = ζ·period/π: a mode of period T is damped at
+    ζ·period/T. Its work is dissipated. Off without the table.
+    """
+
+    period: Annotated[float, Number("s", gt=0)] = Field(description="the period at which the fractions hold, > 0")
+    axial: Annotated[float | None, Number(ge=0)] = api(
+        "fraction of critical damping of the axial (and shear) strains at the period, ≥ 0", 0
+    )
+    bending: Annotated[float | None, Number(ge=0)] = api(
+        "fraction of critical damping of the bending curvatures at the period, ≥ 0", 0
+    )
+    torsion: Annotated[float | None, Number(ge=0)] = api(
+        "fraction of critical damping of the torsional curvature at the period, ≥ 0", 0
+    )
+
+
 class Pipe(Table):
     """`pl.Section.pipe`: a pipe from its geometry and material.
 
@@ -237,6 +257,9 @@ class Pipe(Table):
     lining: Lining | None = api("internal lining: a `[pipe.lining]` table")
     material: PipeMaterial | None = api(
         "the steel's law beyond yield: a `[pipe.material]` table", words="linear elastic"
+    )
+    structural_damping: StructuralDamping | None = api(
+        "Kelvin–Voigt damping of the pipe's strains: a `[pipe.structural_damping]` table", words="none"
     )
 
     @model_validator(mode="after")
@@ -281,6 +304,9 @@ class Section(Table):
     rotational_damping: Annotated[
         float | list[float] | None, number_or_vector(3, Number("N·m·s/m", ge=0), "[t1, t2, t3]")
     ] = api("a number or [t1, t2, t3], ≥ 0", 0)
+    structural_damping: StructuralDamping | None = api(
+        "Kelvin–Voigt damping of the section's strains: a `[section.structural_damping]` table", words="none"
+    )
 
 
 class LineSegment(Table):

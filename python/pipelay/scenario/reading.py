@@ -246,12 +246,19 @@ def _section(table: models.Pipe | models.Section | models.Cable, path: str, show
                 "coatings": [pl.Coating(**layer.given()) for layer in table.coatings],
                 "lining": None if table.lining is None else pl.Coating(**table.lining.given()),
             }
-            return pl.Section.pipe(
-                **table.given("coatings", "lining", "material"), **layers, material=_material(table)
+            section = pl.Section.pipe(
+                **table.given("coatings", "lining", "material", "structural_damping"),
+                **layers,
+                material=_material(table),
             )
-        if isinstance(table, models.Cable):
+        elif isinstance(table, models.Cable):
             return pl.Section.cable(**table.given())
-        return pl.Section(**table.given())
+        else:
+            section = pl.Section(**table.given("structural_damping"))
+    if table.structural_damping is None:
+        return section
+    with _engine(f"{shown}.structural_damping", KEYS[f"{path}.structural_damping"]):
+        return section.with_structural_damping(**table.structural_damping.given())
 
 
 def _rod(file: models.ScenarioFile) -> pl.Rod:

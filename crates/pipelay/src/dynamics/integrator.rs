@@ -72,7 +72,7 @@ pub struct DynamicOptions {
     pub max_iterations: usize,
     /// Stress evaluation: average strain (energy–momentum) or midpoint configuration (plain midpoint).
     pub stress_rule: StressRule,
-    /// High-frequency damping ξ ≥ 0 of the line's strains ([`crate::rod::dynamic_element::with_high_frequency_damping`]):
+    /// High-frequency damping ξ ≥ 0 of the line's strains ([`crate::rod::dynamic_element::with_damping`]):
     /// 0 conserves energy; ξ damps a mode of circular frequency ω at the ratio ξωΔt/2, all its work dissipated.
     pub high_frequency_damping: f64,
 }

@@ -18,8 +18,8 @@ use crate::linalg::pool;
 use crate::model::Model;
 use crate::rod::cable::{damping_step as cable_damping_step, step as cable_step};
 use crate::rod::dynamic_element::{
-    elastic_step_law, step as element_step, step_with as element_step_with,
-    with_high_frequency_damping, GaussPoint, StepStrains, StressRule,
+    damping_matrices, elastic_step_law, step as element_step, step_with as element_step_with,
+    with_damping, GaussPoint, StepStrains, StressRule,
 };
 use crate::rod::element::{ElementMatrix, ElementVector};
 use crate::rod::plastic_state::PlasticState;
@@ -64,8 +64,10 @@ pub struct SegmentConstants {
     drag: (f64, f64),
     /// Whether the segment is a cable.
     cable: bool,
-    /// A cable's axial internal damping B (N·s).
+    /// A cable's axial internal damping B (N·s), its structural damping's included.
     axial_damping: f64,
+    /// A rod's structural damping matrices (B_T, B_R) (N·s, N·m²·s; zero: none).
+    structural_damping: (Matrix3<f64>, Matrix3<f64>),
 }
 
 /// The constants of each segment of a model's line.
@@ -77,13 +79,21 @@ pub fn rod_constants(model: &Model) -> RodConstants {
         .rod
         .sections
         .iter()
-        .map(|section| SegmentConstants {
-            c_t: section.c_t(),
-            c_r: section.c_r(),
-            weight: model.submerged_weight_of(section),
-            drag: model.drag_coefficients_of(section),
-            cable: section.cable,
-            axial_damping: section.axial_damping,
+        .map(|section| {
+            let (c_t, c_r) = (section.c_t(), section.c_r());
+            let structural_damping = match section.structural_damping {
+                Some(damping) if !section.cable => damping.matrices(&c_t, &c_r),
+                _ => (Matrix3::zeros(), Matrix3::zeros()),
+            };
+            SegmentConstants {
+                c_t,
+                c_r,
+                weight: model.submerged_weight_of(section),
+                drag: model.drag_coefficients_of(section),
+                cable: section.cable,
+                axial_damping: section.cable_axial_damping(),
+                structural_damping,
+            }
         })
         .collect()
 }
@@ -112,7 +122,7 @@ pub struct RodStep<'a> {
     /// The winch's law over the step, where its speed depends on its wire's tension (the growing element is
     /// then the wire's top).
     pub winch: Option<WinchLaw>,
-    /// High-frequency damping ξ ([`with_high_frequency_damping`]; 0: none).
+    /// High-frequency damping ξ ([`with_damping`]; 0: none).
     pub high_frequency_damping: f64,
     pub stress_rule: StressRule,
     /// The yielding elements' wall fibres (None: no wall yields), and each element's fibres' plastic strains
@@ -239,6 +249,7 @@ impl RodStep<'_> {
             drag: (k_axial, k_normal),
             cable,
             axial_damping,
+            structural_damping,
         } = self.constants[model.rod.segment_of[e]];
         let dt = self.dt;
         let base = NODE_DOFS * e;
@@ -252,6 +263,7 @@ impl RodStep<'_> {
         let mut plastic_dissipated = 0.0;
         let mut damping_dissipated = 0.0;
         let damping = self.high_frequency_damping;
+        let damped = damping > 0.0 || structural_damping != (Matrix3::zeros(), Matrix3::zeros());
         let step = if cable {
             let ea = c_t[(0, 0)];
             let winch = self
@@ -274,11 +286,12 @@ impl RodStep<'_> {
             .fibres
             .and_then(|p| p.fibres(e))
             .map(Some)
-            .or((damping > 0.0).then_some(None))
+            .or(damped.then_some(None))
         {
             // A yielding wall's resultants averaged over its fibres' strain paths (its dissipation booked), or
-            // the elastic law's; then the high-frequency damping's stresses.
+            // the elastic law's; then the high-frequency and structural damping's stresses.
             let start = &self.plastic[e];
+            let (d_t, d_r) = damping_matrices(damping, &c_t, &c_r, &structural_damping, dt);
             let mut law = |strains: &StepStrains| {
                 let law = match fibres {
                     Some(fibres) => {
@@ -288,7 +301,7 @@ impl RodStep<'_> {
                     }
                     None => elastic_step_law(&c_t, &c_r, strains),
                 };
-                let (law, damped) = with_high_frequency_damping(law, strains, damping, &c_t, &c_r);
+                let (law, damped) = with_damping(law, strains, &d_t, &d_r);
                 damping_dissipated = reference.length * damped;
                 law
             };

@@ -107,31 +107,31 @@ pub fn elastic_step_law(c_t: &Matrix3<f64>, c_r: &Matrix3<f64>, strains: &StepSt
     }
 }
 
-/// The law `law` with high-frequency damping ξ ≥ 0 added: N̄ + ξ C_T ΔΓ and M̄ + ξ C_R ΔK, with ΔΓ, ΔK the
-/// step's changes of strain and curvature. Its work over the step, ξ(ΔΓ·C_T ΔΓ + ΔK·C_R ΔK) per unit length
-/// (≥ 0), is added to the law's dissipation, so the energy identity holds exactly. It is a stiffness-
-/// proportional damping whose coefficient scales with the step, β = ξΔt: a mode of circular frequency ω is
-/// damped at the ratio ξωΔt/2, so modes the step cannot resolve (ωΔt ≫ 1: the stiff axial modes of short
-/// elements, contact impacts) are overdamped while those it resolves keep most of their energy. Returns the
-/// law and the damping's dissipation per unit length (J/m).
-pub fn with_high_frequency_damping(
+/// The law `law` with damping of the step's strain changes added: N̄ + D_T ΔΓ and M̄ + D_R ΔK, with ΔΓ, ΔK
+/// the step's changes of strain and curvature and D_T, D_R symmetric and positive semi-definite. Its work over
+/// the step, ΔΓ·D_T ΔΓ + ΔK·D_R ΔK per unit length (≥ 0), is added to the law's dissipation, so the energy
+/// identity holds exactly. Two dampings take this form ([`damping_matrices`]):
+/// - high-frequency damping ξ: D = ξC, a stiffness-proportional damping whose coefficient scales with the
+///   step, β = ξΔt: a mode of circular frequency ω is damped at the ratio ξωΔt/2, so modes the step cannot
+///   resolve (ωΔt ≫ 1: the stiff axial modes of short elements, contact impacts) are overdamped while those it
+///   resolves keep most of their energy;
+/// - structural (Kelvin–Voigt) damping B Γ̇ ([`crate::rod::section::StructuralDamping`]): D = B/Δt, the
+///   strain rate over the step ΔΓ/Δt.
+///
+/// Returns the law and the damping's dissipation per unit length (J/m).
+pub fn with_damping(
     law: StepLaw,
     strains: &StepStrains,
-    damping: f64,
-    c_t: &Matrix3<f64>,
-    c_r: &Matrix3<f64>,
+    d_t: &Matrix3<f64>,
+    d_r: &Matrix3<f64>,
 ) -> (StepLaw, f64) {
     let strain = strains.end.0 - strains.start.0;
     let curvature = strains.end.1 - strains.start.1;
-    let (force, moment) = (damping * (c_t * strain), damping * (c_r * curvature));
+    let (force, moment) = (d_t * strain, d_r * curvature);
     let dissipated = force.dot(&strain) + moment.dot(&curvature);
     let mut derivative = law.derivative;
-    derivative
-        .fixed_view_mut::<3, 3>(0, 0)
-        .add_assign(&(damping * c_t));
-    derivative
-        .fixed_view_mut::<3, 3>(3, 3)
-        .add_assign(&(damping * c_r));
+    derivative.fixed_view_mut::<3, 3>(0, 0).add_assign(d_t);
+    derivative.fixed_view_mut::<3, 3>(3, 3).add_assign(d_r);
     (
         StepLaw {
             force: law.force + force,
@@ -141,6 +141,21 @@ pub fn with_high_frequency_damping(
             ..law
         },
         dissipated,
+    )
+}
+
+/// The damping matrices (D_T, D_R) of [`with_damping`] over a step `dt` (s): high-frequency damping ξ on the
+/// stiffnesses C_T, C_R and structural damping matrices B_T, B_R (N·s, N·m²·s): D = ξC + B/Δt.
+pub fn damping_matrices(
+    high_frequency: f64,
+    c_t: &Matrix3<f64>,
+    c_r: &Matrix3<f64>,
+    structural: &(Matrix3<f64>, Matrix3<f64>),
+    dt: f64,
+) -> (Matrix3<f64>, Matrix3<f64>) {
+    (
+        high_frequency * c_t + structural.0 / dt,
+        high_frequency * c_r + structural.1 / dt,
     )
 }
 
@@ -533,17 +548,20 @@ mod tests {
     /// With high-frequency damping ξ: the work of the forces is the change of stored energy plus the damping's
     /// dissipation L ξ(ΔΓ·C_T ΔΓ + ΔK·C_R ΔK) ≥ 0, and the tangent matches central differences.
     #[test]
-    fn high_frequency_damping_dissipates_its_work_with_a_consistent_tangent() {
+    fn strain_rate_damping_dissipates_its_work_with_a_consistent_tangent() {
         let (chord, gauss, reference, c_t, c_r) = case();
-        let damping = 0.3;
+        // High-frequency damping ξ = 0.3 and structural damping (2 %, 5 %, 1 % at 0.5 s) over a 0.1 s step.
+        let structural = crate::rod::section::StructuralDamping::new(0.02, 0.05, 0.01, 0.5)
+            .expect("damping")
+            .matrices(&c_t, &c_r);
+        let (d_t, d_r) = damping_matrices(0.3, &c_t, &c_r, &structural, 0.1);
         for scale in [0.1, 1.0, 3.0] {
             let u = increments(scale);
             let mut dissipated = 0.0;
             let run = |u: &ElementVector, k: Option<&mut ElementMatrix>, dissipated: &mut f64| {
                 let mut law = |strains: &StepStrains| {
                     let elastic = elastic_step_law(&c_t, &c_r, strains);
-                    let (law, damped) =
-                        with_high_frequency_damping(elastic, strains, damping, &c_t, &c_r);
+                    let (law, damped) = with_damping(elastic, strains, &d_t, &d_r);
                     *dissipated = reference.length * damped;
                     law
                 };
@@ -571,7 +589,7 @@ mod tests {
             );
             let g = s.next.strain - gauss.strain;
             let c = s.next.curvature - gauss.curvature;
-            let expected = reference.length * damping * (g.dot(&(c_t * g)) + c.dot(&(c_r * c)));
+            let expected = reference.length * (g.dot(&(d_t * g)) + c.dot(&(d_r * c)));
             assert!((dissipated - expected).abs() < 1e-12 * expected);
             let h = 1e-6;
             let mut worst: f64 = 0.0;

@@ -36,10 +36,68 @@ pub struct Section {
     /// A cable's axial internal damping B (N·s): a taut cable's damping force B ε̇ along its chord (MoorDyn's
     /// BA); zero for rods.
     pub axial_damping: f64,
+    /// Structural (Kelvin–Voigt) damping of the section's strains; `None`: none.
+    pub structural_damping: Option<StructuralDamping>,
     /// A laydown head's section ([`Section::head`]): the surface's diameter at each element's second node, to
     /// which it tapers linearly from `hydrodynamic_diameter` at its first (m; the rollers see the taper);
     /// `None`: a cylinder.
     pub nose_diameter: Option<f64>,
+}
+
+/// Structural damping of a section, given as fractions of critical damping ζ (-) at the circular frequency
+/// ω₀ = 2π/T₀ of a stated period T₀ (s), as MoorDyn's `BA/-zeta` and OrcaFlex's target damping are given.
+///
+/// It is Kelvin–Voigt (stiffness-proportional) damping: the section's resultants gain B_T Γ̇ and B_R K̇ with
+/// B_T = β_a C_T (the shear strains with the axial ratio) and B_R = diag(β_t GJ, β_b EI2, β_b EI3),
+/// β = 2ζ/ω₀ = ζT₀/π (s). A mode of circular frequency ω that strains the section one way is then damped at
+/// the ratio βω/2 = ζ ω/ω₀: ζ at the stated period, more at shorter periods (the stiff axial modes), less at
+/// longer ones. All its work is dissipated and booked in the energy ledger.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StructuralDamping {
+    /// Fraction of critical damping of the axial (and shear) strains at the period (-).
+    pub axial: f64,
+    /// Fraction of critical damping of the bending curvatures at the period (-).
+    pub bending: f64,
+    /// Fraction of critical damping of the torsional curvature at the period (-).
+    pub torsion: f64,
+    /// The period T₀ at which the fractions hold (s).
+    pub period: f64,
+}
+
+impl StructuralDamping {
+    /// Damping of `axial`, `bending` and `torsion` fractions of critical (each finite, ≥ 0) at the period
+    /// `period` (s, > 0).
+    pub fn new(axial: f64, bending: f64, torsion: f64, period: f64) -> Result<Self> {
+        non_negative("axial", axial, "(fraction of critical)")?;
+        non_negative("bending", bending, "(fraction of critical)")?;
+        non_negative("torsion", torsion, "(fraction of critical)")?;
+        positive("period", period, "s")?;
+        Ok(StructuralDamping {
+            axial,
+            bending,
+            torsion,
+            period,
+        })
+    }
+
+    /// The stiffness-proportional coefficient β = ζT₀/π (s) of a fraction ζ of critical at the period.
+    fn coefficient(&self, fraction: f64) -> f64 {
+        fraction * self.period / std::f64::consts::PI
+    }
+
+    /// The damping matrices (B_T, B_R) of a section of stiffnesses `c_t`, `c_r` (diagonal): resultants
+    /// B_T Γ̇ (N) and B_R K̇ (N·m).
+    pub fn matrices(&self, c_t: &Matrix3<f64>, c_r: &Matrix3<f64>) -> (Matrix3<f64>, Matrix3<f64>) {
+        let rotational = Vector3::new(
+            self.coefficient(self.torsion),
+            self.coefficient(self.bending),
+            self.coefficient(self.bending),
+        );
+        (
+            self.coefficient(self.axial) * c_t,
+            Matrix3::from_diagonal(&rotational) * c_r,
+        )
+    }
 }
 
 /// The wall of a pipe section.
@@ -187,6 +245,7 @@ impl Section {
             wall: None,
             cable: false,
             axial_damping: 0.0,
+            structural_damping: None,
             nose_diameter: None,
         })
     }
@@ -219,6 +278,7 @@ impl Section {
             wall: None,
             cable: true,
             axial_damping: 0.0,
+            structural_damping: None,
             nose_diameter: None,
         })
     }
@@ -260,6 +320,7 @@ impl Section {
             wall: None,
             cable: false,
             axial_damping: 0.0,
+            structural_damping: None,
             nose_diameter: Some(nose_diameter),
         })
     }
@@ -271,6 +332,30 @@ impl Section {
             axial_damping: damping,
             ..self
         })
+    }
+
+    /// This section with structural damping `damping` (a cable's has no bending or torsion to damp: its
+    /// axial damping adds β_a EA to its B).
+    pub fn with_structural_damping(self, damping: StructuralDamping) -> Result<Self> {
+        if self.cable && damping.bending.max(damping.torsion) > 0.0 {
+            return Err(crate::error::Error::input(
+                "structural_damping.bending, torsion",
+                format!("{}, {}", damping.bending, damping.torsion),
+                "must be 0 on a cable (it has no bending or torsion to damp)",
+            ));
+        }
+        Ok(Section {
+            structural_damping: Some(damping),
+            ..self
+        })
+    }
+
+    /// A cable's axial internal damping B (N·s) with its structural damping's: B + β_a EA.
+    pub fn cable_axial_damping(&self) -> f64 {
+        self.axial_damping
+            + self.structural_damping.map_or(0.0, |d| {
+                d.coefficient(d.axial) * self.translational_stiffness.x
+            })
     }
 
     /// A thin-or-thick-walled steel-like pipe from its geometry and material.
