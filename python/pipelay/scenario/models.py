@@ -214,7 +214,9 @@ class StructuralDamping(Table):
     ζ·period/T. Its work is dissipated. Off without the table.
     """
 
-    period: Annotated[float, Number("s", gt=0)] = Field(description="the period at which the fractions hold, > 0")
+    period: Annotated[float, Number("s", gt=0)] = Field(
+        description="the period at which the fractions hold, > 0"
+    )
     axial: Annotated[float | None, Number(ge=0)] = api(
         "fraction of critical damping of the axial (and shear) strains at the period, ≥ 0", 0
     )
