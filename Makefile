@@ -46,3 +46,8 @@ bench: $(STAMP)
 	$(BIN)/python benches/full_cost.py
 	$(BIN)/python benches/pay_out_rollers.py
 	$(BIN)/python benches/memory.py
+	$(BIN)/python benches/sea_cost.py
+	$(BIN)/python benches/storm.py
+	$(BIN)/python benches/surface_ringing.py
+	$(BIN)/python benches/moordyn_race.py
+	$(BIN)/python benches/moordyn_wave_race.py
