@@ -35,11 +35,9 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import math
 import platform
 import sys
 import time
-from collections.abc import Callable
 from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
@@ -54,6 +52,8 @@ from moordyn_case import (
     Run,
     _moordyn_system,
     _quiet,
+    axial_wave_time,
+    best_of,
     max_relative_error,
     moordyn_initial,
     moordyn_input,
@@ -67,8 +67,6 @@ PIPELAY_STEP_COUNTS = [100, 125, 160, 200, 250, 320, 400, 500, 625, 800, 1000, 1
 MOORDYN_SHRINK = 1.25
 IC_TIME = 60.0  # s of MoorDyn initial-condition relaxation
 CABLE = replace(CASE, cable=True)  # the same line on pipelay's cable elements
-TIMED_RUNS = 3  # a timed run shorter than REPEAT_BELOW is run this many times, and its best wall time kept
-REPEAT_BELOW = 10.0  # s
 
 
 @dataclass
@@ -79,22 +77,6 @@ class Found:
     run: Run
     error: float
     reference: Run
-
-
-def axial_wave_time(n: int) -> float:
-    """Segment length over the axial wave speed, l/c (s)."""
-    area = math.pi / 4.0 * CASE.diameter**2
-    speed = math.sqrt(CASE.ea / (CASE.mass + CASE.ca * CASE.rho_water * area))
-    return CASE.length / n / speed
-
-
-def best_of(found: Run, again: Callable[[], Run]) -> Run:
-    """`found` with the best wall time of itself and, if it took less than ``REPEAT_BELOW``, of
-    ``TIMED_RUNS`` − 1 more runs by `again` (a shared machine's timings of a short run vary by tens of %)."""
-    if found.wall >= REPEAT_BELOW:
-        return found
-    walls = [found.wall] + [again().wall for _ in range(TIMED_RUNS - 1)]
-    return replace(found, wall=min(walls))
 
 
 def pipelay_search(n: int, log: list[str], case: Case = CASE) -> Found:

@@ -72,7 +72,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import numpy as np
 import pipelay as pl
 from machine import machine
-from moordyn_case import Run
+from moordyn_case import Run, axial_wave_time, best_of
 from moordyn_waves_case import (
     JONSWAP,
     LOW_PASS,
@@ -94,8 +94,6 @@ MOORDYN_SHRINK = 1.25
 IC_TIME = 60.0  # s of MoorDyn's dynamic relaxation (its cost grows like n²: ≈ 30 s at n = 400)
 CHECKED_UP_TO = 200  # MoorDyn's dt is checked against dt/2 up to this n
 CABLE = replace(WAVE_CASE, cable=True)  # the same line on pipelay's cable elements
-TIMED_RUNS = 3  # a timed run shorter than REPEAT_BELOW is run this many times, and its best wall time kept
-REPEAT_BELOW = 10.0  # s
 
 
 @dataclass
@@ -110,22 +108,6 @@ class Found:
     raw_error: float
     reference: Run
     within: bool = True
-
-
-def axial_wave_time(n: int, case: WaveCase = WAVE_CASE) -> float:
-    """Segment length over the axial wave speed, l/c (s)."""
-    area = math.pi / 4.0 * case.diameter**2
-    speed = math.sqrt(case.ea / (case.mass + case.ca * case.rho_water * area))
-    return case.length / n / speed
-
-
-def best_of(found: Run, again: Callable[[], Run]) -> Run:
-    """`found` with the best wall time of itself and, if it took less than ``REPEAT_BELOW``, of
-    ``TIMED_RUNS`` − 1 more runs by `again` (a shared machine's timings of a short run vary by tens of %)."""
-    if found.wall >= REPEAT_BELOW:
-        return found
-    walls = [found.wall] + [again().wall for _ in range(TIMED_RUNS - 1)]
-    return replace(found, wall=min(walls))
 
 
 def pipelay_search(n: int, sea: SeaState, case: WaveCase, cutoff: float, log: Callable[[str], None]) -> Found:

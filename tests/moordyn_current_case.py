@@ -63,7 +63,7 @@ from typing import Any
 
 import numpy as np
 import pipelay as pl
-from moordyn_case import Case, _quiet, line_section
+from moordyn_case import Case, _quiet, line_section, moordyn_file, moordyn_point
 
 __all__ = [
     "SHEARED",
@@ -180,37 +180,17 @@ def moordyn_input(
     ``current_profile.txt`` (``Currents 1``, no waves)."""
     a = (0.0, 0.0, -case.depth)
     b = (case.x0, 0.0, -case.depth + case.rise)
-    return f"""--------------------- MoorDyn Input File ------------------------------------
-pipelay peer comparison: steel wire rope between two fixed points in a steady current
----------------------- LINE TYPES ------------------------------------------------------
-TypeName  Diam  Mass/m  EA  BA/-zeta  EI  Cd  Ca  CdAx  CaAx
-(name)  (m)  (kg/m)  (N)  (N-s/-)  (N-m^2)  (-)  (-)  (-)  (-)
-rope  {case.diameter!r}  {case.mass!r}  {case.ea!r}  {ba!r}  0.0  {case.cd_normal!r}  {case.ca!r}  0.0  {case.axial_added_mass!r}
----------------------- POINTS ----------------------------------------------------------
-ID  Attachment  X  Y  Z  Mass  Volume  CdA  Ca
-(#)  (word/ID)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)
-1  Coupled  {a[0]!r}  {a[1]!r}  {a[2]!r}  0  0  0  0
-2  Coupled  {b[0]!r}  {b[1]!r}  {b[2]!r}  0  0  0  0
----------------------- LINES -----------------------------------------------------------
-ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
-(#)  (name)  (ID)  (ID)  (m)  (-)  (-)
-1  rope  1  2  {case.length!r}  {n}  -
----------------------- OPTIONS ---------------------------------------------------------
-0  writeLog
-{dt!r}  dtM
-RK4  tScheme
-{case.gravity!r}  g
-{case.rho_water!r}  rho
-{case.depth + 50.0!r}  WtrDpth
-1.0  dtIC
-{ic_time!r}  TmaxIC
-1e-7  threshIC
-0  WaveKin
-1  Currents
-1  disableOutput
-1  disableOutTime
-------------------------- need this line -----------------------------------------------
-"""
+    options = [
+        f"{case.depth + 50.0!r}  WtrDpth",
+        "1.0  dtIC",
+        f"{ic_time!r}  TmaxIC",
+        "1e-7  threshIC",
+        "0  WaveKin",
+        "1  Currents",
+    ]
+    title = "pipelay peer comparison: steel wire rope between two fixed points in a steady current"
+    points = (moordyn_point("Coupled", a), moordyn_point("Coupled", b))
+    return moordyn_file(title, n, case, ba, points, dt, "RK4", options)
 
 
 def run_moordyn(

@@ -81,6 +81,7 @@ from moordyn_case import (
     line_section,
     max_relative_error,
     top_position,
+    top_tension_run,
     top_velocity,
 )
 from moordyn_case import (
@@ -189,18 +190,7 @@ def run_pipelay(n: int, dt: float, case: SeabedCase = SEABED_CASE, t_end: float 
     (s) on ``n`` elements. The top tension is returned at the step midpoints (t = 0, then dt/2, 3dt/2, …; see
     ``moordyn_case.run_pipelay`` for why), the touchdown at the recorded states (t = 0, dt, 2dt, …)."""
     t_end = case.t_end if t_end is None else t_end
-    model = pipelay_model(n, case)
-    state = model.static()
-    static_tension = float(np.linalg.norm(state.reaction("B")[:3]))
-    sim = model.simulation(state=state, dt=dt)
-    steps = round(t_end / dt)
-    began = time.perf_counter()
-    res = sim.run(steps * dt, progress=False, record_every=1)
-    wall = time.perf_counter() - began
-    tension = np.linalg.norm(res.reaction("B")[:, :3], axis=1)
-    tension[0] = static_tension
-    times = np.asarray(res.time) - 0.5 * dt
-    times[0] = 0.0
+    run, res, state = top_tension_run(pipelay_model(n, case), dt, t_end)
     if res.touchdown is None or res.touchdown_arc_length is None:
         raise RuntimeError("pipelay recorded no touchdown: is the seabed in the model?")
     arc = np.array(res.touchdown_arc_length, dtype=float)
@@ -210,12 +200,12 @@ def run_pipelay(n: int, dt: float, case: SeabedCase = SEABED_CASE, t_end: float 
         arc[0] = static_touchdown.arc_length
         where[0] = static_touchdown.position
     return SeabedRun(
-        times,
-        tension,
-        static_tension,
-        wall,
-        len(res.time) - 1,
-        int(np.sum(res.iterations)),
+        run.time,
+        run.tension,
+        run.static_tension,
+        run.wall,
+        run.steps,
+        run.iterations,
         touchdown_time=np.asarray(res.time, dtype=float),
         touchdown_arc_length=arc,
         touchdown=where,

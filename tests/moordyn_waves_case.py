@@ -74,16 +74,24 @@ from __future__ import annotations
 
 import contextlib
 import math
-import os
-import tempfile
-import time
 from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 import pipelay as pl
-from moordyn_case import Case, Run, _quiet, initial_condition, line_section
+from moordyn_case import (
+    Case,
+    Run,
+    _moordyn_system,
+    _quiet,
+    initial_condition,
+    line_section,
+    moordyn_file,
+    moordyn_point,
+    step_moordyn,
+    top_tension_run,
+)
 
 __all__ = [
     "JONSWAP",
@@ -211,19 +219,7 @@ def run_pipelay_waves(
     ``case.t_end``) in the waves of ``sea`` (None: calm) with step ``dt`` (s) on ``n`` elements; the top
     tension read at the step midpoints as ``moordyn_case.run_pipelay`` does (its docstring says why)."""
     t_end = case.t_end if t_end is None else t_end
-    model = pipelay_waves_model(n, sea, case)
-    state = model.static()
-    static_tension = float(np.linalg.norm(state.reaction("B")[:3]))
-    sim = model.simulation(state=state, dt=dt)
-    steps = round(t_end / dt)
-    began = time.perf_counter()
-    res = sim.run(steps * dt, progress=False, record_every=1)
-    wall = time.perf_counter() - began
-    tension = np.linalg.norm(res.reaction("B")[:, :3], axis=1)
-    tension[0] = static_tension
-    times = np.asarray(res.time) - 0.5 * dt
-    times[0] = 0.0
-    return Run(times, tension, static_tension, wall, len(res.time) - 1, int(np.sum(res.iterations)))
+    return top_tension_run(pipelay_waves_model(n, sea, case), dt, t_end)[0]
 
 
 def moordyn_frequencies(sea: SeaState) -> str:
@@ -261,58 +257,26 @@ def moordyn_waves_input(
         solver = f"1e-9  threshIC\n1  ICgenDynamic\n{RELAX_DRAG!r}  CdScaleIC"
     else:
         solver = "1e-7  threshIC"
-    return f"""--------------------- MoorDyn Input File ------------------------------------
-pipelay peer comparison: steel wire rope between two fixed points in waves
----------------------- LINE TYPES ------------------------------------------------------
-TypeName  Diam  Mass/m  EA  BA/-zeta  EI  Cd  Ca  CdAx  CaAx
-(name)  (m)  (kg/m)  (N)  (N-s/-)  (N-m^2)  (-)  (-)  (-)  (-)
-rope  {case.diameter!r}  {case.mass!r}  {case.ea!r}  {ba!r}  0.0  {case.cd_normal!r}  {case.ca!r}  0.0  {case.axial_added_mass!r}
----------------------- POINTS ----------------------------------------------------------
-ID  Attachment  X  Y  Z  Mass  Volume  CdA  Ca
-(#)  (word/ID)  (m)  (m)  (m)  (kg)  (m^3)  (m^2)  (-)
-1  Fixed  0.0  0.0  {-case.depth!r}  0  0  0  0
-2  Coupled  {top[0]!r}  {top[1]!r}  {top[2]!r}  0  0  0  0
----------------------- LINES -----------------------------------------------------------
-ID  LineType  AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
-(#)  (name)  (ID)  (ID)  (m)  (-)  (-)
-1  rope  1  2  {case.length!r}  {n}  -
----------------------- OPTIONS ---------------------------------------------------------
-0  writeLog
-{dt!r}  dtM
-RK4  tScheme
-{case.gravity!r}  g
-{case.rho_water!r}  rho
-{case.water_depth!r}  WtrDpth
-{7 if waves else 0}  WaveKin
-0  Currents
-1.0  dtIC
-{ic_time!r}  TmaxIC
-{solver}
-1  disableOutput
-1  disableOutTime
-------------------------- need this line -----------------------------------------------
-"""
+    options = [
+        f"{case.water_depth!r}  WtrDpth",
+        f"{7 if waves else 0}  WaveKin",
+        "0  Currents",
+        "1.0  dtIC",
+        f"{ic_time!r}  TmaxIC",
+        *solver.splitlines(),
+    ]
+    title = "pipelay peer comparison: steel wire rope between two fixed points in waves"
+    points = (moordyn_point("Fixed", (0.0, 0.0, -case.depth)), moordyn_point("Coupled", top))
+    return moordyn_file(title, n, case, ba, points, dt, "RK4", options)
 
 
 @contextlib.contextmanager
 def moordyn_waves_system(text: str, sea: SeaState | None) -> Iterator[Any]:
     """A MoorDyn system built from the input file ``text`` and, with ``sea``, its ``wave_frequencies.txt``
     (both written to a temporary folder), closed on exit."""
-    import moordyn  # type: ignore[import-untyped]
-
-    with tempfile.TemporaryDirectory(prefix="pipelay-moordyn-waves-") as folder:
-        path = os.path.join(folder, "line.txt")
-        with open(path, "w", encoding="utf-8") as handle:
-            handle.write(text)
-        if sea is not None:
-            with open(os.path.join(folder, "wave_frequencies.txt"), "w", encoding="utf-8") as handle:
-                handle.write(moordyn_frequencies(sea))
-        with _quiet():
-            system = moordyn.Create(path)
-        try:
-            yield system
-        finally:
-            moordyn.Close(system)
+    beside = {} if sea is None else {"wave_frequencies.txt": moordyn_frequencies(sea)}
+    with _moordyn_system(text, beside) as system:
+        yield system
 
 
 def moordyn_initial_waves(
@@ -360,20 +324,7 @@ def run_moordyn_waves(
         static_tension = float(np.linalg.norm(moordyn.Step(system, top, still, 0.0, 0.0)))
         tension = np.empty(steps + 1)
         tension[0] = static_tension
-        step = moordyn.Step
-        with _quiet():  # an unstable run prints MoorDyn's NaN dump; the error below says what happened
-            began = time.perf_counter()
-            try:
-                for k in range(steps):
-                    fx, fy, fz = step(system, top, still, float(times[k]), dt)
-                    tension[k + 1] = math.sqrt(fx * fx + fy * fy + fz * fz)
-            except RuntimeError as exc:
-                raise RuntimeError(
-                    f"MoorDyn failed at t = {times[k]:.4f} s (n = {n}, dt = {dt} s): {exc}"
-                ) from exc
-            wall = time.perf_counter() - began
-    if not np.all(np.isfinite(tension)):
-        raise RuntimeError(f"MoorDyn's top force is not finite (n = {n}, dt = {dt} s)")
+        wall = step_moordyn(system, [top] * steps, [still] * steps, times, tension, n)
     return Run(times, tension, static_tension, wall, steps)
 
 

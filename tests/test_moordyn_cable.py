@@ -20,18 +20,20 @@ import numpy as np
 import pipelay as pl
 import pytest
 from irvine import irvine_catenary
-from moordyn_case import CASE, Run, max_relative_error, moordyn_initial, run_moordyn, run_pipelay
+from moordyn_case import (
+    CASE,
+    Run,
+    axial_wave_time,
+    max_relative_error,
+    moordyn_initial,
+    run_moordyn,
+    run_pipelay,
+)
 
 ELEMENTS = 100
 DT_PIPELAY = 0.025  # s
 DT_MOORDYN = 5.0e-4  # s
 CABLE = replace(CASE, cable=True)
-
-
-def axial_wave_time(n: int) -> float:
-    """Segment length over the axial wave speed, l/c (s)."""
-    area = math.pi / 4.0 * CASE.diameter**2
-    return CASE.length / n / math.sqrt(CASE.ea / (CASE.mass + CASE.ca * CASE.rho_water * area))
 
 
 def rms_relative_error(run: Run, reference: Run) -> float:

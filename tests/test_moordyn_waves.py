@@ -41,7 +41,7 @@ from dataclasses import replace
 import numpy as np
 import pipelay as pl
 import pytest
-from moordyn_case import Run, _quiet
+from moordyn_case import Run, _quiet, axial_wave_time
 from moordyn_waves_case import (
     JONSWAP,
     REGULAR,
@@ -65,13 +65,6 @@ DT_PIPELAY = 0.01  # s
 DT_MOORDYN = 2.0e-3  # s
 CABLE = replace(WAVE_CASE, cable=True)
 SEAS = {"regular": REGULAR, "JONSWAP": JONSWAP}
-
-
-def axial_wave_time(n: int) -> float:
-    """Segment length over the axial wave speed, l/c (s)."""
-    case = WAVE_CASE
-    area = math.pi / 4.0 * case.diameter**2
-    return case.length / n / math.sqrt(case.ea / (case.mass + case.ca * case.rho_water * area))
 
 
 def ringing(run: Run) -> float:
