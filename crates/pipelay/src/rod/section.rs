@@ -576,6 +576,41 @@ mod tests {
     use super::*;
     use std::f64::consts::PI;
 
+    /// Structural damping's matrices: B_T = β_a C_T, B_R = diag(β_t GJ, β_b EI2, β_b EI3) with β = ζT₀/π, so a
+    /// one-degree-of-freedom mode k of circular frequency ω = 2π/T₀ is damped at βω/2 = ζ; a cable adds β_a EA
+    /// to its B and refuses bending or torsional damping; negative ratios and a zero period are refused.
+    #[test]
+    fn structural_damping_is_stiffness_proportional_at_the_stated_period() {
+        let pipe = Section::pipe(0.6, 0.025, 7850.0, 207e9, 0.3, 0.0, [0.0, 1.0], [0.0, 1.0])
+            .expect("pipe");
+        let damping = StructuralDamping::new(0.02, 0.05, 0.01, 0.5).expect("damping");
+        let (b_t, b_r) = damping.matrices(&pipe.c_t(), &pipe.c_r());
+        let beta = |zeta: f64| zeta * 0.5 / PI;
+        let (c_t, c_r) = (pipe.c_t(), pipe.c_r());
+        for i in 0..3 {
+            assert!((b_t[(i, i)] - beta(0.02) * c_t[(i, i)]).abs() <= 1e-12 * b_t[(i, i)]);
+        }
+        assert!((b_r[(0, 0)] - beta(0.01) * c_r[(0, 0)]).abs() <= 1e-12 * b_r[(0, 0)]);
+        assert!((b_r[(1, 1)] - beta(0.05) * c_r[(1, 1)]).abs() <= 1e-12 * b_r[(1, 1)]);
+        assert!((b_r[(2, 2)] - beta(0.05) * c_r[(2, 2)]).abs() <= 1e-12 * b_r[(2, 2)]);
+        assert_eq!(b_t[(0, 1)], 0.0);
+        // The ratio at the stated period: β ω / 2 with ω = 2π/T₀.
+        assert!((beta(0.02) * (2.0 * PI / 0.5) / 2.0 - 0.02).abs() < 1e-15);
+        let cable = Section::cable(0.09, 40.0, 4e8, [0.0, 1.2], [0.0, 1.0])
+            .and_then(|c| c.with_axial_damping(1e3))
+            .expect("cable");
+        let axial = StructuralDamping::new(0.1, 0.0, 0.0, 0.5).expect("axial");
+        let damped = cable
+            .clone()
+            .with_structural_damping(axial)
+            .expect("damped");
+        assert!((damped.cable_axial_damping() - (1e3 + 0.1 * 0.5 / PI * 4e8)).abs() < 1e-6);
+        assert!(cable.with_structural_damping(damping).is_err());
+        assert!(StructuralDamping::new(-0.01, 0.0, 0.0, 1.0).is_err());
+        assert!(StructuralDamping::new(0.01, 0.0, 0.0, 0.0).is_err());
+        assert!(StructuralDamping::new(f64::NAN, 0.0, 0.0, 1.0).is_err());
+    }
+
     /// A 24-inch pipe with 3 mm of 3LPE and 60 mm of concrete, lined and flooded: mass, diameters, buoyancy
     /// area and inertia against the layers summed by hand; the steel alone carries the stiffness.
     #[test]
