@@ -280,11 +280,7 @@ impl Section {
     /// damping's β·EA included; 0 for rods.
     #[getter]
     fn damping(&self) -> f64 {
-        if self.0.cable {
-            self.0.cable_axial_damping()
-        } else {
-            0.0
-        }
+        self.0.cable_axial_damping()
     }
 
     /// This section with structural (Kelvin–Voigt) damping: `axial`, `bending` and `torsion` fractions of

@@ -66,8 +66,8 @@ pub struct SegmentConstants {
     cable: bool,
     /// A cable's axial internal damping B (N·s), its structural damping's included.
     axial_damping: f64,
-    /// A rod's structural damping matrices (B_T, B_R) (N·s, N·m²·s; zero: none).
-    structural_damping: (Matrix3<f64>, Matrix3<f64>),
+    /// A rod's structural damping matrices (B_T, B_R) (N·s, N·m²·s), if it has any.
+    structural_damping: Option<(Matrix3<f64>, Matrix3<f64>)>,
 }
 
 /// The constants of each segment of a model's line.
@@ -81,10 +81,10 @@ pub fn rod_constants(model: &Model) -> RodConstants {
         .iter()
         .map(|section| {
             let (c_t, c_r) = (section.c_t(), section.c_r());
-            let structural_damping = match section.structural_damping {
-                Some(damping) if !section.cable => damping.matrices(&c_t, &c_r),
-                _ => (Matrix3::zeros(), Matrix3::zeros()),
-            };
+            let structural_damping = section
+                .structural_damping
+                .filter(|_| !section.cable)
+                .map(|damping| damping.matrices(&c_t, &c_r));
             SegmentConstants {
                 c_t,
                 c_r,
@@ -263,7 +263,7 @@ impl RodStep<'_> {
         let mut plastic_dissipated = 0.0;
         let mut damping_dissipated = 0.0;
         let damping = self.high_frequency_damping;
-        let damped = damping > 0.0 || structural_damping != (Matrix3::zeros(), Matrix3::zeros());
+        let damped = damping > 0.0 || structural_damping.is_some();
         let step = if cable {
             let ea = c_t[(0, 0)];
             let winch = self
@@ -291,7 +291,7 @@ impl RodStep<'_> {
             // A yielding wall's resultants averaged over its fibres' strain paths (its dissipation booked), or
             // the elastic law's; then the high-frequency and structural damping's stresses.
             let start = &self.plastic[e];
-            let (d_t, d_r) = damping_matrices(damping, &c_t, &c_r, &structural_damping, dt);
+            let (d_t, d_r) = damping_matrices(damping, &c_t, &c_r, structural_damping.as_ref(), dt);
             let mut law = |strains: &StepStrains| {
                 let law = match fibres {
                     Some(fibres) => {

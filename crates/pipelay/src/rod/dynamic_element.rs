@@ -145,18 +145,19 @@ pub fn with_damping(
 }
 
 /// The damping matrices (D_T, D_R) of [`with_damping`] over a step `dt` (s): high-frequency damping ξ on the
-/// stiffnesses C_T, C_R and structural damping matrices B_T, B_R (N·s, N·m²·s): D = ξC + B/Δt.
+/// stiffnesses C_T, C_R and, if any, structural damping matrices B_T, B_R (N·s, N·m²·s): D = ξC + B/Δt.
 pub fn damping_matrices(
     high_frequency: f64,
     c_t: &Matrix3<f64>,
     c_r: &Matrix3<f64>,
-    structural: &(Matrix3<f64>, Matrix3<f64>),
+    structural: Option<&(Matrix3<f64>, Matrix3<f64>)>,
     dt: f64,
 ) -> (Matrix3<f64>, Matrix3<f64>) {
-    (
-        high_frequency * c_t + structural.0 / dt,
-        high_frequency * c_r + structural.1 / dt,
-    )
+    let (d_t, d_r) = (high_frequency * c_t, high_frequency * c_r);
+    match structural {
+        Some((b_t, b_r)) => (d_t + b_t / dt, d_r + b_r / dt),
+        None => (d_t, d_r),
+    }
 }
 
 /// One element's contribution to a time step.
@@ -554,7 +555,7 @@ mod tests {
         let structural = crate::rod::section::StructuralDamping::new(0.02, 0.05, 0.01, 0.5)
             .expect("damping")
             .matrices(&c_t, &c_r);
-        let (d_t, d_r) = damping_matrices(0.3, &c_t, &c_r, &structural, 0.1);
+        let (d_t, d_r) = damping_matrices(0.3, &c_t, &c_r, Some(&structural), 0.1);
         for scale in [0.1, 1.0, 3.0] {
             let u = increments(scale);
             let mut dissipated = 0.0;

@@ -350,8 +350,12 @@ impl Section {
         })
     }
 
-    /// A cable's axial internal damping B (N·s) with its structural damping's: B + β_a EA.
+    /// A cable's axial internal damping B (N·s) with its structural damping's: B + β_a EA; 0 for a rod (its
+    /// structural damping acts through [`StructuralDamping::matrices`]).
     pub fn cable_axial_damping(&self) -> f64 {
+        if !self.cable {
+            return 0.0;
+        }
         self.axial_damping
             + self.structural_damping.map_or(0.0, |d| {
                 d.coefficient(d.axial) * self.translational_stiffness.x
@@ -609,6 +613,8 @@ mod tests {
         assert!(StructuralDamping::new(-0.01, 0.0, 0.0, 1.0).is_err());
         assert!(StructuralDamping::new(0.01, 0.0, 0.0, 0.0).is_err());
         assert!(StructuralDamping::new(f64::NAN, 0.0, 0.0, 1.0).is_err());
+        let damped_pipe = pipe.with_structural_damping(damping).expect("damped pipe");
+        assert_eq!(damped_pipe.cable_axial_damping(), 0.0);
     }
 
     /// A 24-inch pipe with 3 mm of 3LPE and 60 mm of concrete, lined and flooded: mass, diameters, buoyancy
