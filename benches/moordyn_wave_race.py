@@ -143,31 +143,31 @@ def pipelay_search(n: int, sea: SeaState, case: WaveCase, cutoff: float, log: Ca
 def moordyn_search(
     n: int,
     sea: SeaState,
+    case: WaveCase,
     initial: bytes,
     cutoff: float,
     check: bool,
     log: Callable[[str], None],
-    ba: float = 0.0,
 ) -> Found:
     """MoorDyn's largest stable dt from 2 l/c down by ``MOORDYN_SHRINK``, within ``TOLERANCE`` of a run at
     half that dt (errors low-passed at ``cutoff`` Hz; 0: raw) if ``check``, else as it is (errors NaN, the run
-    its own reference). Internal damping ``ba`` (see ``moordyn_waves_input``)."""
+    its own reference). The line's internal damping is ``case``'s (``BA/-zeta`` = −``case.zeta``)."""
     dt = 2.0 * axial_wave_time(n)
     reference: Run | None = None
     for _ in range(40):
         try:
-            run = run_moordyn_waves(n, dt, sea, initial=initial, ba=ba)
+            run = run_moordyn_waves(n, dt, sea, case, initial=initial)
         except RuntimeError as exc:
             log(f"{sea.name} MoorDyn n={n} dt={dt:.4g}: unstable ({str(exc).split(':')[0]})")
             dt /= MOORDYN_SHRINK
             continue
-        again = partial(run_moordyn_waves, n, dt, sea, initial=initial, ba=ba)
+        again = partial(run_moordyn_waves, n, dt, sea, case, initial=initial)
         if not check:
             log(f"{sea.name} MoorDyn n={n} dt={dt:.4g}: stable, not checked against dt/2, {run.wall:.2f} s")
             run = best_of(run, again)
             return Found(dt, run, math.nan, math.nan, run)
         if reference is None or reference.time[1] > dt / 2.0 * (1 + 1e-9):
-            reference = run_moordyn_waves(n, dt / 2.0, sea, initial=initial, ba=ba)
+            reference = run_moordyn_waves(n, dt / 2.0, sea, case, initial=initial)
         error, raw = range_error(run, reference, cutoff), range_error(run, reference, 0.0, 0.0)
         log(
             f"{sea.name} MoorDyn n={n} dt={dt:.4g}: error {100 * error:.4f} % (raw {100 * raw:.3f} %) "
@@ -218,7 +218,6 @@ def main(argv: list[str] | None = None) -> int:
     checked_up_to = args.check_up_to
     seas = (REGULAR, JONSWAP)
     cutoff = args.lowpass
-    ba = -args.damping  # MoorDyn's internal damping, BA/-zeta; pipelay's through the cases
     cable_case, rod_case = replace(CABLE, zeta=args.damping), replace(WAVE_CASE, zeta=args.damping)
 
     def log(line: str) -> None:
@@ -256,11 +255,11 @@ def main(argv: list[str] | None = None) -> int:
                         f"{percent(raw, 2)} % raw",
                         flush=True,
                     )
-            theirs = moordyn_search(n, sea, initial, cutoff, n <= checked_up_to, log, ba)
+            theirs = moordyn_search(n, sea, rod_case, initial, cutoff, n <= checked_up_to, log)
             if theirs.dt not in calm_runs:
-                calm = run_moordyn_waves(n, theirs.dt, None, initial=initial, ba=ba)
+                calm = run_moordyn_waves(n, theirs.dt, None, rod_case, initial=initial)
                 calm_runs[theirs.dt] = best_of(
-                    calm, partial(run_moordyn_waves, n, theirs.dt, None, initial=initial, ba=ba)
+                    calm, partial(run_moordyn_waves, n, theirs.dt, None, rod_case, initial=initial)
                 )
             calm = calm_runs[theirs.dt]
             rows[sea.name].append((n, cable, rod, theirs, calm))

@@ -297,25 +297,25 @@ def run_moordyn_waves(
     case: WaveCase = WAVE_CASE,
     initial: bytes | None = None,
     t_end: float | None = None,
-    ba: float | None = None,
     ic_time: float = IC_TIME,
 ) -> Run:
-    """MoorDyn (RK4, internal damping ``ba``; None: −``case.zeta``) on ``n`` segments with step ``dt`` (s) to ``t_end`` (s; default
-    ``case.t_end``) in the waves of ``sea`` (None: calm, ``WaveKin 0``), B held still (a coupled point given
+    """MoorDyn (RK4, internal damping ``BA/-zeta`` = −``case.zeta``) on ``n`` segments with step ``dt`` (s) to
+    ``t_end`` (s; default ``case.t_end``) in the waves of ``sea`` (None: calm, ``WaveKin 0``), B held still (a coupled point given
     its position and zero velocity at every step). It starts from ``initial`` (a calm system serialized by
     ``moordyn_initial_waves`` for the same ``n``) or, without it, from that calm solve (at most ``ic_time`` s
     at step ``dt``). Raises RuntimeError if MoorDyn fails or its top force stops being finite."""
     import moordyn  # type: ignore[import-untyped]
 
     t_end = case.t_end if t_end is None else t_end
-    ba = -case.zeta if ba is None else ba
     if initial is None:
         initial, _ = moordyn_initial_waves(n, dt, case, ic_time)
     steps = round(t_end / dt)
     times = np.arange(steps + 1) * dt
     top = case.top_moordyn.tolist()
     still = [0.0, 0.0, 0.0]
-    with moordyn_waves_system(moordyn_waves_input(n, dt, sea is not None, case, ba, ic_time), sea) as system:
+    with moordyn_waves_system(
+        moordyn_waves_input(n, dt, sea is not None, case, -case.zeta, ic_time), sea
+    ) as system:
         with _quiet():
             err = moordyn.Init_NoIC(system, top, still)
         if err != 0:
